@@ -1,0 +1,163 @@
+// The base of costmap filters (Nav2's design): the base owns the mask, its frame transform and the
+// robot pose; a subclass only says what a mask value means, in process(). A new mask replaces the old
+// one atomically, and the next update covers the union of the old and new mask extents.
+#pragma once
+
+#include <algorithm>
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "costmap_layers/core/costmap_2d.hpp"
+#include "costmap_layers/core/layer.hpp"
+#include "costmap_layers/core/layered_costmap.hpp"
+
+namespace costmap_layers
+{
+class ParamReader;
+
+/// Checks a mask or map: data size, finite positive resolution, finite origin, sane dimensions.
+/// @return an empty string when valid, else one line naming the field and its value.
+std::string validateGrid(const OccupancyGridData& grid, uint64_t max_cells = 400'000'000ull);
+
+/// How master cells of one update window map to cells of the mask: per master column a mask column
+/// (or -1 outside) and per master row a mask row, when the mask is axis-aligned with the costmap;
+/// otherwise a per-cell affine map. Built once per update, never per cell.
+class MaskMapping
+{
+public:
+  /// @param to_mask  transform from the costmap's global frame into the mask's frame
+  void build(const Costmap2D& master, const CellWindow& window, const OccupancyGridData& mask,
+             const Transform2D& to_mask);
+
+  /// Calls fn(master_cell, mask_value) for every cell of the window that lies on the mask.
+  template <class Fn>
+  void forEach(Costmap2D& master, const OccupancyGridData& mask, Fn&& fn) const;
+
+  /// True when rows and columns map independently (no rotation between costmap and mask).
+  bool axisAligned() const { return axis_aligned_; }
+  /// True when, in addition, one master cell is one mask cell (an offset).
+  bool isOffset() const { return offset_; }
+
+private:
+  CellWindow window_;
+  bool axis_aligned_ = true;
+  bool offset_ = false;
+  int offset_x_ = 0, offset_y_ = 0;  ///< mask cell = master cell + offset, when isOffset()
+  std::vector<int32_t> cols_;        ///< mask column per window column, -1 outside
+  std::vector<int32_t> rows_;        ///< mask row per window row, -1 outside
+  // General case: mask-grid coordinates [cells] of master cell (i, j) = p0 + i * du + j * dv.
+  double p0x_ = 0, p0y_ = 0, dux_ = 0, duy_ = 0, dvx_ = 0, dvy_ = 0;
+};
+
+class CostmapFilter : public Layer
+{
+public:
+  /// Takes the newest mask, looks up the transform (global -> mask frame) once for the cycle and calls
+  /// processPose(); grows the bounds by the old and new mask extents when the mask changed.
+  void updateBounds(double robot_x, double robot_y, double robot_yaw, double* min_x, double* min_y, double* max_x,
+                    double* max_y) override;
+  /// Calls process(); skips (writing nothing) when disabled, without a mask, or without a transform.
+  void updateCosts(Costmap2D& master_grid, int min_i, int min_j, int max_i, int max_j) final;
+  bool isClearable() override { return false; }
+
+  /// Replaces the mask, unless it is invalid: then the previous mask stays and the reason is returned.
+  /// Safe to call from another thread than the update loop.
+  /// @return an empty string when accepted, else the error.
+  std::string setMask(std::shared_ptr<const OccupancyGridData> mask);
+  /// The mask in force (nullptr before the first one).
+  std::shared_ptr<const OccupancyGridData> getMask() const;
+  const std::string& maskTopic() const { return mask_topic_; }
+  /// Turns the filter on or off at run time (the ~<name>/toggle service); the next update covers the
+  /// mask's extent so that the filter's effect appears or disappears at once. Thread-safe.
+  void setFilterEnabled(bool on);
+  bool filterEnabled() const { return filter_enabled_; }
+
+protected:
+  /// Reads the base's parameters (mask_topic), subscribes to the mask, then calls onInitializeFilter().
+  void onInitialize() final;
+  virtual void onInitializeFilter(const ParamReader& params) { (void)params; }
+  /// The subclass's meaning of the mask. `mapping` maps the window onto `mask`.
+  /// robot pose in the global frame [m, rad].
+  virtual void process(Costmap2D& master_grid, const CellWindow& window, const OccupancyGridData& mask,
+                       const MaskMapping& mapping, double robot_x, double robot_y, double robot_yaw) = 0;
+  /// Called every cycle with the mask in force and the transform, even when no cell is updated (what
+  /// SpeedFilter needs). robot pose in the global frame [m, rad].
+  virtual void processPose(const OccupancyGridData& mask, const Transform2D& to_mask, double robot_x,
+                           double robot_y, double robot_yaw)
+  {
+    (void)mask, (void)to_mask, (void)robot_x, (void)robot_y, (void)robot_yaw;
+  }
+  /// Default topic of the mask, overridable per filter type.
+  virtual std::string defaultMaskTopic() const { return "/map_filter"; }
+  /// The mask value at a world point (global frame), or nullopt when outside the mask.
+  static std::optional<int8_t> maskValueAt(const OccupancyGridData& mask, const Transform2D& to_mask, double wx,
+                                           double wy);
+  /// The transform used by the last update (global frame -> mask frame).
+  const Transform2D& lastTransform() const { return to_mask_; }
+
+private:
+  /// The mask's extent as a box in the global frame [m], when the transform is known.
+  bool maskBoundsInGlobal(const OccupancyGridData& mask, double& x0, double& y0, double& x1, double& y1);
+
+  std::string mask_topic_;
+  std::atomic<bool> filter_enabled_{true};
+  mutable std::mutex mask_mutex_;
+  std::shared_ptr<const OccupancyGridData> mask_;          ///< guarded by mask_mutex_
+  std::shared_ptr<const OccupancyGridData> pending_old_;   ///< the mask replaced since the last bounds
+  bool mask_changed_ = false;                              ///< guarded by mask_mutex_
+  std::shared_ptr<const OccupancyGridData> active_mask_;  ///< the mask of this cycle (update thread only)
+  bool have_transform_ = false;
+  double robot_x_ = 0, robot_y_ = 0, robot_yaw_ = 0;
+  Transform2D to_mask_;
+  MaskMapping mapping_;
+};
+
+template <class Fn>
+void MaskMapping::forEach(Costmap2D& master, const OccupancyGridData& mask, Fn&& fn) const
+{
+  if (window_.empty()) return;
+  const int mask_w = static_cast<int>(mask.width);
+  const int mask_h = static_cast<int>(mask.height);
+  const int8_t* mdata = mask.data.data();
+  for (int j = window_.y0; j < window_.yn; ++j)
+  {
+    uint8_t* row = master.data() + static_cast<std::size_t>(j) * master.getSizeInCellsX();
+    if (offset_)
+    {
+      const int my = j + offset_y_;
+      if (my < 0 || my >= mask_h) continue;
+      const int i0 = std::max(window_.x0, -offset_x_);
+      const int i1 = std::min(window_.xn, mask_w - offset_x_);
+      const int8_t* mrow = mdata + static_cast<std::size_t>(my) * mask_w + offset_x_;
+      for (int i = i0; i < i1; ++i) fn(row[i], mrow[i]);
+    }
+    else if (axis_aligned_)
+    {
+      const int my = rows_[static_cast<std::size_t>(j - window_.y0)];
+      if (my < 0) continue;
+      const int8_t* mrow = mdata + static_cast<std::size_t>(my) * mask_w;
+      const int32_t* cols = cols_.data() - window_.x0;
+      for (int i = window_.x0; i < window_.xn; ++i)
+      {
+        const int mx = cols[i];
+        if (mx >= 0) fn(row[i], mrow[mx]);
+      }
+    }
+    else
+    {
+      double px = p0x_ + window_.x0 * dux_ + j * dvx_;
+      double py = p0y_ + window_.x0 * duy_ + j * dvy_;
+      for (int i = window_.x0; i < window_.xn; ++i, px += dux_, py += duy_)
+      {
+        if (px < 0.0 || py < 0.0 || px >= mask_w || py >= mask_h) continue;
+        fn(row[i], mdata[static_cast<std::size_t>(py) * mask_w + static_cast<std::size_t>(px)]);
+      }
+    }
+  }
+}
+}  // namespace costmap_layers

@@ -1,0 +1,140 @@
+#include "costmap_layers/core/costmap_config.hpp"
+
+#include <cmath>
+#include <set>
+#include <stdexcept>
+
+#include "costmap_layers/core/param_reader.hpp"
+
+namespace costmap_layers
+{
+namespace
+{
+constexpr double kMaxCellsPerSide = 100000.0;
+}
+
+unsigned int CostmapConfig::sizeInCellsX() const
+{
+  return static_cast<unsigned int>(std::max(1.0, std::round(width / resolution)));
+}
+
+unsigned int CostmapConfig::sizeInCellsY() const
+{
+  return static_cast<unsigned int>(std::max(1.0, std::round(height / resolution)));
+}
+
+CostmapConfig parseCostmapConfig(const ParamValue& ns)
+{
+  const ParamReader p(ns, "costmap");
+  CostmapConfig c;
+  c.global_frame = p.getString("global_frame", c.global_frame);
+  c.robot_base_frame = p.getString("robot_base_frame", c.robot_base_frame);
+  if (c.global_frame.empty()) p.fail("global_frame", "must not be empty");
+  if (c.robot_base_frame.empty()) p.fail("robot_base_frame", "must not be empty");
+  c.transform_tolerance = p.getDouble("transform_tolerance", c.transform_tolerance, 0.0, 3600.0);
+  c.update_frequency = p.getDouble("update_frequency", c.update_frequency, 0.0, 1000.0);
+  c.publish_frequency = p.getDouble("publish_frequency", c.publish_frequency, 0.0, 1000.0);
+  c.resolution = p.getDouble("resolution", c.resolution, 1e-4, 1e3);
+  c.width = p.getDouble("width", c.width, c.resolution, kMaxCellsPerSide * c.resolution);
+  c.height = p.getDouble("height", c.height, c.resolution, kMaxCellsPerSide * c.resolution);
+  c.origin_x = p.getDouble("origin_x", c.origin_x, -1e7, 1e7);
+  c.origin_y = p.getDouble("origin_y", c.origin_y, -1e7, 1e7);
+  c.rolling_window = p.getBool("rolling_window", c.rolling_window);
+  c.track_unknown_space = p.getBool("track_unknown_space", c.track_unknown_space);
+  c.always_send_full_costmap = p.getBool("always_send_full_costmap", c.always_send_full_costmap);
+  c.footprint = parseFootprintConfig(p);
+  return c;
+}
+
+namespace
+{
+std::string typeOfNamed(const ParamValue& ns, const std::string& list_key, const std::string& name)
+{
+  const ParamValue* sub = ns.find(name);
+  const ParamValue* type = sub != nullptr ? sub->find("plugin") : nullptr;
+  if (type == nullptr && sub != nullptr) type = sub->find("type");
+  if (type == nullptr || type->type() != ParamValue::Type::String)
+    throw std::invalid_argument("costmap: " + list_key + " names '" + name + "' but '" + name +
+                                "/plugin' (its type) is not set");
+  return type->asString();
+}
+
+std::vector<PluginSpec> parseOneList(const ParamValue& ns, const std::string& key)
+{
+  std::vector<PluginSpec> specs;
+  const ParamValue* list = ns.find(key);
+  const std::string names_key = key == "plugins" ? "plugin_names" : "filter_names";
+  const std::string types_key = key == "plugins" ? "plugin_types" : "filter_types";
+  const ParamValue* names = ns.find(names_key);
+  const ParamValue* types = ns.find(types_key);
+  if (list != nullptr && !list->isNull())
+  {
+    if (!list->isList())
+      throw std::invalid_argument("costmap: parameter '" + key + "' must be a list (got " + list->toString() + ")");
+    for (const auto& item : list->asList())
+    {
+      if (item.isMap())
+      {
+        const ParamValue* name = item.find("name");
+        const ParamValue* type = item.find("type");
+        if (type == nullptr) type = item.find("plugin");
+        if (name == nullptr || name->type() != ParamValue::Type::String || type == nullptr ||
+            type->type() != ParamValue::Type::String)
+          throw std::invalid_argument("costmap: each entry of '" + key +
+                                      "' needs string fields name and type (got " + item.toString() + ")");
+        specs.push_back({name->asString(), type->asString()});
+      }
+      else if (item.type() == ParamValue::Type::String)
+      {
+        specs.push_back({item.asString(), typeOfNamed(ns, key, item.asString())});
+      }
+      else
+      {
+        throw std::invalid_argument("costmap: entries of '" + key + "' must be {name, type} maps or names (got " +
+                                    item.toString() + ")");
+      }
+    }
+  }
+  else if (names != nullptr || types != nullptr)
+  {
+    if (names == nullptr || types == nullptr || !names->isList() || !types->isList())
+      throw std::invalid_argument("costmap: '" + names_key + "' and '" + types_key + "' must both be lists");
+    if (names->asList().size() != types->asList().size())
+      throw std::invalid_argument("costmap: '" + names_key + "' has " + std::to_string(names->asList().size()) +
+                                  " entries but '" + types_key + "' has " + std::to_string(types->asList().size()));
+    for (std::size_t k = 0; k < names->asList().size(); ++k)
+    {
+      const ParamValue& n = names->asList()[k];
+      const ParamValue& t = types->asList()[k];
+      if (n.type() != ParamValue::Type::String || t.type() != ParamValue::Type::String)
+        throw std::invalid_argument("costmap: '" + names_key + "' and '" + types_key + "' must hold strings");
+      specs.push_back({n.asString(), t.asString()});
+    }
+  }
+  for (const auto& s : specs)
+  {
+    if (s.name.empty()) throw std::invalid_argument("costmap: a plugin in '" + key + "' has an empty name");
+    if (s.type.empty()) throw std::invalid_argument("costmap: plugin '" + s.name + "' has an empty type");
+  }
+  return specs;
+}
+}  // namespace
+
+PluginLists parsePluginLists(const ParamValue& ns)
+{
+  PluginLists lists;
+  lists.plugins = parseOneList(ns, "plugins");
+  lists.filters = parseOneList(ns, "filters");
+  std::set<std::string> seen;
+  for (const auto* l : {&lists.plugins, &lists.filters})
+  {
+    for (const auto& s : *l)
+    {
+      if (!seen.insert(s.name).second)
+        throw std::invalid_argument("costmap: plugin name '" + s.name + "' is used twice; each instance needs its "
+                                    "own name (and parameter namespace)");
+    }
+  }
+  return lists;
+}
+}  // namespace costmap_layers

@@ -1,0 +1,236 @@
+#include "costmap_layers/core/costmap_filter.hpp"
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "costmap_layers/core/param_reader.hpp"
+
+namespace costmap_layers
+{
+std::string validateGrid(const OccupancyGridData& grid, uint64_t max_cells)
+{
+  std::ostringstream err;
+  const uint64_t cells = static_cast<uint64_t>(grid.width) * grid.height;
+  if (grid.width == 0 || grid.height == 0)
+    err << "info.width/info.height must be positive (got " << grid.width << "x" << grid.height << ")";
+  else if (cells > max_cells)
+    err << "info.width x info.height = " << grid.width << "x" << grid.height << " exceeds the limit of " << max_cells
+        << " cells";
+  else if (grid.data.size() != cells)
+    err << "data has " << grid.data.size() << " values, expected info.width x info.height = " << cells;
+  else if (!std::isfinite(grid.resolution) || grid.resolution <= 0.0)
+    err << "info.resolution must be finite and positive (got " << grid.resolution << ")";
+  else if (!std::isfinite(grid.origin_x) || !std::isfinite(grid.origin_y) || !std::isfinite(grid.origin_yaw))
+    err << "info.origin must be finite (got x=" << grid.origin_x << " y=" << grid.origin_y
+        << " yaw=" << grid.origin_yaw << ")";
+  else if (std::fabs(grid.origin_x) > 1e7 || std::fabs(grid.origin_y) > 1e7)
+    err << "info.origin is absurdly far away (got x=" << grid.origin_x << " y=" << grid.origin_y << ")";
+  return err.str();
+}
+
+void MaskMapping::build(const Costmap2D& master, const CellWindow& window, const OccupancyGridData& mask,
+                        const Transform2D& to_mask)
+{
+  window_ = window;
+  // Master cell (i, j) centre in the global frame, then in the mask frame, then in mask cells.
+  const double res = master.getResolution();
+  const double ox = master.getOriginX() + 0.5 * res, oy = master.getOriginY() + 0.5 * res;
+  const double ct = std::cos(to_mask.yaw), st = std::sin(to_mask.yaw);
+  const double cm = std::cos(mask.origin_yaw), sm = std::sin(mask.origin_yaw);
+  const double inv = 1.0 / mask.resolution;
+  // to grid coordinates: g = R(-origin_yaw) * (T(p) - origin) / mask_res
+  auto toGrid = [&](double wx, double wy, double& gx, double& gy) {
+    const double fx = to_mask.x + ct * wx - st * wy - mask.origin_x;
+    const double fy = to_mask.y + st * wx + ct * wy - mask.origin_y;
+    gx = (cm * fx + sm * fy) * inv;
+    gy = (-sm * fx + cm * fy) * inv;
+  };
+  toGrid(ox, oy, p0x_, p0y_);
+  double ux, uy, vx, vy;
+  toGrid(ox + res, oy, ux, uy);
+  toGrid(ox, oy + res, vx, vy);
+  dux_ = ux - p0x_;
+  duy_ = uy - p0y_;
+  dvx_ = vx - p0x_;
+  dvy_ = vy - p0y_;
+
+  constexpr double eps = 1e-9;
+  axis_aligned_ = std::fabs(duy_) < eps && std::fabs(dvx_) < eps;
+  offset_ = axis_aligned_ && std::fabs(dux_ - 1.0) < eps && std::fabs(dvy_ - 1.0) < eps;
+  if (offset_)
+  {
+    offset_x_ = static_cast<int>(std::floor(p0x_ + 1e-9));
+    offset_y_ = static_cast<int>(std::floor(p0y_ + 1e-9));
+    return;
+  }
+  if (!axis_aligned_) return;
+  const int mask_w = static_cast<int>(mask.width), mask_h = static_cast<int>(mask.height);
+  cols_.resize(static_cast<std::size_t>(std::max(0, window.xn - window.x0)));
+  rows_.resize(static_cast<std::size_t>(std::max(0, window.yn - window.y0)));
+  for (int i = window.x0; i < window.xn; ++i)
+  {
+    const double g = std::floor(p0x_ + i * dux_);
+    cols_[static_cast<std::size_t>(i - window.x0)] = (g >= 0 && g < mask_w) ? static_cast<int32_t>(g) : -1;
+  }
+  for (int j = window.y0; j < window.yn; ++j)
+  {
+    const double g = std::floor(p0y_ + j * dvy_);
+    rows_[static_cast<std::size_t>(j - window.y0)] = (g >= 0 && g < mask_h) ? static_cast<int32_t>(g) : -1;
+  }
+}
+
+void CostmapFilter::onInitialize()
+{
+  ParamReader params(context_->params(), name_);
+  mask_topic_ = params.getString("mask_topic", defaultMaskTopic());
+  // The filter always takes part in updates, so that switching it off can clear its own effect.
+  filter_enabled_ = enabled_;
+  enabled_ = true;
+  onInitializeFilter(params);
+  context_->subscribeGrid(mask_topic_, GridKind::Mask,
+                          [this](const std::shared_ptr<const OccupancyGridData>& mask) {
+                            const std::string error = setMask(mask);
+                            if (!error.empty())
+                              context_->report(Severity::Error, "mask",
+                                               name_ + ": mask on " + mask_topic_ + " rejected, keeping the "
+                                               "previous one: " + error);
+                          });
+  context_->advertiseToggle([this](bool on) { setFilterEnabled(on); });
+}
+
+void CostmapFilter::setFilterEnabled(bool on)
+{
+  std::lock_guard<std::mutex> lock(mask_mutex_);
+  if (filter_enabled_ == on) return;
+  filter_enabled_ = on;
+  mask_changed_ = true;  // the mask's extent must be redrawn
+}
+
+std::string CostmapFilter::setMask(std::shared_ptr<const OccupancyGridData> mask)
+{
+  if (!mask) return "no mask";
+  std::string error = validateGrid(*mask);
+  if (!error.empty()) return error;
+  std::lock_guard<std::mutex> lock(mask_mutex_);
+  if (!mask_changed_) pending_old_ = mask_;
+  mask_ = std::move(mask);
+  mask_changed_ = true;
+  return {};
+}
+
+std::shared_ptr<const OccupancyGridData> CostmapFilter::getMask() const
+{
+  std::lock_guard<std::mutex> lock(mask_mutex_);
+  return mask_;
+}
+
+bool CostmapFilter::maskBoundsInGlobal(const OccupancyGridData& mask, double& x0, double& y0, double& x1,
+                                       double& y1)
+{
+  const std::string& global = context_->globalFrame();
+  Transform2D from_mask;  // mask frame -> global frame
+  if (!mask.frame_id.empty() && mask.frame_id != global)
+  {
+    std::string error;
+    const auto t = context_->lookupTransform(global, mask.frame_id, &error);
+    if (!t) return false;
+    from_mask = *t;
+  }
+  const double w = mask.width * mask.resolution, h = mask.height * mask.resolution;
+  const double cm = std::cos(mask.origin_yaw), sm = std::sin(mask.origin_yaw);
+  x0 = y0 = std::numeric_limits<double>::max();
+  x1 = y1 = std::numeric_limits<double>::lowest();
+  for (const auto& c : {std::pair<double, double>{0, 0}, {w, 0}, {0, h}, {w, h}})
+  {
+    const double mx = mask.origin_x + cm * c.first - sm * c.second;
+    const double my = mask.origin_y + sm * c.first + cm * c.second;
+    double gx, gy;
+    from_mask.apply(mx, my, gx, gy);
+    x0 = std::min(x0, gx);
+    y0 = std::min(y0, gy);
+    x1 = std::max(x1, gx);
+    y1 = std::max(y1, gy);
+  }
+  return true;
+}
+
+void CostmapFilter::updateBounds(double robot_x, double robot_y, double robot_yaw, double* min_x, double* min_y,
+                                 double* max_x, double* max_y)
+{
+  robot_x_ = robot_x;
+  robot_y_ = robot_y;
+  robot_yaw_ = robot_yaw;
+  std::shared_ptr<const OccupancyGridData> old;
+  bool changed = false;
+  {
+    std::lock_guard<std::mutex> lock(mask_mutex_);
+    active_mask_ = mask_;
+    changed = mask_changed_;
+    mask_changed_ = false;
+    old = std::move(pending_old_);
+  }
+  have_transform_ = false;
+  if (active_mask_)
+  {
+    // One transform lookup per cycle, used by processPose() now and by process() in updateCosts().
+    const std::string& global = context_->globalFrame();
+    to_mask_ = Transform2D{};
+    have_transform_ = true;
+    if (!active_mask_->frame_id.empty() && active_mask_->frame_id != global)
+    {
+      std::string error;
+      const auto t = context_->lookupTransform(active_mask_->frame_id, global, &error);
+      have_transform_ = t.has_value();
+      if (t)
+        to_mask_ = *t;
+      else
+        context_->report(Severity::Error, "transform",
+                         name_ + ": no transform from " + global + " to mask frame " + active_mask_->frame_id +
+                             ", filter skipped this update: " + error);
+    }
+    if (have_transform_ && filter_enabled_) processPose(*active_mask_, to_mask_, robot_x, robot_y, robot_yaw);
+  }
+  if (!changed) return;
+  for (const auto* m : {&active_mask_, &old})
+  {
+    if (!*m) continue;
+    double x0, y0, x1, y1;
+    if (!maskBoundsInGlobal(**m, x0, y0, x1, y1))
+    {
+      // Extent unknown without the transform: redraw everything rather than leave stale costs.
+      x0 = y0 = -std::numeric_limits<float>::max();
+      x1 = y1 = std::numeric_limits<float>::max();
+    }
+    *min_x = std::min(*min_x, x0);
+    *min_y = std::min(*min_y, y0);
+    *max_x = std::max(*max_x, x1);
+    *max_y = std::max(*max_y, y1);
+  }
+}
+
+void CostmapFilter::updateCosts(Costmap2D& master_grid, int min_i, int min_j, int max_i, int max_j)
+{
+  if (!filter_enabled_ || !active_mask_ || !have_transform_) return;
+  CellWindow window{std::max(min_i, 0), std::max(min_j, 0),
+                    std::min(max_i, static_cast<int>(master_grid.getSizeInCellsX())),
+                    std::min(max_j, static_cast<int>(master_grid.getSizeInCellsY()))};
+  if (window.empty()) return;
+  mapping_.build(master_grid, window, *active_mask_, to_mask_);
+  process(master_grid, window, *active_mask_, mapping_, robot_x_, robot_y_, robot_yaw_);
+}
+
+std::optional<int8_t> CostmapFilter::maskValueAt(const OccupancyGridData& mask, const Transform2D& to_mask,
+                                                 double wx, double wy)
+{
+  double fx, fy;
+  to_mask.apply(wx, wy, fx, fy);
+  fx -= mask.origin_x;
+  fy -= mask.origin_y;
+  const double cm = std::cos(mask.origin_yaw), sm = std::sin(mask.origin_yaw);
+  const double gx = (cm * fx + sm * fy) / mask.resolution;
+  const double gy = (-sm * fx + cm * fy) / mask.resolution;
+  if (!(gx >= 0.0) || !(gy >= 0.0) || gx >= mask.width || gy >= mask.height) return std::nullopt;
+  return mask.data[static_cast<std::size_t>(gy) * mask.width + static_cast<std::size_t>(gx)];
+}
+}  // namespace costmap_layers

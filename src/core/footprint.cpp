@@ -1,0 +1,178 @@
+#include "costmap_layers/core/footprint.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "costmap_layers/core/param_reader.hpp"
+
+namespace costmap_layers
+{
+Footprint makeFootprintFromRadius(double radius)
+{
+  constexpr int N = 16;
+  Footprint points;
+  points.reserve(N);
+  for (int i = 0; i < N; ++i)
+  {
+    const double angle = i * 2.0 * M_PI / N;
+    points.emplace_back(radius * std::cos(angle), radius * std::sin(angle));
+  }
+  return points;
+}
+
+void padFootprint(Footprint& footprint, double padding)
+{
+  for (auto& p : footprint)
+  {
+    p.x() += (p.x() > 0.0 ? padding : (p.x() < 0.0 ? -padding : 0.0));
+    p.y() += (p.y() > 0.0 ? padding : (p.y() < 0.0 ? -padding : 0.0));
+  }
+}
+
+namespace
+{
+double distanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b)
+{
+  const Eigen::Vector2d ab = b - a;
+  const double len2 = ab.squaredNorm();
+  const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return (p - (a + t * ab)).norm();
+}
+}  // namespace
+
+void calculateMinAndMaxDistances(const Footprint& footprint, double& min_dist, double& max_dist)
+{
+  min_dist = std::numeric_limits<double>::max();
+  max_dist = 0.0;
+  if (footprint.size() <= 2)
+  {
+    min_dist = 0.0;
+    for (const auto& p : footprint) max_dist = std::max(max_dist, p.norm());
+    return;
+  }
+  const Eigen::Vector2d origin(0.0, 0.0);
+  for (std::size_t i = 0; i < footprint.size(); ++i)
+  {
+    const auto& a = footprint[i];
+    const auto& b = footprint[(i + 1) % footprint.size()];
+    min_dist = std::min(min_dist, distanceToSegment(origin, a, b));
+    max_dist = std::max(max_dist, a.norm());
+  }
+}
+
+Footprint parseFootprintString(const std::string& text)
+{
+  // Accept exactly nested brackets of numbers: [[x, y], [x, y], ...].
+  auto fail = [&text](const std::string& why) {
+    throw std::invalid_argument("footprint \"" + text + "\": " + why);
+  };
+  std::vector<double> numbers;
+  std::vector<int> group_sizes;
+  int depth = 0;
+  int in_group = 0;
+  std::size_t i = 0;
+  while (i < text.size())
+  {
+    const char c = text[i];
+    if (std::isspace(static_cast<unsigned char>(c)) || c == ',')
+    {
+      ++i;
+      continue;
+    }
+    if (c == '[')
+    {
+      if (++depth > 2) fail("too many nested brackets");
+      in_group = 0;
+      ++i;
+      continue;
+    }
+    if (c == ']')
+    {
+      if (depth == 2) group_sizes.push_back(in_group);
+      if (--depth < 0) fail("unbalanced brackets");
+      ++i;
+      continue;
+    }
+    if (depth != 2) fail("numbers must stand inside [x, y] pairs");
+    std::size_t used = 0;
+    double v = 0.0;
+    try
+    {
+      v = std::stod(text.substr(i), &used);
+    }
+    catch (const std::exception&)
+    {
+      fail("cannot read a number at position " + std::to_string(i));
+    }
+    if (!std::isfinite(v)) fail("values must be finite");
+    numbers.push_back(v);
+    ++in_group;
+    i += used;
+  }
+  if (depth != 0) fail("unbalanced brackets");
+  for (int n : group_sizes)
+  {
+    if (n != 2) fail("each point needs exactly two numbers");
+  }
+  if (group_sizes.size() < 3) fail("a footprint needs at least 3 points");
+  Footprint fp;
+  for (std::size_t k = 0; k + 1 < numbers.size(); k += 2) fp.emplace_back(numbers[k], numbers[k + 1]);
+  return fp;
+}
+
+Footprint transformFootprint(double x, double y, double yaw, const Footprint& footprint)
+{
+  const double c = std::cos(yaw), s = std::sin(yaw);
+  Footprint out;
+  out.reserve(footprint.size());
+  for (const auto& p : footprint) out.emplace_back(x + c * p.x() - s * p.y(), y + s * p.x() + c * p.y());
+  return out;
+}
+
+Footprint FootprintConfig::padded() const
+{
+  Footprint fp = footprint.empty() ? makeFootprintFromRadius(robot_radius) : footprint;
+  padFootprint(fp, footprint_padding);
+  return fp;
+}
+
+FootprintConfig parseFootprintConfig(const ParamReader& params)
+{
+  FootprintConfig cfg;
+  cfg.robot_radius = params.getDouble("robot_radius", cfg.robot_radius, 0.0);
+  cfg.footprint_padding = params.getDouble("footprint_padding", cfg.footprint_padding, 0.0);
+  const ParamValue* fp = params.raw("footprint");
+  if (fp == nullptr || fp->isNull()) return cfg;
+  try
+  {
+    if (fp->type() == ParamValue::Type::String)
+    {
+      // "[]" is costmap_2d's way of saying "no polygon, use robot_radius".
+      std::string compact;
+      for (char c : fp->asString())
+        if (!std::isspace(static_cast<unsigned char>(c))) compact += c;
+      if (compact != "[]" && !compact.empty()) cfg.footprint = parseFootprintString(fp->asString());
+      return cfg;
+    }
+    const auto& points = fp->asList();
+    if (points.empty()) return cfg;
+    if (points.size() < 3) throw std::invalid_argument("a footprint needs at least 3 points");
+    for (const auto& p : points)
+    {
+      const auto& xy = p.asList();
+      if (xy.size() != 2) throw std::invalid_argument("each point needs exactly two numbers");
+      const double x = xy[0].asDouble(), y = xy[1].asDouble();
+      if (!std::isfinite(x) || !std::isfinite(y)) throw std::invalid_argument("values must be finite");
+      cfg.footprint.emplace_back(x, y);
+    }
+  }
+  catch (const std::invalid_argument& e)
+  {
+    params.fail("footprint", std::string("is not a valid polygon: ") + e.what());
+  }
+  return cfg;
+}
+}  // namespace costmap_layers

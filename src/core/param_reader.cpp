@@ -1,0 +1,81 @@
+#include "costmap_layers/core/param_reader.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace costmap_layers
+{
+void ParamReader::fail(const std::string& name, const std::string& what) const
+{
+  const ParamValue* v = ns_.find(name);
+  std::ostringstream msg;
+  msg << owner_ << ": parameter '" << name << "' " << what;
+  if (v != nullptr) msg << " (got " << v->toString() << ")";
+  throw std::invalid_argument(msg.str());
+}
+
+bool ParamReader::getBool(const std::string& name, bool def) const
+{
+  const ParamValue* v = ns_.find(name);
+  if (v == nullptr) return def;
+  if (v->type() == ParamValue::Type::Bool) return v->asBool();
+  // rosparam stores 0/1 for some older configs: accept those two integers, nothing else.
+  if (v->type() == ParamValue::Type::Int && (v->asInt() == 0 || v->asInt() == 1)) return v->asInt() == 1;
+  fail(name, "must be a boolean");
+}
+
+int ParamReader::getInt(const std::string& name, int def, int min, int max) const
+{
+  const ParamValue* v = ns_.find(name);
+  if (v == nullptr) return def;
+  int64_t value = 0;
+  if (v->type() == ParamValue::Type::Int)
+    value = v->asInt();
+  else if (v->type() == ParamValue::Type::Double && std::isfinite(v->asDouble()) &&
+           std::floor(v->asDouble()) == v->asDouble() && std::fabs(v->asDouble()) < 1e15)
+    value = static_cast<int64_t>(v->asDouble());
+  else
+    fail(name, "must be an integer");
+  if (value < min || value > max)
+    fail(name, "must be in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
+  return static_cast<int>(value);
+}
+
+double ParamReader::getDouble(const std::string& name, double def, double min, double max) const
+{
+  const ParamValue* v = ns_.find(name);
+  if (v == nullptr) return def;
+  if (!v->isNumber()) fail(name, "must be a number");
+  const double value = v->asDouble();
+  if (!std::isfinite(value)) fail(name, "must be finite");
+  if (value < min || value > max)
+  {
+    std::ostringstream range;
+    range << "must be in [" << min << ", " << max << "]";
+    fail(name, range.str());
+  }
+  return value;
+}
+
+std::string ParamReader::getString(const std::string& name, const std::string& def) const
+{
+  const ParamValue* v = ns_.find(name);
+  if (v == nullptr) return def;
+  if (v->type() != ParamValue::Type::String) fail(name, "must be a string");
+  return v->asString();
+}
+
+std::string ParamReader::getChoice(const std::string& name, const std::string& def,
+                                   const std::vector<std::string>& choices) const
+{
+  const std::string value = getString(name, def);
+  for (const auto& c : choices)
+  {
+    if (c == value) return value;
+  }
+  std::string list;
+  for (const auto& c : choices) list += (list.empty() ? "" : ", ") + c;
+  fail(name, "must be one of: " + list);
+}
+}  // namespace costmap_layers
