@@ -1,0 +1,109 @@
+// A LayerContext for core tests: parameters from a ParamValue, inputs pushed by the test, outputs and
+// reports recorded, transforms from a table. No ROS.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "costmap_layers/core/layer_context.hpp"
+
+namespace costmap_layers_test
+{
+using namespace costmap_layers;
+
+class FakeContext : public LayerContext
+{
+public:
+  explicit FakeContext(ParamValue params = ParamValue::makeMap(), std::string global_frame = "map")
+    : params_(std::move(params)), global_frame_(std::move(global_frame))
+  {
+  }
+
+  const ParamValue& params() const override { return params_; }
+  const std::string& globalFrame() const override { return global_frame_; }
+  double transformTolerance() const override { return 0.3; }
+
+  void subscribeGrid(const std::string& topic, GridKind kind, GridCallback cb) override
+  {
+    grid_subs.push_back({topic, kind, std::move(cb)});
+  }
+  void subscribeSpeedLimits(const std::string& topic, SpeedLimitsCallback cb) override
+  {
+    speed_subs.push_back({topic, std::move(cb)});
+  }
+  MaxSpeedPublisher advertiseMaxSpeed(const std::string& topic) override
+  {
+    max_speed_topic = topic;
+    return [this](double v) { published_speeds.push_back(v); };
+  }
+  void advertiseToggle(std::function<void(bool)> cb) override { toggle = std::move(cb); }
+
+  std::optional<Transform2D> lookupTransform(const std::string& target, const std::string& source,
+                                             std::string* error) override
+  {
+    if (target == source) return Transform2D{};
+    auto it = transforms.find({target, source});
+    if (it != transforms.end()) return it->second;
+    if (error) *error = "no transform " + source + " -> " + target;
+    return std::nullopt;
+  }
+  uint64_t nowNs() const override { return now_ns; }
+  void report(Severity severity, const std::string& key, const std::string& message) override
+  {
+    reports.push_back({severity, key, message});
+  }
+
+  /// Delivers a grid to every subscription of that kind (as the node would on the topic).
+  void publishGrid(GridKind kind, const OccupancyGridData& grid)
+  {
+    auto shared = std::make_shared<const OccupancyGridData>(grid);
+    for (auto& s : grid_subs)
+      if (s.kind == kind) s.cb(shared);
+  }
+  void publishSpeedLimits(const SpeedLimitsData& limits)
+  {
+    auto shared = std::make_shared<const SpeedLimitsData>(limits);
+    for (auto& s : speed_subs) s.cb(shared);
+  }
+  /// Number of reports whose text contains needle.
+  int countReports(const std::string& needle) const
+  {
+    int n = 0;
+    for (const auto& r : reports)
+      if (r.message.find(needle) != std::string::npos) ++n;
+    return n;
+  }
+
+  struct GridSub
+  {
+    std::string topic;
+    GridKind kind;
+    GridCallback cb;
+  };
+  struct SpeedSub
+  {
+    std::string topic;
+    SpeedLimitsCallback cb;
+  };
+  struct Report
+  {
+    Severity severity;
+    std::string key;
+    std::string message;
+  };
+
+  ParamValue params_;
+  std::string global_frame_;
+  std::vector<GridSub> grid_subs;
+  std::vector<SpeedSub> speed_subs;
+  std::string max_speed_topic;
+  std::vector<double> published_speeds;
+  std::function<void(bool)> toggle;
+  std::map<std::pair<std::string, std::string>, Transform2D> transforms;  ///< (target, source) -> T
+  uint64_t now_ns = 0;
+  std::vector<Report> reports;
+};
+}  // namespace costmap_layers_test
