@@ -1,0 +1,254 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "costmap_layers/core/distance_transform.hpp"
+
+using namespace costmap_layers;
+
+namespace
+{
+/// Squared distance to the nearest source by exhaustive search, or kFarSquaredDistance.
+std::vector<uint32_t> bruteForce(const std::vector<uint8_t>& grid, int w, int h, SourceRange src)
+{
+  std::vector<uint32_t> out(static_cast<std::size_t>(w) * h, kFarSquaredDistance);
+  std::vector<std::pair<int, int>> sources;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      if (src.contains(grid[static_cast<std::size_t>(y) * w + x])) sources.emplace_back(x, y);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+    {
+      uint32_t best = kFarSquaredDistance;
+      for (const auto& s : sources)
+      {
+        const uint32_t d = static_cast<uint32_t>((s.first - x) * (s.first - x) + (s.second - y) * (s.second - y));
+        best = std::min(best, d);
+      }
+      out[static_cast<std::size_t>(y) * w + x] = best;
+    }
+  return out;
+}
+
+std::vector<uint8_t> randomGrid(std::mt19937& rng, int w, int h, double density)
+{
+  std::vector<uint8_t> g(static_cast<std::size_t>(w) * h);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::uniform_int_distribution<int> v(0, 253);
+  for (auto& c : g)
+  {
+    const double r = u(rng);
+    c = r < density ? 254 : (r < 2 * density ? 255 : static_cast<uint8_t>(v(rng)));
+  }
+  return g;
+}
+
+/// Runs a banded engine over the window and collects its rows into a w x h image (far outside).
+template <class T>
+std::vector<uint32_t> banded(const std::vector<uint8_t>& grid, int w, int h, SourceRange src, int cap,
+                             DistanceWindow win, DistanceTransformScratch& scratch)
+{
+  std::vector<uint32_t> out(static_cast<std::size_t>(w) * h, kFarSquaredDistance);
+  int expected_y = win.y0;
+  auto sink = [&](int y, const T* d) {
+    EXPECT_EQ(y, expected_y++);
+    for (int x = win.x0; x < win.x1; ++x)
+    {
+      const uint32_t v = d[x - win.x0];
+      out[static_cast<std::size_t>(y) * w + x] = v > static_cast<uint32_t>(cap * cap) ? kFarSquaredDistance : v;
+    }
+  };
+  if constexpr (sizeof(T) == 1)
+    cappedSquaredDistanceRows8(grid.data(), w, h, w, src, cap, win, scratch, sink);
+  else
+    cappedSquaredDistanceRows16(grid.data(), w, h, w, src, cap, win, scratch, sink);
+  EXPECT_EQ(expected_y, win.y1);
+  return out;
+}
+
+uint32_t capped(uint32_t d, uint32_t cap_sq) { return d > cap_sq ? kFarSquaredDistance : d; }
+}  // namespace
+
+TEST(DistanceTransform, SingleSourceIsExact)
+{
+  const int w = 7, h = 5;
+  std::vector<uint8_t> g(w * h, 0);
+  g[2 * w + 3] = 1;
+  std::vector<uint32_t> out(w * h);
+  DistanceTransformScratch scratch;
+  squaredDistanceTransform(g.data(), w, h, out.data(), scratch);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      EXPECT_EQ(out[y * w + x], static_cast<uint32_t>((x - 3) * (x - 3) + (y - 2) * (y - 2)));
+}
+
+TEST(DistanceTransform, NoSourceIsFar)
+{
+  std::vector<uint8_t> g(12, 0);
+  std::vector<uint32_t> out(12, 0);
+  DistanceTransformScratch scratch;
+  squaredDistanceTransform(g.data(), 4, 3, out.data(), scratch);
+  for (uint32_t v : out) EXPECT_EQ(v, kFarSquaredDistance);
+}
+
+TEST(DistanceTransform, EmptyGridDoesNothing)
+{
+  DistanceTransformScratch scratch;
+  squaredDistanceTransform(nullptr, 0, 0, nullptr, scratch);
+  int calls = 0;
+  cappedSquaredDistanceRows8(nullptr, 0, 0, 0, SourceRange{254, 254}, 3, DistanceWindow{0, 0, 0, 0}, scratch,
+                             [&](int, const uint8_t*) { ++calls; });
+  EXPECT_EQ(calls, 0);
+}
+
+TEST(DistanceTransform, ExactMatchesBruteForceOnRandomGrids)
+{
+  std::mt19937 rng(42);
+  DistanceTransformScratch scratch;
+  for (int trial = 0; trial < 60; ++trial)
+  {
+    const int w = 1 + static_cast<int>(rng() % 40), h = 1 + static_cast<int>(rng() % 40);
+    const double density = (trial % 6) * 0.04;
+    const auto grid = randomGrid(rng, w, h, density);
+    const SourceRange src = trial % 2 ? SourceRange{254, 254} : SourceRange{254, 255};
+    const auto ref = bruteForce(grid, w, h, src);
+    std::vector<uint32_t> out(grid.size());
+    squaredDistanceTransform(grid.data(), w, h, w, src, out.data(), w, kFarSquaredDistance, scratch);
+    ASSERT_EQ(out, ref) << "trial " << trial << " " << w << "x" << h;
+    // With a cap.
+    const uint32_t cap_sq = static_cast<uint32_t>(rng() % 50);
+    squaredDistanceTransform(grid.data(), w, h, w, src, out.data(), w, cap_sq, scratch);
+    for (std::size_t i = 0; i < out.size(); ++i) ASSERT_EQ(out[i], capped(ref[i], cap_sq));
+  }
+}
+
+TEST(DistanceTransform, ExactWorksOnSubWindowWithStrides)
+{
+  std::mt19937 rng(7);
+  const int W = 50, H = 40;
+  const auto grid = randomGrid(rng, W, H, 0.03);
+  const int x0 = 5, y0 = 7, w = 31, h = 22;
+  std::vector<uint8_t> sub(static_cast<std::size_t>(w) * h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) sub[y * w + x] = grid[(y0 + y) * W + x0 + x];
+  const SourceRange src{254, 254};
+  const auto ref = bruteForce(sub, w, h, src);
+  const int out_stride = 37;
+  std::vector<uint32_t> out(static_cast<std::size_t>(out_stride) * h, 12345u);
+  DistanceTransformScratch scratch;
+  squaredDistanceTransform(grid.data() + y0 * W + x0, w, h, W, src, out.data(), out_stride, kFarSquaredDistance,
+                           scratch);
+  for (int y = 0; y < h; ++y)
+  {
+    for (int x = 0; x < w; ++x) ASSERT_EQ(out[y * out_stride + x], ref[y * w + x]);
+    for (int x = w; x < out_stride; ++x) ASSERT_EQ(out[y * out_stride + x], 12345u);  // untouched
+  }
+}
+
+TEST(DistanceTransform, LargeDistancesDoNotOverflow)
+{
+  const int w = 3000, h = 2;
+  std::vector<uint8_t> g(w * h, 0);
+  g[0] = 1;
+  std::vector<uint32_t> out(w * h);
+  DistanceTransformScratch scratch;
+  squaredDistanceTransform(g.data(), w, h, out.data(), scratch);
+  EXPECT_EQ(out[w - 1], static_cast<uint32_t>((w - 1) * (w - 1)));
+  EXPECT_EQ(out[2 * w - 1], static_cast<uint32_t>((w - 1) * (w - 1) + 1));
+}
+
+class BandedTest : public ::testing::TestWithParam<bool>
+{
+protected:
+  void SetUp() override { setDistanceTransformSimd(GetParam()); }
+  void TearDown() override { setDistanceTransformSimd(true); }
+};
+
+TEST_P(BandedTest, MatchesBruteForceOnWindows)
+{
+  std::mt19937 rng(GetParam() ? 11 : 12);
+  DistanceTransformScratch scratch;
+  for (int trial = 0; trial < 80; ++trial)
+  {
+    const int w = 1 + static_cast<int>(rng() % 70), h = 1 + static_cast<int>(rng() % 70);
+    const auto grid = randomGrid(rng, w, h, (trial % 5) * 0.01 + 0.002);
+    const SourceRange src = trial % 3 ? SourceRange{254, 254} : SourceRange{254, 255};
+    const auto ref = bruteForce(grid, w, h, src);
+    DistanceWindow win;
+    win.x0 = static_cast<int>(rng() % static_cast<unsigned>(w));
+    win.y0 = static_cast<int>(rng() % static_cast<unsigned>(h));
+    win.x1 = win.x0 + 1 + static_cast<int>(rng() % static_cast<unsigned>(w - win.x0));
+    win.y1 = win.y0 + 1 + static_cast<int>(rng() % static_cast<unsigned>(h - win.y0));
+    if (trial % 4 == 0) win = DistanceWindow{0, 0, w, h};
+    const int cap8 = static_cast<int>(rng() % (kMaxBandedCap8 + 1));
+    const auto out8 = banded<uint8_t>(grid, w, h, src, cap8, win, scratch);
+    const int cap16 = static_cast<int>(rng() % 40);
+    const auto out16 = banded<uint16_t>(grid, w, h, src, cap16, win, scratch);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+      {
+        const std::size_t i = static_cast<std::size_t>(y) * w + x;
+        const bool inside = x >= win.x0 && x < win.x1 && y >= win.y0 && y < win.y1;
+        const uint32_t e8 = inside ? capped(ref[i], static_cast<uint32_t>(cap8 * cap8)) : kFarSquaredDistance;
+        const uint32_t e16 = inside ? capped(ref[i], static_cast<uint32_t>(cap16 * cap16)) : kFarSquaredDistance;
+        ASSERT_EQ(out8[i], e8) << "trial " << trial << " cell " << x << "," << y << " cap " << cap8;
+        ASSERT_EQ(out16[i], e16) << "trial " << trial << " cell " << x << "," << y << " cap " << cap16;
+      }
+  }
+}
+
+TEST_P(BandedTest, LargestCapsAreExact)
+{
+  const int w = 400, h = 390;
+  std::vector<uint8_t> g(static_cast<std::size_t>(w) * h, 0);
+  g[200 * w + 190] = 254;
+  g[10 * w + 3] = 254;
+  const auto ref = bruteForce(g, w, h, SourceRange{254, 254});
+  DistanceTransformScratch scratch;
+  const auto out8 = banded<uint8_t>(g, w, h, SourceRange{254, 254}, kMaxBandedCap8, DistanceWindow{0, 0, w, h},
+                                    scratch);
+  const auto out16 = banded<uint16_t>(g, w, h, SourceRange{254, 254}, kMaxBandedCap16,
+                                      DistanceWindow{0, 0, w, h}, scratch);
+  for (std::size_t i = 0; i < ref.size(); ++i)
+  {
+    ASSERT_EQ(out8[i], capped(ref[i], kMaxBandedCap8 * kMaxBandedCap8));
+    ASSERT_EQ(out16[i], capped(ref[i], kMaxBandedCap16 * kMaxBandedCap16));
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Kernels, BandedTest, ::testing::Values(true, false),
+                         [](const ::testing::TestParamInfo<bool>& info) {
+                           return info.param ? std::string("Dispatched") : std::string("Portable");
+                         });
+
+TEST(DistanceTransform, DispatchedAndPortableAgreeOnLargeGrid)
+{
+  std::mt19937 rng(3);
+  const int w = 517, h = 301;
+  const auto grid = randomGrid(rng, w, h, 0.004);
+  DistanceTransformScratch scratch;
+  setDistanceTransformSimd(false);
+  EXPECT_STREQ(distanceTransformKernel(), "portable");
+  const auto a = banded<uint8_t>(grid, w, h, SourceRange{254, 254}, 11, DistanceWindow{3, 4, 500, 290}, scratch);
+  const auto a16 = banded<uint16_t>(grid, w, h, SourceRange{254, 255}, 25, DistanceWindow{0, 0, w, h}, scratch);
+  setDistanceTransformSimd(true);
+  const auto b = banded<uint8_t>(grid, w, h, SourceRange{254, 254}, 11, DistanceWindow{3, 4, 500, 290}, scratch);
+  const auto b16 = banded<uint16_t>(grid, w, h, SourceRange{254, 255}, 25, DistanceWindow{0, 0, w, h}, scratch);
+  EXPECT_EQ(a, b);
+  EXPECT_EQ(a16, b16);
+}
+
+TEST(DistanceTransform, CapAboveLimitThrows)
+{
+  DistanceTransformScratch scratch;
+  std::vector<uint8_t> g(4, 0);
+  EXPECT_THROW(cappedSquaredDistanceRows8(g.data(), 2, 2, 2, SourceRange{}, kMaxBandedCap8 + 1,
+                                          DistanceWindow{0, 0, 2, 2}, scratch, [](int, const uint8_t*) {}),
+               std::invalid_argument);
+  EXPECT_THROW(cappedSquaredDistanceRows16(g.data(), 2, 2, 2, SourceRange{}, kMaxBandedCap16 + 1,
+                                           DistanceWindow{0, 0, 2, 2}, scratch, [](int, const uint16_t*) {}),
+               std::invalid_argument);
+}
