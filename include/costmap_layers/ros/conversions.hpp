@@ -1,0 +1,29 @@
+// Conversions between messages and the core's plain types: the only place that knows both.
+#pragma once
+
+#include <map_msgs/OccupancyGridUpdate.h>
+#include <nav_msgs/OccupancyGrid.h>
+#include <xmlrpcpp/XmlRpcValue.h>
+
+#include "costmap_layers/SpeedLimits.h"
+#include "costmap_layers/core/costmap_2d.hpp"
+#include "costmap_layers/core/grid_data.hpp"
+#include "costmap_layers/core/layered_costmap.hpp"
+#include "costmap_layers/core/param_value.hpp"
+
+namespace costmap_layers_ros
+{
+/// Copies the grid; the yaw of the origin comes from its quaternion. Does not validate.
+costmap_layers::OccupancyGridData fromMsg(const nav_msgs::OccupancyGrid& msg);
+costmap_layers::SpeedLimitsData fromMsg(const costmap_layers::SpeedLimits& msg);
+
+/// The whole costmap as an OccupancyGrid (costs translated as costmap_2d does).
+void toOccupancyGrid(const costmap_layers::Costmap2D& costmap, const std::string& frame, const ros::Time& stamp,
+                     nav_msgs::OccupancyGrid& msg);
+/// The window of the costmap as an OccupancyGridUpdate.
+void toOccupancyGridUpdate(const costmap_layers::Costmap2D& costmap, const costmap_layers::CellWindow& window,
+                           const std::string& frame, const ros::Time& stamp, map_msgs::OccupancyGridUpdate& msg);
+
+/// The parameter tree under an XmlRpc value (structs keep their keys, arrays their order).
+costmap_layers::ParamValue fromXmlRpc(XmlRpc::XmlRpcValue& value);
+}  // namespace costmap_layers_ros

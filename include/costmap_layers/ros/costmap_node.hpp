@@ -1,0 +1,62 @@
+// The costmap node: reads its parameters, loads the plugin lists through pluginlib, follows the robot
+// through tf2 and runs the update loop; publishes ~costmap, ~costmap_updates and ~footprint.
+#pragma once
+
+#include <ros/ros.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
+
+#include <atomic>
+#include <memory>
+#include <optional>
+
+#include "costmap_layers/core/costmap_config.hpp"
+#include "costmap_layers/core/layered_costmap.hpp"
+#include "costmap_layers/core/transform2d.hpp"
+#include "costmap_layers/ros/plugin_factory.hpp"
+#include "costmap_layers/ros/ros_layer_context.hpp"
+
+namespace costmap_layers_ros
+{
+/// Reads the whole parameter namespace of nh into a tree (an empty map when nothing is set).
+costmap_layers::ParamValue readNamespace(const ros::NodeHandle& nh);
+
+class CostmapNode
+{
+public:
+  /// Throws std::exception with a clear message on a bad parameter or an unknown plugin type.
+  CostmapNode(ros::NodeHandle nh, ros::NodeHandle private_nh);
+  ~CostmapNode();
+
+  /// Runs the update loop until ROS shuts down (callbacks need a spinner on other threads).
+  void run();
+  /// One cycle: robot pose, updateMap, publish when due. @return false when the pose was unavailable.
+  bool updateOnce();
+
+  const costmap_layers::LayeredCostmap& costmap() const { return *costmap_; }
+  const costmap_layers::CostmapConfig& config() const { return config_; }
+
+private:
+  std::optional<costmap_layers::Transform2D> robotPose();
+  void publish(bool full);
+
+  ros::NodeHandle nh_;
+  ros::NodeHandle private_nh_;
+  costmap_layers::CostmapConfig config_;
+  std::shared_ptr<ThrottledLog> log_;
+  tf2_ros::Buffer tf_;
+  tf2_ros::TransformListener tf_listener_;
+  // Declared before the costmap: layers must be destroyed while their plugin library is loaded.
+  PluginFactory factory_;
+  std::unique_ptr<costmap_layers::LayeredCostmap> costmap_;
+  ros::Publisher costmap_pub_;
+  ros::Publisher update_pub_;
+  ros::Publisher footprint_pub_;
+  std::atomic<bool> new_subscriber_{false};
+  bool published_once_ = false;
+  costmap_layers::CellWindow pending_;  ///< changed since the last publish
+  ros::WallTime last_publish_;
+  unsigned int last_size_x_ = 0, last_size_y_ = 0;
+  double last_origin_x_ = 0, last_origin_y_ = 0, last_resolution_ = 0;
+};
+}  // namespace costmap_layers_ros

@@ -1,0 +1,26 @@
+// Creates layers by pluginlib type name (e.g. "costmap_layers/GradientLayer").
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "costmap_layers/core/layer.hpp"
+
+namespace costmap_layers_ros
+{
+class PluginFactory
+{
+public:
+  PluginFactory();
+  ~PluginFactory();
+  /// Throws std::runtime_error naming the type and listing the available types when it is unknown
+  /// or cannot be loaded.
+  std::shared_ptr<costmap_layers::Layer> create(const std::string& type);
+  std::vector<std::string> availableTypes() const;
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+}  // namespace costmap_layers_ros

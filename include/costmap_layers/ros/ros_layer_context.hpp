@@ -1,0 +1,70 @@
+// LayerContext on ROS 1: parameters from the plugin's namespace on the parameter server, inputs from
+// topics, outputs to latched topics and a toggle service, transforms from tf2, reports to rosconsole
+// throttled per key.
+#pragma once
+
+#include <ros/ros.h>
+#include <tf2_ros/buffer.h>
+
+#include <map>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "costmap_layers/core/layer_context.hpp"
+
+namespace costmap_layers_ros
+{
+/// Logs each key at most once per period [s]; thread-safe.
+class ThrottledLog
+{
+public:
+  explicit ThrottledLog(double period = 5.0) : period_(period) {}
+  void log(costmap_layers::Severity severity, const std::string& key, const std::string& message);
+
+private:
+  double period_;
+  std::mutex mutex_;
+  std::map<std::string, ros::WallTime> last_;
+};
+
+/// The latest transform mapping source_frame points into target_frame, projected to the plane;
+/// nullopt with *error when tf has none or it is older than tolerance [s] (static ones never are).
+std::optional<costmap_layers::Transform2D> lookupTransform2D(const tf2_ros::Buffer& tf, const std::string& target_frame,
+                                                             const std::string& source_frame, double tolerance,
+                                                             std::string* error);
+
+class RosLayerContext : public costmap_layers::LayerContext
+{
+public:
+  /// @param private_nh  the plugin's own namespace (~<name>); params is its parameter tree
+  RosLayerContext(ros::NodeHandle public_nh, ros::NodeHandle private_nh, costmap_layers::ParamValue params,
+                  std::string global_frame, double transform_tolerance, tf2_ros::Buffer& tf,
+                  std::shared_ptr<ThrottledLog> log);
+
+  const costmap_layers::ParamValue& params() const override { return params_; }
+  const std::string& globalFrame() const override { return global_frame_; }
+  double transformTolerance() const override { return transform_tolerance_; }
+  void subscribeGrid(const std::string& topic, costmap_layers::GridKind kind, costmap_layers::GridCallback cb) override;
+  void subscribeSpeedLimits(const std::string& topic, costmap_layers::SpeedLimitsCallback cb) override;
+  costmap_layers::MaxSpeedPublisher advertiseMaxSpeed(const std::string& topic) override;
+  void advertiseToggle(std::function<void(bool)> cb) override;
+  std::optional<costmap_layers::Transform2D> lookupTransform(const std::string& target_frame,
+                                                             const std::string& source_frame,
+                                                             std::string* error) override;
+  uint64_t nowNs() const override { return ros::Time::now().toNSec(); }
+  void report(costmap_layers::Severity severity, const std::string& key, const std::string& message) override;
+
+private:
+  ros::NodeHandle public_nh_;
+  ros::NodeHandle private_nh_;
+  costmap_layers::ParamValue params_;
+  std::string global_frame_;
+  double transform_tolerance_;
+  tf2_ros::Buffer& tf_;
+  std::shared_ptr<ThrottledLog> log_;
+  std::vector<ros::Subscriber> subscribers_;
+  std::vector<ros::Publisher> publishers_;
+  std::vector<ros::ServiceServer> services_;
+};
+}  // namespace costmap_layers_ros

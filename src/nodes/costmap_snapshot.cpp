@@ -1,0 +1,73 @@
+// rosrun costmap_layers costmap_snapshot _topic:=/costmap_node/costmap _output:=costmap.png
+// Waits for an OccupancyGrid (applying OccupancyGridUpdates that follow it), writes it as a PNG with a
+// legend after ~wait seconds of updates, and exits. Used by the demo and the tests.
+#include <map_msgs/OccupancyGridUpdate.h>
+#include <nav_msgs/OccupancyGrid.h>
+#include <ros/ros.h>
+
+#include <mutex>
+
+#include "costmap_layers/io/png_writer.hpp"
+
+int main(int argc, char** argv)
+{
+  ros::init(argc, argv, "costmap_snapshot");
+  ros::NodeHandle nh, pnh("~");
+  const std::string topic = pnh.param<std::string>("topic", "/costmap_node/costmap");
+  const std::string output = pnh.param<std::string>("output", "costmap.png");
+  const double wait = pnh.param("wait", 0.0);        // [s] to keep applying updates after the first grid
+  const double timeout = pnh.param("timeout", 30.0);  // [s] to wait for the first grid
+
+  std::mutex mutex;
+  nav_msgs::OccupancyGrid grid;
+  bool have_grid = false;
+  ros::Time first;
+  auto sub = nh.subscribe<nav_msgs::OccupancyGrid>(topic, 1, [&](const nav_msgs::OccupancyGrid::ConstPtr& msg) {
+    std::lock_guard<std::mutex> lock(mutex);
+    grid = *msg;
+    if (!have_grid) first = ros::Time::now();
+    have_grid = true;
+  });
+  auto updates = nh.subscribe<map_msgs::OccupancyGridUpdate>(
+      topic + "_updates", 10, [&](const map_msgs::OccupancyGridUpdate::ConstPtr& u) {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (!have_grid || u->x + u->width > grid.info.width || u->y + u->height > grid.info.height ||
+            u->data.size() != static_cast<std::size_t>(u->width) * u->height)
+          return;
+        for (uint32_t j = 0; j < u->height; ++j)
+          std::copy_n(u->data.begin() + j * u->width, u->width,
+                      grid.data.begin() + (u->y + j) * grid.info.width + u->x);
+      });
+
+  const ros::WallTime start = ros::WallTime::now();
+  ros::Rate rate(20);
+  while (ros::ok())
+  {
+    ros::spinOnce();
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      if (have_grid && (ros::Time::now() - first).toSec() >= wait)
+      {
+        try
+        {
+          costmap_layers::io::writeOccupancyPng(output, grid.data.data(), grid.info.width, grid.info.height);
+        }
+        catch (const std::exception& e)
+        {
+          ROS_ERROR("costmap_snapshot: %s", e.what());
+          return 1;
+        }
+        ROS_INFO("costmap_snapshot: wrote %ux%u costmap from %s to %s", grid.info.width, grid.info.height,
+                 topic.c_str(), output.c_str());
+        return 0;
+      }
+    }
+    if ((ros::WallTime::now() - start).toSec() > timeout)
+    {
+      ROS_ERROR("costmap_snapshot: no costmap on %s within %.1f s", topic.c_str(), timeout);
+      return 1;
+    }
+    rate.sleep();
+  }
+  return 1;
+}

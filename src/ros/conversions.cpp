@@ -1,0 +1,98 @@
+#include "costmap_layers/ros/conversions.hpp"
+
+#include <cmath>
+
+#include "costmap_layers/core/cost_translation.hpp"
+
+namespace costmap_layers_ros
+{
+using costmap_layers::ParamValue;
+
+costmap_layers::OccupancyGridData fromMsg(const nav_msgs::OccupancyGrid& msg)
+{
+  costmap_layers::OccupancyGridData g;
+  g.frame_id = msg.header.frame_id;
+  g.stamp_ns = msg.header.stamp.toNSec();
+  g.width = msg.info.width;
+  g.height = msg.info.height;
+  g.resolution = msg.info.resolution;
+  g.origin_x = msg.info.origin.position.x;
+  g.origin_y = msg.info.origin.position.y;
+  const auto& q = msg.info.origin.orientation;
+  g.origin_yaw = std::atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z));
+  g.data.assign(msg.data.begin(), msg.data.end());
+  return g;
+}
+
+costmap_layers::SpeedLimitsData fromMsg(const costmap_layers::SpeedLimits& msg)
+{
+  costmap_layers::SpeedLimitsData d;
+  d.frame_id = msg.header.frame_id;
+  d.stamp_ns = msg.header.stamp.toNSec();
+  d.limits.reserve(msg.limits.size());
+  for (const auto& l : msg.limits) d.limits.push_back({l.area_id, l.max_speed});
+  return d;
+}
+
+void toOccupancyGrid(const costmap_layers::Costmap2D& costmap, const std::string& frame, const ros::Time& stamp,
+                     nav_msgs::OccupancyGrid& msg)
+{
+  msg.header.frame_id = frame;
+  msg.header.stamp = stamp;
+  msg.info.map_load_time = stamp;
+  msg.info.resolution = static_cast<float>(costmap.getResolution());
+  msg.info.width = costmap.getSizeInCellsX();
+  msg.info.height = costmap.getSizeInCellsY();
+  msg.info.origin.position.x = costmap.getOriginX();
+  msg.info.origin.position.y = costmap.getOriginY();
+  msg.info.origin.position.z = 0.0;
+  msg.info.origin.orientation.w = 1.0;
+  const auto& table = costmap_layers::costTranslationTable();
+  msg.data.resize(costmap.cellCount());
+  const uint8_t* cells = costmap.data();
+  for (std::size_t k = 0; k < msg.data.size(); ++k) msg.data[k] = table[cells[k]];
+}
+
+void toOccupancyGridUpdate(const costmap_layers::Costmap2D& costmap, const costmap_layers::CellWindow& window,
+                           const std::string& frame, const ros::Time& stamp, map_msgs::OccupancyGridUpdate& msg)
+{
+  msg.header.frame_id = frame;
+  msg.header.stamp = stamp;
+  msg.x = window.x0;
+  msg.y = window.y0;
+  msg.width = static_cast<uint32_t>(window.xn - window.x0);
+  msg.height = static_cast<uint32_t>(window.yn - window.y0);
+  const auto& table = costmap_layers::costTranslationTable();
+  msg.data.resize(static_cast<std::size_t>(msg.width) * msg.height);
+  std::size_t k = 0;
+  for (int j = window.y0; j < window.yn; ++j)
+  {
+    const uint8_t* row = costmap.data() + costmap.getIndex(static_cast<unsigned>(window.x0), static_cast<unsigned>(j));
+    for (uint32_t i = 0; i < msg.width; ++i) msg.data[k++] = table[row[i]];
+  }
+}
+
+ParamValue fromXmlRpc(XmlRpc::XmlRpcValue& value)
+{
+  switch (value.getType())
+  {
+    case XmlRpc::XmlRpcValue::TypeBoolean: return ParamValue::makeBool(static_cast<bool>(value));
+    case XmlRpc::XmlRpcValue::TypeInt: return ParamValue::makeInt(static_cast<int>(value));
+    case XmlRpc::XmlRpcValue::TypeDouble: return ParamValue::makeDouble(static_cast<double>(value));
+    case XmlRpc::XmlRpcValue::TypeString: return ParamValue::makeString(static_cast<std::string>(value));
+    case XmlRpc::XmlRpcValue::TypeArray:
+    {
+      ParamValue list = ParamValue::makeList();
+      for (int i = 0; i < value.size(); ++i) list.push(fromXmlRpc(value[i]));
+      return list;
+    }
+    case XmlRpc::XmlRpcValue::TypeStruct:
+    {
+      ParamValue map = ParamValue::makeMap();
+      for (auto it = value.begin(); it != value.end(); ++it) map.set(it->first, fromXmlRpc(it->second));
+      return map;
+    }
+    default: return ParamValue{};
+  }
+}
+}  // namespace costmap_layers_ros

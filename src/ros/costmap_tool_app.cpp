@@ -1,0 +1,362 @@
+#include "costmap_layers/ros/costmap_tool_app.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "costmap_layers/core/costmap_builder.hpp"
+#include "costmap_layers/core/costmap_config.hpp"
+#include "costmap_layers/core/layer.hpp"
+#include "costmap_layers/core/layered_costmap.hpp"
+#include "costmap_layers/io/features_file.hpp"
+#include "costmap_layers/io/map_file.hpp"
+#include "costmap_layers/io/param_yaml.hpp"
+#include "costmap_layers/io/png_writer.hpp"
+#include "costmap_layers/ros/plugin_factory.hpp"
+
+namespace costmap_layers_ros
+{
+using namespace costmap_layers;
+
+namespace
+{
+const char* kUsage =
+    "usage: costmap_tool --map MAP.yaml --params PARAMS.yaml [--namespace NS]\n"
+    "                    [--mask PLUGIN_NAME=MASK.yaml]... [--features PLUGIN_NAME=FEATURES.yaml]...\n"
+    "                    [--pose X,Y,YAW] [--repeat N] [--out-raw FILE] [--out-png FILE]";
+
+struct ToolArgs
+{
+  std::string map, params, ns, out_raw, out_png;
+  std::vector<std::pair<std::string, std::string>> masks, features;
+  bool has_pose = false;
+  double x = 0, y = 0, yaw = 0;
+  int repeat = 0;
+};
+
+struct UsageError : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
+};
+
+std::pair<std::string, std::string> splitAssignment(const std::string& flag, const std::string& value)
+{
+  const auto eq = value.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == value.size())
+    throw UsageError(flag + " expects PLUGIN_NAME=FILE (got \"" + value + "\")");
+  return {value.substr(0, eq), value.substr(eq + 1)};
+}
+
+ToolArgs parseArgs(const std::vector<std::string>& args)
+{
+  ToolArgs a;
+  for (std::size_t i = 0; i < args.size(); ++i)
+  {
+    const std::string& flag = args[i];
+    if (flag == "-h" || flag == "--help") throw UsageError("");
+    if (i + 1 >= args.size()) throw UsageError("missing value after " + flag);
+    const std::string& v = args[++i];
+    if (flag == "--map")
+      a.map = v;
+    else if (flag == "--params")
+      a.params = v;
+    else if (flag == "--namespace")
+      a.ns = v;
+    else if (flag == "--mask")
+      a.masks.push_back(splitAssignment(flag, v));
+    else if (flag == "--features")
+      a.features.push_back(splitAssignment(flag, v));
+    else if (flag == "--out-raw")
+      a.out_raw = v;
+    else if (flag == "--out-png")
+      a.out_png = v;
+    else if (flag == "--repeat")
+    {
+      std::size_t used = 0;
+      long n = -1;
+      try
+      {
+        n = std::stol(v, &used);
+      }
+      catch (const std::exception&)
+      {
+      }
+      if (used != v.size() || n < 1 || n > 100000) throw UsageError("--repeat expects a count in 1..100000 (got \"" + v + "\")");
+      a.repeat = static_cast<int>(n);
+    }
+    else if (flag == "--pose")
+    {
+      double p[3];
+      std::istringstream in(v);
+      char c1 = 0, c2 = 0;
+      if (!(in >> p[0] >> c1 >> p[1] >> c2 >> p[2]) || c1 != ',' || c2 != ',' || !in.eof() || !std::isfinite(p[0]) ||
+          !std::isfinite(p[1]) || !std::isfinite(p[2]))
+        throw UsageError("--pose expects X,Y,YAW as three finite numbers (got \"" + v + "\")");
+      a.has_pose = true;
+      a.x = p[0];
+      a.y = p[1];
+      a.yaw = p[2];
+    }
+    else
+      throw UsageError("unknown option " + flag);
+  }
+  if (a.map.empty()) throw UsageError("--map is required");
+  if (a.params.empty()) throw UsageError("--params is required");
+  return a;
+}
+
+/// The tool's LayerContext: files instead of topics, no tf (every frame is the global frame).
+class FileContext : public LayerContext
+{
+public:
+  FileContext(std::string name, ParamValue params, std::string global_frame, double tolerance, std::ostream& err)
+    : name_(std::move(name)), params_(std::move(params)), global_frame_(std::move(global_frame)),
+      tolerance_(tolerance), err_(err)
+  {
+  }
+  const ParamValue& params() const override { return params_; }
+  const std::string& globalFrame() const override { return global_frame_; }
+  double transformTolerance() const override { return tolerance_; }
+  void subscribeGrid(const std::string&, GridKind kind, GridCallback cb) override
+  {
+    grids.push_back({kind, std::move(cb)});
+  }
+  void subscribeSpeedLimits(const std::string&, SpeedLimitsCallback cb) override { speed_limits.push_back(std::move(cb)); }
+  MaxSpeedPublisher advertiseMaxSpeed(const std::string&) override
+  {
+    publishes_speed = true;
+    return [this](double v) { last_max_speed = v; };
+  }
+  void advertiseToggle(std::function<void(bool)>) override {}
+  std::optional<Transform2D> lookupTransform(const std::string& target, const std::string& source,
+                                             std::string* error) override
+  {
+    if (target == source) return Transform2D{};
+    if (error) *error = "costmap_tool has no tf: frames " + source + " and " + target + " differ";
+    return std::nullopt;
+  }
+  uint64_t nowNs() const override
+  {
+    return static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                     std::chrono::system_clock::now().time_since_epoch())
+                                     .count());
+  }
+  void report(Severity severity, const std::string& key, const std::string& message) override
+  {
+    if (reported_count_[key]++ >= 3) return;  // the same problem every cycle says nothing new
+    static const char* names[] = {"debug", "info", "warning", "error"};
+    err_ << "costmap_tool: " << names[static_cast<int>(severity)] << ": " << message << "\n";
+  }
+
+  struct GridSub
+  {
+    GridKind kind;
+    GridCallback cb;
+  };
+  std::vector<GridSub> grids;
+  std::vector<SpeedLimitsCallback> speed_limits;
+  bool publishes_speed = false;
+  std::optional<double> last_max_speed;
+
+private:
+  std::string name_;
+  ParamValue params_;
+  std::string global_frame_;
+  double tolerance_;
+  std::ostream& err_;
+  std::map<std::string, int> reported_count_;
+};
+
+std::string jsonString(const std::string& s)
+{
+  std::string out = "\"";
+  for (char c : s)
+  {
+    if (c == '"' || c == '\\')
+      out += std::string("\\") + c;
+    else if (static_cast<unsigned char>(c) < 0x20)
+    {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", c);
+      out += buf;
+    }
+    else
+      out += c;
+  }
+  return out + "\"";
+}
+
+std::string jsonNumber(double v)
+{
+  if (!std::isfinite(v)) return "null";
+  std::ostringstream o;
+  o << std::setprecision(10) << v;
+  return o.str();
+}
+
+int run(const ToolArgs& a, std::ostream& out, std::ostream& err)
+{
+  ParamValue root = io::loadParamsYamlFile(a.params);
+  const ParamValue* ns = a.ns.empty() ? &root : root.findPath(a.ns);
+  if (ns == nullptr || !ns->isMap())
+    throw std::runtime_error(a.params + ": namespace '" + a.ns + "' not found (or not a map)");
+  const CostmapConfig config = parseCostmapConfig(*ns);
+  const PluginLists lists = parsePluginLists(*ns);
+
+  auto map = std::make_shared<OccupancyGridData>(io::loadMapFile(a.map));
+  map->frame_id = config.global_frame;
+
+  PluginFactory factory;
+  std::map<std::string, std::shared_ptr<FileContext>> contexts;
+  auto costmap = std::make_unique<LayeredCostmap>(config.global_frame, config.rolling_window, config.track_unknown_space);
+  // Declared after the factory and destroyed first, while the plugin library is loaded.
+  struct Release
+  {
+    std::unique_ptr<LayeredCostmap>& c;
+    ~Release() { c.reset(); }
+  } release{costmap};
+
+  // The map sets the master grid, as a static map does.
+  costmap->resizeMap(map->width, map->height, map->resolution, map->origin_x, map->origin_y);
+  loadPlugins(*costmap, lists, [&factory](const std::string& type) { return factory.create(type); },
+              [&](const PluginSpec& spec) {
+                const ParamValue* sub = ns->find(spec.name);
+                auto ctx = std::make_shared<FileContext>(spec.name, sub ? *sub : ParamValue::makeMap(),
+                                                         config.global_frame, config.transform_tolerance, err);
+                contexts[spec.name] = ctx;
+                return ctx;
+              });
+  const Footprint footprint = config.footprint.padded();
+  costmap->setFootprint(footprint);
+
+  // Inputs: the map to every map subscription, masks and features to the named plugins.
+  std::vector<std::pair<std::shared_ptr<FileContext>, std::shared_ptr<const OccupancyGridData>>> masks;
+  for (const auto& [name, file] : a.masks)
+  {
+    auto it = contexts.find(name);
+    if (it == contexts.end()) throw std::runtime_error("--mask names plugin '" + name + "', which is not configured");
+    auto mask = std::make_shared<OccupancyGridData>(io::loadMapFile(file));
+    mask->frame_id = config.global_frame;
+    masks.emplace_back(it->second, mask);
+  }
+  std::vector<std::pair<std::shared_ptr<FileContext>, std::shared_ptr<const SpeedLimitsData>>> features;
+  for (const auto& [name, file] : a.features)
+  {
+    auto it = contexts.find(name);
+    if (it == contexts.end())
+      throw std::runtime_error("--features names plugin '" + name + "', which is not configured");
+    if (it->second->speed_limits.empty())
+      throw std::runtime_error("--features names plugin '" + name + "', which takes no speed limits");
+    auto limits = std::make_shared<SpeedLimitsData>(io::loadFeaturesFile(file));
+    limits->frame_id = config.global_frame;
+    features.emplace_back(it->second, limits);
+  }
+  for (const auto& [ctx, mask] : masks)
+  {
+    bool taken = false;
+    for (auto& sub : ctx->grids)
+      if (sub.kind == GridKind::Mask) sub.cb(mask), taken = true;
+    if (!taken) throw std::runtime_error("--mask names a plugin that takes no mask");
+  }
+  for (const auto& [ctx, limits] : features)
+    for (auto& cb : ctx->speed_limits) cb(limits);
+
+  auto deliverMaps = [&] {
+    for (auto& [name, ctx] : contexts)
+      for (auto& sub : ctx->grids)
+        if (sub.kind == GridKind::Map) sub.cb(map);
+  };
+  deliverMaps();
+
+  auto pose = [&](double& x, double& y, double& yaw) {
+    const Costmap2D& g = costmap->getCostmap();
+    x = a.has_pose ? a.x : g.getOriginX() + g.getSizeInMetersX() / 2;
+    y = a.has_pose ? a.y : g.getOriginY() + g.getSizeInMetersY() / 2;
+    yaw = a.has_pose ? a.yaw : 0.0;
+  };
+  double x, y, yaw;
+  using Clock = std::chrono::steady_clock;
+  std::vector<double> times_ms;
+  const int timed = a.repeat > 0 ? a.repeat : 1;
+  for (int k = 0; k < timed + (a.repeat > 0 ? 1 : 0); ++k)
+  {
+    const bool warm_up = a.repeat > 0 && k == 0;
+    const auto t0 = Clock::now();
+    if (k > 0)
+    {
+      // Redo every layer's full work, as when a new map (and new masks) arrive.
+      costmap->setFootprint(footprint);
+      deliverMaps();
+      for (const auto& [ctx, mask] : masks)
+        for (auto& sub : ctx->grids)
+          if (sub.kind == GridKind::Mask) sub.cb(mask);
+    }
+    pose(x, y, yaw);
+    costmap->updateMap(x, y, yaw);
+    const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    if (!warm_up) times_ms.push_back(ms);
+  }
+  std::vector<double> sorted = times_ms;
+  std::sort(sorted.begin(), sorted.end());
+  const std::size_t n = sorted.size();
+  const double median = n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
+
+  const Costmap2D& grid = costmap->getCostmap();
+  if (!a.out_raw.empty()) io::writeRawBytes(a.out_raw, grid.data(), grid.cellCount());
+  if (!a.out_png.empty()) io::writeCostmapPng(a.out_png, grid.data(), grid.getSizeInCellsX(), grid.getSizeInCellsY());
+
+  std::ostringstream json;
+  json << "{\"width\": " << grid.getSizeInCellsX() << ", \"height\": " << grid.getSizeInCellsY()
+       << ", \"resolution\": " << jsonNumber(grid.getResolution()) << ", \"update_ms_median\": " << jsonNumber(median)
+       << ", \"update_ms_min\": " << jsonNumber(sorted.front()) << ", \"repeats\": " << n << ", \"max_speed\": {";
+  bool first = true;
+  for (const auto* list : {&lists.plugins, &lists.filters})
+  {
+    for (const auto& spec : *list)
+    {
+      const auto& ctx = contexts[spec.name];
+      if (!ctx->publishes_speed || !ctx->last_max_speed) continue;
+      json << (first ? "" : ", ") << jsonString(spec.name) << ": " << jsonNumber(*ctx->last_max_speed);
+      first = false;
+    }
+  }
+  json << "}}";
+  err.flush();
+  out << json.str() << std::endl;
+  return 0;
+}
+}  // namespace
+
+int runCostmapTool(const std::vector<std::string>& args, std::ostream& out, std::ostream& err)
+{
+  ToolArgs parsed;
+  try
+  {
+    parsed = parseArgs(args);
+  }
+  catch (const UsageError& e)
+  {
+    if (std::string(e.what()).empty())
+    {
+      out << kUsage << std::endl;
+      return 0;
+    }
+    err << "costmap_tool: " << e.what() << "\n" << kUsage << std::endl;
+    return 2;
+  }
+  try
+  {
+    return run(parsed, out, err);
+  }
+  catch (const std::exception& e)
+  {
+    err << "costmap_tool: error: " << e.what() << std::endl;
+    return 1;
+  }
+}
+}  // namespace costmap_layers_ros

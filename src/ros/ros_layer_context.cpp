@@ -1,0 +1,147 @@
+#include "costmap_layers/ros/ros_layer_context.hpp"
+
+#include <nav_msgs/OccupancyGrid.h>
+#include <std_srvs/SetBool.h>
+#include <tf2/exceptions.h>
+
+#include <cmath>
+
+#include "costmap_layers/MaxSpeed.h"
+#include "costmap_layers/SpeedLimits.h"
+#include "costmap_layers/ros/conversions.hpp"
+
+namespace costmap_layers_ros
+{
+using costmap_layers::Severity;
+
+void ThrottledLog::log(Severity severity, const std::string& key, const std::string& message)
+{
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const ros::WallTime now = ros::WallTime::now();
+    auto it = last_.find(key);
+    if (it != last_.end() && (now - it->second).toSec() < period_) return;
+    last_[key] = now;
+  }
+  switch (severity)
+  {
+    case Severity::Debug: ROS_DEBUG_STREAM(message); break;
+    case Severity::Info: ROS_INFO_STREAM(message); break;
+    case Severity::Warn: ROS_WARN_STREAM(message); break;
+    case Severity::Error: ROS_ERROR_STREAM(message); break;
+  }
+}
+
+RosLayerContext::RosLayerContext(ros::NodeHandle public_nh, ros::NodeHandle private_nh,
+                                 costmap_layers::ParamValue params, std::string global_frame,
+                                 double transform_tolerance, tf2_ros::Buffer& tf, std::shared_ptr<ThrottledLog> log)
+  : public_nh_(std::move(public_nh))
+  , private_nh_(std::move(private_nh))
+  , params_(std::move(params))
+  , global_frame_(std::move(global_frame))
+  , transform_tolerance_(transform_tolerance)
+  , tf_(tf)
+  , log_(std::move(log))
+{
+}
+
+void RosLayerContext::subscribeGrid(const std::string& topic, costmap_layers::GridKind, costmap_layers::GridCallback cb)
+{
+  const std::string owner = private_nh_.getNamespace();
+  subscribers_.push_back(public_nh_.subscribe<nav_msgs::OccupancyGrid>(
+      topic, 1, [cb, owner, topic, log = log_](const nav_msgs::OccupancyGrid::ConstPtr& msg) {
+        try
+        {
+          cb(std::make_shared<const costmap_layers::OccupancyGridData>(fromMsg(*msg)));
+        }
+        catch (const std::exception& e)
+        {
+          log->log(Severity::Error, owner + topic, owner + ": dropped a grid on " + topic + ": " + e.what());
+        }
+      }));
+}
+
+void RosLayerContext::subscribeSpeedLimits(const std::string& topic, costmap_layers::SpeedLimitsCallback cb)
+{
+  const std::string owner = private_nh_.getNamespace();
+  subscribers_.push_back(public_nh_.subscribe<costmap_layers::SpeedLimits>(
+      topic, 1, [cb, owner, topic, log = log_](const costmap_layers::SpeedLimits::ConstPtr& msg) {
+        try
+        {
+          cb(std::make_shared<const costmap_layers::SpeedLimitsData>(fromMsg(*msg)));
+        }
+        catch (const std::exception& e)
+        {
+          log->log(Severity::Error, owner + topic, owner + ": dropped speed limits on " + topic + ": " + e.what());
+        }
+      }));
+}
+
+costmap_layers::MaxSpeedPublisher RosLayerContext::advertiseMaxSpeed(const std::string& topic)
+{
+  publishers_.push_back(public_nh_.advertise<costmap_layers::MaxSpeed>(topic, 1, true));
+  ros::Publisher pub = publishers_.back();
+  const std::string frame = global_frame_;
+  return [pub, frame](double max_speed) {
+    costmap_layers::MaxSpeed msg;
+    msg.header.frame_id = frame;
+    msg.header.stamp = ros::Time::now();
+    msg.max_speed = max_speed;
+    pub.publish(msg);
+  };
+}
+
+void RosLayerContext::advertiseToggle(std::function<void(bool)> cb)
+{
+  services_.push_back(private_nh_.advertiseService<std_srvs::SetBool::Request, std_srvs::SetBool::Response>(
+      "toggle", [cb](std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res) {
+        cb(req.data);
+        res.success = true;
+        res.message = req.data ? "enabled" : "disabled";
+        return true;
+      }));
+}
+
+std::optional<costmap_layers::Transform2D> RosLayerContext::lookupTransform(const std::string& target_frame,
+                                                                            const std::string& source_frame,
+                                                                            std::string* error)
+{
+  return lookupTransform2D(tf_, target_frame, source_frame, transform_tolerance_, error);
+}
+
+std::optional<costmap_layers::Transform2D> lookupTransform2D(const tf2_ros::Buffer& tf, const std::string& target_frame,
+                                                             const std::string& source_frame,
+                                                             double tolerance, std::string* error)
+{
+  try
+  {
+    const geometry_msgs::TransformStamped t = tf.lookupTransform(target_frame, source_frame, ros::Time(0));
+    // A zero stamp means only static transforms: those never go stale.
+    if (!t.header.stamp.isZero() && (ros::Time::now() - t.header.stamp).toSec() > tolerance &&
+        tolerance > 0.0)
+    {
+      if (error)
+        *error = "transform " + source_frame + " -> " + target_frame + " is " +
+                 std::to_string((ros::Time::now() - t.header.stamp).toSec()) + " s old (transform_tolerance " +
+                 std::to_string(tolerance) + " s)";
+      return std::nullopt;
+    }
+    const auto& q = t.transform.rotation;
+    costmap_layers::Transform2D out;
+    out.x = t.transform.translation.x;
+    out.y = t.transform.translation.y;
+    out.yaw = std::atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z));
+    return out;
+  }
+  catch (const tf2::TransformException& e)
+  {
+    if (error) *error = e.what();
+    return std::nullopt;
+  }
+}
+
+void RosLayerContext::report(Severity severity, const std::string& key, const std::string& message)
+{
+  log_->log(severity, private_nh_.getNamespace() + "/" + key, message);
+}
+}  // namespace costmap_layers_ros
