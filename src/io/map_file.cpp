@@ -49,8 +49,8 @@ void checkSize(const std::string& path, uint64_t width, uint64_t height)
   if (width == 0 || height == 0)
     fail(path, "image has zero size (" + std::to_string(width) + "x" + std::to_string(height) + ")");
   if (width > kMaxSide || height > kMaxSide)
-    fail(path, "image size " + std::to_string(width) + "x" + std::to_string(height) +
-                   " is absurdly large (more than " + std::to_string(kMaxSide) + " pixels per side)");
+    fail(path, "image size " + std::to_string(width) + "x" + std::to_string(height) + " is absurdly large (more than " +
+                   std::to_string(kMaxSide) + " pixels per side)");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -66,8 +66,8 @@ public:
     if (b_.size() < 2 || b_[0] != 'P') fail(path_, "bad PNM header: missing magic number");
     const char kind = static_cast<char>(b_[1]);
     if (kind != '2' && kind != '3' && kind != '5' && kind != '6')
-      fail(path_, std::string("bad PNM header: unsupported type P") + kind +
-                      " (expected P2, P5 grey or P3, P6 colour)");
+      fail(path_,
+           std::string("bad PNM header: unsupported type P") + kind + " (expected P2, P5 grey or P3, P6 colour)");
     pos_ = 2;
     const bool ascii = (kind == '2' || kind == '3');
     const int channels = (kind == '2' || kind == '5') ? 1 : 3;
@@ -91,19 +91,17 @@ public:
       {
         skipSpaceAndComments();
         if (pos_ >= b_.size())
-          fail(path_, "truncated pixel data: " + std::to_string(k) + " of " + std::to_string(count) +
-                          " samples present");
+          fail(path_,
+               "truncated pixel data: " + std::to_string(k) + " of " + std::to_string(count) + " samples present");
         const uint64_t v = number("sample");
-        if (v > maxval)
-          fail(path_, "sample " + std::to_string(v) + " exceeds maxval " + std::to_string(maxval));
+        if (v > maxval) fail(path_, "sample " + std::to_string(v) + " exceeds maxval " + std::to_string(maxval));
         img.pixels[k] = scale(v, maxval);
       }
       return img;
     }
 
     // Binary: exactly one whitespace character separates maxval from the data.
-    if (pos_ >= b_.size() || !std::isspace(b_[pos_]))
-      fail(path_, "bad PNM header: no whitespace after maxval");
+    if (pos_ >= b_.size() || !std::isspace(b_[pos_])) fail(path_, "bad PNM header: no whitespace after maxval");
     ++pos_;
     const uint64_t bytes_per_sample = maxval > 255 ? 2 : 1;
     const uint64_t available = b_.size() - pos_;
@@ -114,8 +112,7 @@ public:
     {
       uint64_t v = b_[pos_ + k * bytes_per_sample];
       if (bytes_per_sample == 2) v = (v << 8) | b_[pos_ + k * 2 + 1];
-      if (v > maxval)
-        fail(path_, "sample " + std::to_string(v) + " exceeds maxval " + std::to_string(maxval));
+      if (v > maxval) fail(path_, "sample " + std::to_string(v) + " exceeds maxval " + std::to_string(maxval));
       img.pixels[k] = scale(v, maxval);
     }
     return img;
@@ -134,7 +131,8 @@ private:
     {
       if (b_[pos_] == '#')
       {
-        while (pos_ < b_.size() && b_[pos_] != '\n' && b_[pos_] != '\r') ++pos_;
+        while (pos_ < b_.size() && b_[pos_] != '\n' && b_[pos_] != '\r')
+          ++pos_;
       }
       else if (std::isspace(b_[pos_]))
       {
@@ -188,7 +186,7 @@ struct PngSource
 void pngRead(png_structp png, png_bytep out, png_size_t length)
 {
   auto* src = static_cast<PngSource*>(png_get_io_ptr(png));
-  if (src->bytes->size() - src->pos < length) png_error(png, "truncated pixel data (file ends early)");
+  if (src->bytes->size() - src->pos < length) png_error(png, "truncated data: the file ends early");
   std::memcpy(out, src->bytes->data() + src->pos, length);
   src->pos += length;
 }
@@ -263,7 +261,8 @@ bool decodePngInto(PngSource& src, Image& img, std::vector<png_bytep>& rows)
   img.channels = channels;
   img.pixels.resize(rowbytes * height);
   rows.resize(height);
-  for (png_uint_32 y = 0; y < height; ++y) rows[y] = img.pixels.data() + rowbytes * y;
+  for (png_uint_32 y = 0; y < height; ++y)
+    rows[y] = img.pixels.data() + rowbytes * y;
   png_read_image(png, rows.data());
   png_read_end(png, nullptr);
   png_destroy_read_struct(&png, &info, nullptr);
@@ -279,8 +278,7 @@ Image decodePng(const std::string& path, const std::vector<uint8_t>& bytes)
   if (!decodePngInto(src, img, rows))
   {
     const std::string& e = src.error;
-    if (e.find("truncated") != std::string::npos || e.find("absurdly") != std::string::npos)
-      fail(path, e);
+    if (e.find("truncated") != std::string::npos || e.find("absurdly") != std::string::npos) fail(path, e);
     fail(path, "bad PNG: " + e);
   }
   return img;
@@ -291,8 +289,7 @@ Image readImage(const std::string& path)
   const std::vector<uint8_t> bytes = readBytes(path, "image file");
   static const uint8_t kPngMagic[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
   if (bytes.size() >= 8 && std::memcmp(bytes.data(), kPngMagic, 8) == 0) return decodePng(path, bytes);
-  if (bytes.size() >= 2 && bytes[0] == 'P' && bytes[1] >= '1' && bytes[1] <= '7')
-    return PnmReader(path, bytes).read();
+  if (bytes.size() >= 2 && bytes[0] == 'P' && bytes[1] >= '1' && bytes[1] <= '7') return PnmReader(path, bytes).read();
   if (bytes.empty()) fail(path, "image file is empty");
   fail(path, "bad image header: not a PGM/PPM (P2, P3, P5, P6) or PNG file");
 }
@@ -305,7 +302,8 @@ int8_t ros1Value(const uint8_t* p, int channels, const MapFileInfo& info)
   const bool has_alpha = (channels == 4);
   const int avg_channels = (info.mode == MapMode::Trinary || !has_alpha) ? channels : channels - 1;
   int sum = 0;
-  for (int k = 0; k < avg_channels; ++k) sum += p[k];
+  for (int k = 0; k < avg_channels; ++k)
+    sum += p[k];
   double mean = sum / static_cast<double>(avg_channels);
   const int alpha = has_alpha ? p[3] : 255;
   if (info.negate) mean = 255.0 - mean;
@@ -343,7 +341,8 @@ int8_t nav2ScaleValue(const uint8_t* p, int channels, const MapFileInfo& info)
   if (has_alpha && p[3] < 255) return -1;
   const int colour_channels = has_alpha ? 3 : channels;
   int sum = 0;
-  for (int k = 0; k < colour_channels; ++k) sum += p[k];
+  for (int k = 0; k < colour_channels; ++k)
+    sum += p[k];
   const float grey = static_cast<float>(sum) / static_cast<float>(colour_channels);
   const float shade = grey / 255.0f;
   const float occ = info.negate ? shade : 1.0f - shade;
@@ -378,8 +377,8 @@ void validateInfo(const std::string& path, const MapFileInfo& info)
   if (info.free_thresh >= info.occupied_thresh)
   {
     std::ostringstream s;
-    s << "free_thresh (" << info.free_thresh << ") must be smaller than occupied_thresh ("
-      << info.occupied_thresh << ")";
+    s << "free_thresh (" << info.free_thresh << ") must be smaller than occupied_thresh (" << info.occupied_thresh
+      << ")";
     fail(path, s.str());
   }
 }
@@ -416,10 +415,14 @@ const char* mapModeName(MapMode mode)
 {
   switch (mode)
   {
-    case MapMode::Trinary: return "trinary";
-    case MapMode::Scale: return "scale";
-    case MapMode::Raw: return "raw";
-    case MapMode::Nav2Scale: return "nav2_scale";
+    case MapMode::Trinary:
+      return "trinary";
+    case MapMode::Scale:
+      return "scale";
+    case MapMode::Raw:
+      return "raw";
+    case MapMode::Nav2Scale:
+      return "nav2_scale";
   }
   return "?";
 }
@@ -529,8 +532,8 @@ OccupancyGridData loadMapImage(const std::string& image_path, const MapFileInfo&
     for (uint32_t i = 0; i < img.width; ++i)
     {
       const uint8_t* p = row + static_cast<size_t>(i) * static_cast<size_t>(img.channels);
-      out[i] = info.mode == MapMode::Nav2Scale ? nav2ScaleValue(p, img.channels, info)
-                                               : ros1Value(p, img.channels, info);
+      out[i] =
+          info.mode == MapMode::Nav2Scale ? nav2ScaleValue(p, img.channels, info) : ros1Value(p, img.channels, info);
     }
   }
   return grid;

@@ -8,7 +8,8 @@
 //   negate           0/1 or true/false
 //   occupied_thresh  in [0, 1]
 //   free_thresh      in [0, 1], must be < occupied_thresh
-//   mode             optional: trinary (default) | scale | raw | nav2_scale
+//   mode             optional: trinary (default) | scale | raw, and nav2_scale (an extension of
+//                    this library: Nav2 calls its rule "scale" too)
 //
 // Images: binary and ASCII PGM (P5/P2) and PPM (P6/P3), any maxval 1..65535 (values are rescaled to
 // 0..255 with rounding when maxval != 255); PNG through libpng (grey, grey+alpha, RGB, RGBA,
@@ -86,8 +87,8 @@ MapMode parseMapMode(const std::string& name);
 
 struct MapFileInfo
 {
-  std::string image_path;          ///< resolved (relative to the YAML's folder) by loadMapFileInfo
-  double resolution = 0.0;         ///< [m/pixel]
+  std::string image_path;              ///< resolved (relative to the YAML's folder) by loadMapFileInfo
+  double resolution = 0.0;             ///< [m/pixel]
   double origin[3] = {0.0, 0.0, 0.0};  ///< x [m], y [m], yaw [rad] of the lower-left pixel
   bool negate = false;
   double occupied_thresh = 0.65;

@@ -1,0 +1,46 @@
+// Reading a parameters YAML file (what `rosparam load` would put on the parameter server) into a
+// costmap_layers::ParamValue tree, without ROS. Uses yaml-cpp.
+//
+// Structure: maps become Map (keys in document order; a repeated key keeps its first position and
+// the last value), sequences become List, an empty document becomes Null. Aliases (*name) are
+// expanded, and the YAML 1.1 merge key `<<: *base` (or `<<: [*a, *b]`) merges the maps in as
+// rosparam/PyYAML do: keys written in the map itself win, then earlier merged maps win over later.
+//
+// Scalars are typed the way rosparam (PyYAML, YAML 1.1 rules) types plain scalars:
+//   Null    ~  null Null NULL  and an empty value
+//   Bool    true/false yes/no on/off in lower case, Capitalised or UPPER case (True, YES, Off, ...)
+//   Int     decimal with optional sign (42, -7, +3, 1_000), 0x hex, 0b binary, 0-prefixed octal
+//           (010 = 8), as PyYAML; a value beyond int64 becomes a Double
+//   Double  1.0  -2.5  1.  .5  6.02e23  1.0e+3  .inf  -.inf  +.inf  .nan (also .Inf, .NAN, ...)
+//           Note: this accepts a little more than PyYAML, which requires a dot and a signed exponent
+//           and so reads "1e3", "1e-3" and "-.5" as strings; here they are numbers.
+//   String  everything else (e.g. "09", "1.2.3", "0o17", "y", "n", dates, and sexagesimal "1:30",
+//           which PyYAML would read as the number 90)
+// Quoted ('...' or "...") and block (| or >) scalars are always String: yaml-cpp gives them the
+// tag "!". Explicit standard tags are honoured: !!str -> String, !!int -> Int, !!float -> Double,
+// !!bool -> Bool, !!null -> Null (an error when the text does not fit the tag). Other tags
+// (e.g. !degrees) are ignored and the scalar is typed as if plain.
+//
+// Errors throw std::runtime_error with one line: the source name (`what`, or the file path), the
+// line and column for YAML syntax errors, and the problem.
+#pragma once
+
+#include <string>
+
+#include "costmap_layers/core/param_value.hpp"
+
+namespace costmap_layers
+{
+namespace io
+{
+/// Parses YAML text; `what` names the source in error messages (e.g. a file name or "--params").
+ParamValue parseParamsYaml(const std::string& text, const std::string& what);
+
+/// Reads and parses a YAML file (error when it cannot be opened).
+ParamValue loadParamsYamlFile(const std::string& path);
+
+/// The typing rule for one plain (unquoted, untagged) scalar, exposed for tests and for tools that
+/// take "key:=value" arguments on a command line.
+ParamValue typePlainScalar(const std::string& text);
+}  // namespace io
+}  // namespace costmap_layers

@@ -1,0 +1,341 @@
+#include "costmap_layers/io/param_yaml.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+namespace costmap_layers
+{
+namespace io
+{
+namespace
+{
+constexpr int kMaxDepth = 256;
+
+const std::string kTagStr = "tag:yaml.org,2002:str";
+const std::string kTagInt = "tag:yaml.org,2002:int";
+const std::string kTagFloat = "tag:yaml.org,2002:float";
+const std::string kTagBool = "tag:yaml.org,2002:bool";
+const std::string kTagNull = "tag:yaml.org,2002:null";
+
+bool isDigitIn(char c, int base)
+{
+  if (base == 2) return c == '0' || c == '1';
+  if (base == 8) return c >= '0' && c <= '7';
+  if (base == 10) return c >= '0' && c <= '9';
+  return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f') || (c >= 'A' && c <= 'F');
+}
+
+int digitValue(char c)
+{
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  return c - 'A' + 10;
+}
+
+std::optional<bool> parseBool(const std::string& s)
+{
+  static const char* const kTrue[] = {"true", "True", "TRUE", "yes", "Yes", "YES", "on", "On", "ON"};
+  static const char* const kFalse[] = {"false", "False", "FALSE", "no", "No", "NO", "off", "Off", "OFF"};
+  for (const char* t : kTrue)
+  {
+    if (s == t) return true;
+  }
+  for (const char* f : kFalse)
+  {
+    if (s == f) return false;
+  }
+  return std::nullopt;
+}
+
+bool isNullText(const std::string& s)
+{
+  return s.empty() || s == "~" || s == "null" || s == "Null" || s == "NULL";
+}
+
+/// PyYAML's int forms. Returns Int, or Double when the value does not fit int64, or Null (no match).
+ParamValue parseInt(const std::string& s)
+{
+  size_t pos = 0;
+  bool negative = false;
+  if (pos < s.size() && (s[pos] == '+' || s[pos] == '-'))
+  {
+    negative = (s[pos] == '-');
+    ++pos;
+  }
+  if (pos >= s.size()) return ParamValue();
+  int base = 10;
+  if (s[pos] == '0' && pos + 1 < s.size())
+  {
+    const char p = s[pos + 1];
+    if (p == 'x' || p == 'b')
+    {
+      base = (p == 'x') ? 16 : 2;
+      pos += 2;
+    }
+    else
+    {
+      base = 8;  // 0[0-7_]+
+      pos += 1;
+    }
+  }
+  if (pos >= s.size()) return ParamValue();
+  uint64_t magnitude = 0;
+  double approx = 0.0;
+  bool overflow = false;
+  bool any_digit = false;
+  for (; pos < s.size(); ++pos)
+  {
+    const char c = s[pos];
+    if (c == '_') continue;
+    if (!isDigitIn(c, base)) return ParamValue();
+    any_digit = true;
+    const auto d = static_cast<uint64_t>(digitValue(c));
+    approx = approx * base + static_cast<double>(d);
+    if (magnitude > (std::numeric_limits<uint64_t>::max() - d) / static_cast<uint64_t>(base)) overflow = true;
+    magnitude = magnitude * static_cast<uint64_t>(base) + d;
+  }
+  if (!any_digit) return base == 8 ? ParamValue::makeInt(0) : ParamValue();  // "0_" is octal 0
+  const uint64_t limit = negative ? uint64_t{1} << 63 : (uint64_t{1} << 63) - 1;
+  if (overflow || magnitude > limit) return ParamValue::makeDouble(negative ? -approx : approx);
+  if (negative)
+    return ParamValue::makeInt(magnitude == (uint64_t{1} << 63) ? std::numeric_limits<int64_t>::min()
+                                                                : -static_cast<int64_t>(magnitude));
+  return ParamValue::makeInt(static_cast<int64_t>(magnitude));
+}
+
+std::optional<double> parseFloat(const std::string& s)
+{
+  size_t pos = 0;
+  bool negative = false;
+  if (pos < s.size() && (s[pos] == '+' || s[pos] == '-'))
+  {
+    negative = (s[pos] == '-');
+    ++pos;
+  }
+  const std::string rest = s.substr(pos);
+  if (rest == ".inf" || rest == ".Inf" || rest == ".INF")
+    return negative ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
+  if (pos == 0 && (rest == ".nan" || rest == ".NaN" || rest == ".NAN")) return std::numeric_limits<double>::quiet_NaN();
+
+  // [digits] ['.' [digits]] [e|E [sign] digits], with '_' allowed in the mantissa digits;
+  // at least one mantissa digit, and a dot or an exponent.
+  std::string clean = negative ? "-" : "";
+  size_t mantissa_digits = 0;
+  bool dot = false;
+  bool exponent = false;
+  for (; pos < s.size(); ++pos)
+  {
+    const char c = s[pos];
+    if (c >= '0' && c <= '9')
+    {
+      ++mantissa_digits;
+      clean += c;
+    }
+    else if (c == '_' && mantissa_digits > 0)
+    {
+    }
+    else if (c == '.' && !dot)
+    {
+      dot = true;
+      clean += c;
+    }
+    else
+    {
+      break;
+    }
+  }
+  if (mantissa_digits == 0) return std::nullopt;
+  if (pos < s.size() && (s[pos] == 'e' || s[pos] == 'E'))
+  {
+    exponent = true;
+    clean += 'e';
+    ++pos;
+    if (pos < s.size() && (s[pos] == '+' || s[pos] == '-')) clean += s[pos++];
+    size_t exp_digits = 0;
+    for (; pos < s.size() && s[pos] >= '0' && s[pos] <= '9'; ++pos, ++exp_digits)
+      clean += s[pos];
+    if (exp_digits == 0) return std::nullopt;
+  }
+  if (pos != s.size() || (!dot && !exponent)) return std::nullopt;
+  errno = 0;
+  char* end = nullptr;
+  const double v = std::strtod(clean.c_str(), &end);
+  if (end == nullptr || *end != '\0') return std::nullopt;
+  return v;  // overflow gives +-inf, as in PyYAML
+}
+
+class Converter
+{
+public:
+  explicit Converter(const std::string& what) : what_(what) {}
+
+  ParamValue convert(const YAML::Node& node, int depth)
+  {
+    if (depth > kMaxDepth) fail(node, "nesting deeper than " + std::to_string(kMaxDepth) + " levels");
+    switch (node.Type())
+    {
+      case YAML::NodeType::Undefined:
+      case YAML::NodeType::Null:
+        return ParamValue();
+      case YAML::NodeType::Scalar:
+        return scalar(node);
+      case YAML::NodeType::Sequence:
+      {
+        ParamValue list = ParamValue::makeList();
+        for (const YAML::Node& item : node)
+          list.push(convert(item, depth + 1));
+        return list;
+      }
+      case YAML::NodeType::Map:
+        return map(node, depth);
+    }
+    return ParamValue();
+  }
+
+private:
+  [[noreturn]] void fail(const YAML::Node& node, const std::string& problem) const
+  {
+    const YAML::Mark mark = node.Mark();
+    std::string where;
+    if (mark.line >= 0) where = " at line " + std::to_string(mark.line + 1);
+    throw std::runtime_error(what_ + where + ": " + problem);
+  }
+
+  ParamValue scalar(const YAML::Node& node) const
+  {
+    const std::string& tag = node.Tag();
+    const std::string& text = node.Scalar();
+    if (tag == "!" || tag == kTagStr) return ParamValue::makeString(text);
+    if (tag == kTagInt)
+    {
+      ParamValue v = parseInt(text);
+      if (v.type() != ParamValue::Type::Int) fail(node, "'" + text + "' is not a valid !!int");
+      return v;
+    }
+    if (tag == kTagFloat)
+    {
+      ParamValue i = parseInt(text);
+      if (i.isNumber()) return ParamValue::makeDouble(i.asDouble());
+      const auto f = parseFloat(text);
+      if (!f) fail(node, "'" + text + "' is not a valid !!float");
+      return ParamValue::makeDouble(*f);
+    }
+    if (tag == kTagBool)
+    {
+      const auto b = parseBool(text);
+      if (!b) fail(node, "'" + text + "' is not a valid !!bool");
+      return ParamValue::makeBool(*b);
+    }
+    if (tag == kTagNull)
+    {
+      if (!isNullText(text)) fail(node, "'" + text + "' is not a valid !!null");
+      return ParamValue();
+    }
+    return typePlainScalar(text);
+  }
+
+  ParamValue map(const YAML::Node& node, int depth)
+  {
+    std::vector<std::pair<std::string, ParamValue>> own;
+    std::vector<ParamValue> merged;
+    for (const auto& kv : node)
+    {
+      const YAML::Node& key = kv.first;
+      if (!key.IsScalar() && !key.IsNull()) fail(key, "a map key must be a plain value, not a list or map");
+      const std::string name = key.IsNull() ? std::string() : key.Scalar();
+      if (name == "<<" && key.Tag() != "!")
+      {
+        const YAML::Node& src = kv.second;
+        if (src.IsMap())
+        {
+          merged.push_back(convert(src, depth + 1));
+        }
+        else if (src.IsSequence())
+        {
+          for (const YAML::Node& item : src)
+          {
+            if (!item.IsMap()) fail(item, "a merge key '<<' needs a map or a list of maps");
+            merged.push_back(convert(item, depth + 1));
+          }
+        }
+        else
+        {
+          fail(src, "a merge key '<<' needs a map or a list of maps");
+        }
+        continue;
+      }
+      own.emplace_back(name, convert(kv.second, depth + 1));
+    }
+    ParamValue out = ParamValue::makeMap();
+    // Earlier merged maps win over later ones; the map's own keys win over all of them.
+    for (auto it = merged.rbegin(); it != merged.rend(); ++it)
+    {
+      for (const auto& entry : it->entries())
+        out.set(entry.first, entry.second);
+    }
+    for (auto& entry : own)
+      out.set(entry.first, std::move(entry.second));
+    return out;
+  }
+
+  const std::string& what_;
+};
+}  // namespace
+
+ParamValue typePlainScalar(const std::string& text)
+{
+  if (isNullText(text)) return ParamValue();
+  if (const auto b = parseBool(text)) return ParamValue::makeBool(*b);
+  const char first = text[0];
+  if ((first >= '0' && first <= '9') || first == '+' || first == '-' || first == '.')
+  {
+    ParamValue i = parseInt(text);
+    if (i.isNumber()) return i;
+    if (const auto f = parseFloat(text)) return ParamValue::makeDouble(*f);
+  }
+  return ParamValue::makeString(text);
+}
+
+ParamValue parseParamsYaml(const std::string& text, const std::string& what)
+{
+  YAML::Node root;
+  try
+  {
+    root = YAML::Load(text);
+  }
+  catch (const YAML::Exception& e)
+  {
+    throw std::runtime_error(what + ": YAML syntax error at line " + std::to_string(e.mark.line + 1) + ", column " +
+                             std::to_string(e.mark.column + 1) + ": " + e.msg);
+  }
+  try
+  {
+    return Converter(what).convert(root, 0);
+  }
+  catch (const YAML::Exception& e)
+  {
+    throw std::runtime_error(what + ": YAML error: " + e.msg);
+  }
+}
+
+ParamValue loadParamsYamlFile(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot open params file '" + path + "' (" + std::strerror(errno) + ")");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw std::runtime_error("error while reading params file '" + path + "'");
+  return parseParamsYaml(text, "'" + path + "'");
+}
+}  // namespace io
+}  // namespace costmap_layers

@@ -1,0 +1,276 @@
+// Tests of costmap_layers::io params YAML reading: structure, rosparam-like scalar typing, errors.
+#include "costmap_layers/io/param_yaml.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+using costmap_layers::ParamValue;
+using costmap_layers::io::loadParamsYamlFile;
+using costmap_layers::io::parseParamsYaml;
+using costmap_layers::io::typePlainScalar;
+using Type = costmap_layers::ParamValue::Type;
+
+namespace
+{
+ParamValue one(const std::string& yaml_value)
+{
+  const ParamValue root = parseParamsYaml("v: " + yaml_value + "\n", "test");
+  const ParamValue* v = root.find("v");
+  if (v == nullptr) throw std::logic_error("no key v");
+  return *v;
+}
+
+std::vector<std::string> keys(const ParamValue& map)
+{
+  std::vector<std::string> out;
+  for (const auto& kv : map.entries())
+    out.push_back(kv.first);
+  return out;
+}
+
+template <typename F>
+std::string errorOf(F&& f)
+{
+  try
+  {
+    f();
+  }
+  catch (const std::runtime_error& e)
+  {
+    return e.what();
+  }
+  return "<no exception>";
+}
+
+TEST(ParamYaml, BoolsAsPyYamlTypesThem)
+{
+  for (const char* t : {"true", "True", "TRUE", "yes", "Yes", "YES", "on", "On", "ON"})
+  {
+    const ParamValue v = one(t);
+    ASSERT_EQ(v.type(), Type::Bool) << t;
+    EXPECT_TRUE(v.asBool()) << t;
+  }
+  for (const char* f : {"false", "False", "FALSE", "no", "No", "NO", "off", "Off", "OFF"})
+  {
+    const ParamValue v = one(f);
+    ASSERT_EQ(v.type(), Type::Bool) << f;
+    EXPECT_FALSE(v.asBool()) << f;
+  }
+  // Not booleans in YAML 1.1 as PyYAML implements it.
+  for (const char* s : {"y", "n", "tRUE", "yES", "enabled"})
+    EXPECT_EQ(one(s).type(), Type::String) << s;
+}
+
+TEST(ParamYaml, Integers)
+{
+  EXPECT_EQ(one("42").asInt(), 42);
+  EXPECT_EQ(one("0").asInt(), 0);
+  EXPECT_EQ(one("-7").asInt(), -7);
+  EXPECT_EQ(one("+3").asInt(), 3);
+  EXPECT_EQ(one("1_000").asInt(), 1000);
+  EXPECT_EQ(one("0x1F").asInt(), 31);
+  EXPECT_EQ(one("-0x10").asInt(), -16);
+  EXPECT_EQ(one("0b101").asInt(), 5);
+  EXPECT_EQ(one("010").asInt(), 8);  // YAML 1.1 octal
+  EXPECT_EQ(one("9223372036854775807").asInt(), std::numeric_limits<int64_t>::max());
+  EXPECT_EQ(one("-9223372036854775808").asInt(), std::numeric_limits<int64_t>::min());
+  for (const char* i : {"42", "-7", "0x1F", "010"})
+    EXPECT_EQ(one(i).type(), Type::Int) << i;
+  // Beyond int64: a double.
+  const ParamValue big = one("123456789012345678901234");
+  ASSERT_EQ(big.type(), Type::Double);
+  EXPECT_DOUBLE_EQ(big.asDouble(), 1.23456789012345678901234e23);
+  // Not integers: strings.
+  for (const char* s : {"09", "0x", "1_2_x", "12abc", "- 3", "0o17", "1:30"})
+    EXPECT_EQ(one(std::string("'") + s + "'").type(), Type::String) << s;  // quoted: trivially strings
+  for (const char* s : {"09", "0x", "12abc", "0o17", "1:30"})
+    EXPECT_EQ(typePlainScalar(s).type(), Type::String) << s;
+}
+
+TEST(ParamYaml, Floats)
+{
+  const std::vector<std::pair<std::string, double>> cases = {
+      {"1.0", 1.0},        {"-2.5", -2.5},   {"+0.25", 0.25},    {"1.", 1.0},       {".5", 0.5},
+      {"-.5", -0.5},       {"1e3", 1000.0},  {"1.0e+3", 1000.0}, {"2.5E-2", 0.025}, {"6.02e23", 6.02e23},
+      {"1_000.5", 1000.5}, {"0.196", 0.196}, {"-0.0", -0.0}};
+  for (const auto& c : cases)
+  {
+    const ParamValue v = one(c.first);
+    ASSERT_EQ(v.type(), Type::Double) << c.first;
+    EXPECT_DOUBLE_EQ(v.asDouble(), c.second) << c.first;
+  }
+  for (const char* inf : {".inf", ".Inf", ".INF", "+.inf"})
+  {
+    const ParamValue v = one(inf);
+    ASSERT_EQ(v.type(), Type::Double) << inf;
+    EXPECT_TRUE(std::isinf(v.asDouble()) && v.asDouble() > 0) << inf;
+  }
+  for (const char* ninf : {"-.inf", "-.Inf", "-.INF"})
+  {
+    const ParamValue v = one(ninf);
+    ASSERT_EQ(v.type(), Type::Double) << ninf;
+    EXPECT_TRUE(std::isinf(v.asDouble()) && v.asDouble() < 0) << ninf;
+  }
+  for (const char* nan : {".nan", ".NaN", ".NAN"})
+  {
+    const ParamValue v = one(nan);
+    ASSERT_EQ(v.type(), Type::Double) << nan;
+    EXPECT_TRUE(std::isnan(v.asDouble())) << nan;
+  }
+  for (const char* s : {"1.2.3", "1e", "e3", ".", "inf", "nan", "-.nan", "1.5m", "0.5 m"})
+    EXPECT_EQ(one(s).type(), Type::String) << s;
+}
+
+TEST(ParamYaml, NullsAndStrings)
+{
+  for (const char* n : {"~", "null", "Null", "NULL", ""})
+    EXPECT_EQ(one(n).type(), Type::Null) << "'" << n << "'";
+  EXPECT_EQ(one("map").asString(), "map");
+  EXPECT_EQ(one("base_link").asString(), "base_link");
+  EXPECT_EQ(one("hello world").asString(), "hello world");
+  EXPECT_EQ(one("2024-01-01").asString(), "2024-01-01");
+}
+
+TEST(ParamYaml, QuotedAndBlockScalarsAreAlwaysStrings)
+{
+  for (const char* q : {"'true'", "\"true\"", "'42'", "\"1.5\"", "'null'", "\"~\"", "'.inf'", "''"})
+  {
+    const ParamValue v = one(q);
+    ASSERT_EQ(v.type(), Type::String) << q;
+  }
+  EXPECT_EQ(one("'42'").asString(), "42");
+  EXPECT_EQ(one("''").asString(), "");
+  const ParamValue root = parseParamsYaml("a: |\n  42\nb: >\n  true\n", "test");
+  EXPECT_EQ(root.find("a")->asString(), "42\n");
+  EXPECT_EQ(root.find("b")->asString(), "true\n");
+}
+
+TEST(ParamYaml, ExplicitTags)
+{
+  EXPECT_EQ(one("!!str 42").asString(), "42");
+  EXPECT_EQ(one("!!str true").type(), Type::String);
+  const ParamValue f = one("!!float 3");
+  ASSERT_EQ(f.type(), Type::Double);
+  EXPECT_DOUBLE_EQ(f.asDouble(), 3.0);
+  EXPECT_EQ(one("!!int 12").asInt(), 12);
+  EXPECT_TRUE(one("!!bool yes").asBool());
+  EXPECT_EQ(one("!!null ~").type(), Type::Null);
+  // unknown local tags are ignored: typed as plain
+  EXPECT_EQ(one("!degrees 90").asInt(), 90);
+  EXPECT_NE(errorOf([] { one("!!int abc"); }).find("!!int"), std::string::npos);
+  EXPECT_NE(errorOf([] { one("!!float abc"); }).find("!!float"), std::string::npos);
+  EXPECT_NE(errorOf([] { one("!!bool maybe"); }).find("!!bool"), std::string::npos);
+}
+
+TEST(ParamYaml, StructureKeepsKeyOrderAndNests)
+{
+  const std::string text =
+      "zeta: 1\n"
+      "alpha:\n"
+      "  plugins: [static_layer, inflation_layer]\n"
+      "  inflation_layer:\n"
+      "    inflation_radius: 0.55\n"
+      "    enabled: true\n"
+      "  footprint: [[0.1, 0.2], [-0.1, 0.2], [-0.1, -0.2]]\n"
+      "mid: {b: 2, a: 1}\n"
+      "empty_list: []\n"
+      "empty_map: {}\n";
+  const ParamValue root = parseParamsYaml(text, "test");
+  ASSERT_TRUE(root.isMap());
+  EXPECT_EQ(keys(root), (std::vector<std::string>{"zeta", "alpha", "mid", "empty_list", "empty_map"}));
+  EXPECT_EQ(keys(*root.find("mid")), (std::vector<std::string>{"b", "a"}));
+  const ParamValue* plugins = root.findPath("alpha/plugins");
+  ASSERT_NE(plugins, nullptr);
+  ASSERT_TRUE(plugins->isList());
+  ASSERT_EQ(plugins->asList().size(), 2u);
+  EXPECT_EQ(plugins->asList()[1].asString(), "inflation_layer");
+  EXPECT_DOUBLE_EQ(root.findPath("alpha/inflation_layer/inflation_radius")->asDouble(), 0.55);
+  EXPECT_TRUE(root.findPath("alpha/inflation_layer/enabled")->asBool());
+  const auto& fp = root.findPath("alpha/footprint")->asList();
+  ASSERT_EQ(fp.size(), 3u);
+  EXPECT_DOUBLE_EQ(fp[2].asList()[1].asDouble(), -0.2);
+  EXPECT_TRUE(root.find("empty_list")->isList());
+  EXPECT_TRUE(root.find("empty_list")->asList().empty());
+  EXPECT_TRUE(root.find("empty_map")->isMap());
+  EXPECT_TRUE(root.find("empty_map")->entries().empty());
+  // Empty document and a top-level list.
+  EXPECT_TRUE(parseParamsYaml("", "test").isNull());
+  EXPECT_TRUE(parseParamsYaml("# only a comment\n", "test").isNull());
+  EXPECT_EQ(parseParamsYaml("- 1\n- two\n", "test").asList().size(), 2u);
+  // A repeated key: first position, last value.
+  const ParamValue dup = parseParamsYaml("a: 1\nb: 2\na: 3\n", "test");
+  EXPECT_EQ(keys(dup), (std::vector<std::string>{"a", "b"}));
+  EXPECT_EQ(dup.find("a")->asInt(), 3);
+}
+
+TEST(ParamYaml, AliasesAndMergeKeys)
+{
+  const std::string text =
+      "base: &base {radius: 0.5, enabled: true}\n"
+      "other: &other {radius: 0.7, cost: 3}\n"
+      "copy: *base\n"
+      "derived:\n"
+      "  <<: *base\n"
+      "  enabled: false\n"
+      "both:\n"
+      "  <<: [*base, *other]\n";
+  const ParamValue root = parseParamsYaml(text, "test");
+  EXPECT_DOUBLE_EQ(root.findPath("copy/radius")->asDouble(), 0.5);
+  EXPECT_DOUBLE_EQ(root.findPath("derived/radius")->asDouble(), 0.5);
+  EXPECT_FALSE(root.findPath("derived/enabled")->asBool());
+  EXPECT_EQ(root.findPath("derived/<<"), nullptr);
+  EXPECT_DOUBLE_EQ(root.findPath("both/radius")->asDouble(), 0.5);  // the first merged map wins
+  EXPECT_EQ(root.findPath("both/cost")->asInt(), 3);
+  EXPECT_NE(errorOf([] { parseParamsYaml("a:\n  <<: 3\n", "test"); }).find("merge"), std::string::npos);
+}
+
+TEST(ParamYaml, SyntaxErrorsNameTheSourceAndLine)
+{
+  const std::string e1 = errorOf([] { parseParamsYaml("a: 1\nb: [1, 2\nc: 3\n", "my_params.yaml"); });
+  EXPECT_NE(e1.find("my_params.yaml"), std::string::npos) << e1;
+  EXPECT_NE(e1.find("syntax error at line"), std::string::npos) << e1;
+  EXPECT_EQ(e1.find('\n'), std::string::npos) << e1;
+  const std::string e2 = errorOf([] { parseParamsYaml("a: 1\n  b: 2\n", "inline"); });
+  EXPECT_NE(e2.find("inline: YAML syntax error at line 2"), std::string::npos) << e2;
+  const std::string e3 = errorOf([] { parseParamsYaml("a: b: c\n", "q"); });
+  EXPECT_NE(e3.find("q: YAML syntax error"), std::string::npos) << e3;
+  const std::string e4 = errorOf([] { parseParamsYaml("? [1, 2]\n: x\n", "k"); });
+  EXPECT_NE(e4.find("map key"), std::string::npos) << e4;
+  EXPECT_NE(e4.find("k at line 1"), std::string::npos) << e4;
+}
+
+TEST(ParamYaml, Files)
+{
+  char pattern[] = "/tmp/costmap_io_params_XXXXXX";
+  const char* dir = mkdtemp(pattern);
+  ASSERT_NE(dir, nullptr);
+  const std::string path = std::string(dir) + "/params.yaml";
+  {
+    std::ofstream out(path);
+    out << "costmap:\n  resolution: 0.05\n  plugins: [a, b]\n  track_unknown_space: yes\n";
+  }
+  const ParamValue root = loadParamsYamlFile(path);
+  EXPECT_DOUBLE_EQ(root.findPath("costmap/resolution")->asDouble(), 0.05);
+  EXPECT_TRUE(root.findPath("costmap/track_unknown_space")->asBool());
+  {
+    std::ofstream out(path);
+    out << "a: 1\nb: {c: 2\n";
+  }
+  const std::string bad = errorOf([&] { loadParamsYamlFile(path); });
+  EXPECT_NE(bad.find(path), std::string::npos) << bad;
+  EXPECT_NE(bad.find("line"), std::string::npos) << bad;
+  const std::string missing = errorOf([&] { loadParamsYamlFile(std::string(dir) + "/none.yaml"); });
+  EXPECT_NE(missing.find("none.yaml"), std::string::npos) << missing;
+  EXPECT_NE(missing.find("cannot open"), std::string::npos) << missing;
+  std::error_code ec;
+  std::filesystem::remove_all(dir, ec);
+}
+}  // namespace
