@@ -8,7 +8,15 @@ void loadPlugins(LayeredCostmap& costmap, const PluginLists& lists, const LayerF
                  const ContextFactory& contexts)
 {
   auto load = [&](const PluginSpec& spec, bool is_filter) {
-    std::shared_ptr<Layer> layer = factory(spec.type);
+    std::shared_ptr<Layer> layer;
+    try
+    {
+      layer = factory(spec.type);
+    }
+    catch (const std::exception& e)
+    {
+      throw std::runtime_error("plugin '" + spec.name + "': " + e.what());
+    }
     if (!layer) throw std::runtime_error("plugin '" + spec.name + "' of type " + spec.type + " could not be created");
     try
     {

@@ -1,6 +1,8 @@
 // rosrun costmap_layers costmap_node: a layered costmap configured by its private parameters.
 #include <ros/ros.h>
 
+#include <iostream>
+
 #include "costmap_layers/ros/costmap_node.hpp"
 
 int main(int argc, char** argv)
@@ -13,9 +15,14 @@ int main(int argc, char** argv)
     spinner.start();
     node.run();
   }
+  catch (const costmap_layers_ros::StartupError&)
+  {
+    return 1;  // already reported by the node, while its logging still worked
+  }
   catch (const std::exception& e)
   {
-    ROS_FATAL("costmap_node: %s", e.what());
+    // rosconsole may no longer print once the plugin library is unloaded: write to stderr directly.
+    std::cerr << "costmap_node: " << e.what() << std::endl;
     return 1;
   }
   return 0;

@@ -28,6 +28,21 @@ CostmapNode::CostmapNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   : nh_(nh), private_nh_(private_nh), log_(std::make_shared<ThrottledLog>()), tf_(ros::Duration(10.0)),
     tf_listener_(tf_)
 {
+  try
+  {
+    setUp();
+  }
+  catch (const std::exception& e)
+  {
+    // Logged here, while every member is alive: once the plugin loader is destroyed during unwinding,
+    // rosconsole output from this process is no longer reliable.
+    ROS_FATAL("costmap_node: %s", e.what());
+    throw StartupError(e.what());
+  }
+}
+
+void CostmapNode::setUp()
+{
   const ParamValue params = readNamespace(private_nh_);
   config_ = costmap_layers::parseCostmapConfig(params);
   if (config_.update_frequency <= 0.0)
@@ -142,6 +157,11 @@ void CostmapNode::publish(bool full)
 
 void CostmapNode::run()
 {
+  // As costmap_2d does: wait for the robot's transform before the first update, saying so.
+  while (ros::ok() && !tf_.canTransform(config_.global_frame, config_.robot_base_frame, ros::Time(0),
+                                        ros::Duration(0.1)))
+    log_->log(costmap_layers::Severity::Info, "waiting_for_tf",
+              "costmap: waiting for the transform " + config_.robot_base_frame + " -> " + config_.global_frame);
   const double period = 1.0 / config_.update_frequency;
   ros::WallTime next = ros::WallTime::now();
   while (ros::ok())

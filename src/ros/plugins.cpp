@@ -2,5 +2,7 @@
 #include <pluginlib/class_list_macros.hpp>
 
 #include "costmap_layers/core/gradient_layer.hpp"
+#include "costmap_layers/core/keepout_filter.hpp"
 
 PLUGINLIB_EXPORT_CLASS(costmap_layers::GradientLayer, costmap_layers::Layer)
+PLUGINLIB_EXPORT_CLASS(costmap_layers::KeepoutFilter, costmap_layers::Layer)

@@ -9,6 +9,7 @@
 #include <atomic>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 
 #include "costmap_layers/core/costmap_config.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
@@ -18,13 +19,19 @@
 
 namespace costmap_layers_ros
 {
+/// A configuration error that stopped start-up; it has been logged (ROS_FATAL) already.
+struct StartupError : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
+};
+
 /// Reads the whole parameter namespace of nh into a tree (an empty map when nothing is set).
 costmap_layers::ParamValue readNamespace(const ros::NodeHandle& nh);
 
 class CostmapNode
 {
 public:
-  /// Throws std::exception with a clear message on a bad parameter or an unknown plugin type.
+  /// Logs one clear ROS_FATAL line and throws StartupError on a bad parameter or an unknown plugin type.
   CostmapNode(ros::NodeHandle nh, ros::NodeHandle private_nh);
   ~CostmapNode();
 
@@ -37,6 +44,7 @@ public:
   const costmap_layers::CostmapConfig& config() const { return config_; }
 
 private:
+  void setUp();
   std::optional<costmap_layers::Transform2D> robotPose();
   void publish(bool full);
 

@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# Every test: installs what is missing, builds (Release), runs the unit tests, the tool tests and the
+# rostests through colcon, prints every failure, and exits non-zero when any test fails.
+set -euo pipefail
+source "$(dirname "$0")/common.sh"
+build_package
+cd "$ROOT"
+export ROS_HOME="${ROS_HOME:-$ROOT/log/ros_home}"
+rm -rf "$ROOT/build/costmap_layers/test_results"
+set +e
+colcon --log-base "$ROOT/log" test --base-paths "$ROOT" --build-base "$ROOT/build" --install-base "$ROOT/install" \
+  --event-handlers console_cohesion+ --return-code-on-test-failure
+test_rc=$?
+colcon test-result --test-result-base "$ROOT/build" --verbose > "$ROOT/log/test-result.txt" 2>&1
+result_rc=$?
+set -e
+cat "$ROOT/log/test-result.txt"
+# One plain closing line: count the test cases in the JUnit files.
+python3 - "$ROOT/build/costmap_layers/test_results" <<'PY'
+import glob, sys, xml.etree.ElementTree as ET
+passed = failed = skipped = 0
+for f in glob.glob(sys.argv[1] + "/**/*.xml", recursive=True):
+    try:
+        root = ET.parse(f).getroot()
+    except ET.ParseError:
+        failed += 1
+        continue
+    for case in root.iter("testcase"):
+        if case.find("failure") is not None or case.find("error") is not None:
+            failed += 1
+        elif case.find("skipped") is not None:
+            skipped += 1
+        else:
+            passed += 1
+print(f"tests: {passed} passed, {failed} failed, {skipped} skipped")
+PY
+if [ "$test_rc" -ne 0 ] || [ "$result_rc" -ne 0 ]; then
+  echo "test.sh: FAILED (colcon test rc=$test_rc, test-result rc=$result_rc)" >&2
+  exit 1
+fi
+echo "test.sh: all tests passed"
