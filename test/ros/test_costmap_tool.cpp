@@ -1,0 +1,189 @@
+// costmap_tool through its real command line: the gradient on any map, the JSON line, the raw output,
+// namespaces, masks, repeats, and one clear line for each kind of bad input.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "tool_runner.hpp"
+
+using namespace costmap_layers_test;
+
+namespace
+{
+const std::string kGradientParams = R"(
+plugins:
+  - {name: gradient_layer, type: costmap_layers/GradientLayer}
+)";
+
+/// The tutorial's rule, written out independently: along each row from the window's first column,
+/// k = 0, 1, ..., size + 1, 0, ...; cost = (254 - k * factor) % 255 in C int arithmetic.
+std::vector<uint8_t> expectedGradient(int w, int h, int size, int factor)
+{
+  std::vector<uint8_t> cells;
+  for (int j = 0; j < h; ++j)
+  {
+    int k = 0;
+    for (int i = 0; i < w; ++i)
+    {
+      const int c = (254 - k * factor) % 255;
+      cells.push_back(static_cast<uint8_t>(c));
+      k = (k == size + 1) ? 0 : k + 1;
+    }
+  }
+  return cells;
+}
+
+std::vector<uint8_t> rawCells(const std::string& path)
+{
+  const std::string bytes = readFile(path);
+  return std::vector<uint8_t>(bytes.begin(), bytes.end());
+}
+
+std::string sharedMaps() { return std::string(COSTMAP_LAYERS_SOURCE_DIR) + "/../shared/maps"; }
+}  // namespace
+
+TEST(CostmapTool, GradientOnGeneratedMapIsExact)
+{
+  TempDir dir;
+  const std::string map = writeMap(dir, "map", 57, 31, std::vector<uint8_t>(57 * 31, 254), 0.1, -1.0, 2.0);
+  const std::string params = dir.write("params.yaml", kGradientParams);
+  const ToolResult r = runTool({"--map", map, "--params", params, "--out-raw", dir.file("out.raw")}, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(rawCells(dir.file("out.raw")), expectedGradient(57, 31, 20, 10));
+  const std::string json = r.lastLine();
+  EXPECT_EQ(json.rfind("{\"width\": 57, \"height\": 31, \"resolution\": 0.1, \"update_ms_median\": ", 0), 0u) << json;
+  EXPECT_NE(json.find("\"update_ms_min\": "), std::string::npos) << json;
+  EXPECT_NE(r.lastLine().find("\"repeats\": 1, \"max_speed\": {}}"), std::string::npos) << r.lastLine();
+}
+
+TEST(CostmapTool, GradientOnRealMapsIsExact)
+{
+  for (const std::string name : {"turtlebot3_world", "depot", "willow-full-0.1"})
+  {
+    const std::string map = sharedMaps() + "/" + name + ".yaml";
+    if (!std::filesystem::exists(map)) GTEST_SKIP() << "../shared/maps is absent";
+    TempDir dir;
+    const std::string params = dir.write("params.yaml", kGradientParams + "gradient_layer: {gradient_size: 7, "
+                                                                          "gradient_factor: 30}\n");
+    const ToolResult r = runTool({"--map", map, "--params", params, "--out-raw", dir.file("out.raw")}, dir);
+    ASSERT_EQ(r.exit_code, 0) << name << ": " << r.err;
+    const std::string json = r.lastLine();
+    const auto num = [&json](const std::string& key) {
+      const auto p = json.find("\"" + key + "\": ");
+      return std::stod(json.substr(p + key.size() + 4));
+    };
+    const int w = static_cast<int>(num("width")), h = static_cast<int>(num("height"));
+    EXPECT_GT(w, 100) << name;
+    EXPECT_EQ(rawCells(dir.file("out.raw")), expectedGradient(w, h, 7, 30)) << name;
+  }
+}
+
+TEST(CostmapTool, RepeatReportsTimesAndKeepsTheResult)
+{
+  TempDir dir;
+  const std::string map = writeMap(dir, "map", 40, 20, std::vector<uint8_t>(800, 254), 0.05, 0.0, 0.0);
+  const std::string params = dir.write("params.yaml", kGradientParams);
+  const ToolResult r =
+      runTool({"--map", map, "--params", params, "--repeat", "5", "--out-raw", dir.file("out.raw")}, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.lastLine().find("\"repeats\": 5"), std::string::npos) << r.lastLine();
+  EXPECT_EQ(rawCells(dir.file("out.raw")), expectedGradient(40, 20, 20, 10));
+}
+
+TEST(CostmapTool, NamespacePicksASubKeyAndPngIsWritten)
+{
+  TempDir dir;
+  const std::string map = writeMap(dir, "map", 30, 10, std::vector<uint8_t>(300, 254), 1.0, 0.0, 0.0);
+  const std::string params = dir.write("params.yaml", R"(
+local_costmap:
+  costmap:
+    plugins: [{name: g, type: costmap_layers/GradientLayer}]
+    g: {gradient_size: 2, gradient_factor: 100}
+)");
+  const ToolResult r = runTool({"--map", map, "--params", params, "--namespace", "local_costmap/costmap",
+                                "--out-raw", dir.file("out.raw"), "--out-png", dir.file("out.png")},
+                               dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // k = 0..3: 254, 154, 54, (254 - 300) % 255 = -46 -> 210 as an unsigned char.
+  const auto cells = rawCells(dir.file("out.raw"));
+  ASSERT_EQ(cells.size(), 300u);
+  EXPECT_EQ(std::vector<uint8_t>(cells.begin(), cells.begin() + 5), (std::vector<uint8_t>{254, 154, 54, 210, 254}));
+  EXPECT_EQ(cells, expectedGradient(30, 10, 2, 100));
+  const std::string png = readFile(dir.file("out.png"));
+  ASSERT_GT(png.size(), 8u);
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+}
+
+TEST(CostmapTool, KeepoutMaskIsAppliedToTheNamedFilter)
+{
+  TempDir dir;
+  const std::string map = writeMap(dir, "map", 10, 10, std::vector<uint8_t>(100, 254), 1.0, 0.0, 0.0);
+  // Mask: image top row is the highest y. Black (0) = occupied 100 in trinary mode.
+  std::vector<uint8_t> mask_pixels(100, 254);
+  mask_pixels[(9 - 3) * 10 + 4] = 0;  // cell (4, 3)
+  const std::string mask = writeMap(dir, "mask", 10, 10, mask_pixels, 1.0, 0.0, 0.0);
+  const std::string params = dir.write("params.yaml", R"(
+plugins: [{name: g, type: costmap_layers/GradientLayer}]
+filters: [{name: keepout, type: costmap_layers/KeepoutFilter}]
+g: {gradient_factor: 0}
+)");
+  const ToolResult r = runTool(
+      {"--map", map, "--params", params, "--mask", "keepout=" + mask, "--out-raw", dir.file("out.raw")}, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto cells = rawCells(dir.file("out.raw"));
+  ASSERT_EQ(cells.size(), 100u);
+  for (int k = 0; k < 100; ++k) EXPECT_EQ(cells[static_cast<std::size_t>(k)], 254) << k;  // gradient factor 0: all 254
+  // Now with a gradient that leaves room to see the filter: factor 10 puts 214 at x = 4.
+  dir.write("params.yaml", R"(
+plugins: [{name: g, type: costmap_layers/GradientLayer}]
+filters: [{name: keepout, type: costmap_layers/KeepoutFilter}]
+)");
+  const ToolResult r2 = runTool(
+      {"--map", map, "--params", params, "--mask", "keepout=" + mask, "--out-raw", dir.file("out.raw")}, dir);
+  ASSERT_EQ(r2.exit_code, 0) << r2.err;
+  const auto cells2 = rawCells(dir.file("out.raw"));
+  auto expected = expectedGradient(10, 10, 20, 10);
+  expected[3 * 10 + 4] = 254;
+  EXPECT_EQ(cells2, expected);
+}
+
+TEST(CostmapTool, BadInputGivesOneClearLineAndNonZeroExit)
+{
+  TempDir dir;
+  const std::string map = writeMap(dir, "map", 10, 10, std::vector<uint8_t>(100, 254), 1.0, 0.0, 0.0);
+  const std::string params = dir.write("params.yaml", kGradientParams);
+  const std::string bad_yaml = dir.write("bad.yaml", "plugins: [ {name: a, type: \n  - : :\n");
+  const std::string unknown = dir.write("unknown.yaml", "plugins: [{name: x, type: costmap_layers/NoSuchLayer}]\n");
+  const std::string bad_image = dir.write("bad_image.yaml", "image: nothing.pgm\nresolution: 0.1\norigin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n");
+  dir.write("nothing.pgm", "P5\n10 10\n255\nabc");
+
+  struct Case
+  {
+    std::vector<std::string> args;
+    std::string needle;
+  };
+  const std::vector<Case> cases = {
+      {{"--map", dir.file("missing.yaml"), "--params", params}, "missing.yaml"},
+      {{"--map", map, "--params", dir.file("missing_params.yaml")}, "missing_params.yaml"},
+      {{"--map", map, "--params", bad_yaml}, "bad.yaml"},
+      {{"--map", map, "--params", unknown}, "unknown plugin type 'costmap_layers/NoSuchLayer'"},
+      {{"--map", bad_image, "--params", params}, "nothing.pgm"},
+      {{"--map", map, "--params", params, "--pose", "1,2"}, "--pose"},
+      {{"--map", map, "--params", params, "--repeat", "0"}, "--repeat"},
+      {{"--map", map, "--params", params, "--mask", "nobody=" + map}, "nobody"},
+      {{"--map", map, "--params", params, "--namespace", "nowhere"}, "nowhere"},
+      {{"--map", map}, "--params is required"},
+      {{"--map", map, "--params", params, "--frobnicate", "1"}, "unknown option --frobnicate"},
+  };
+  for (const auto& c : cases)
+  {
+    const ToolResult r = runTool(c.args, dir);
+    EXPECT_NE(r.exit_code, 0) << c.needle;
+    EXPECT_NE(r.err.find(c.needle), std::string::npos) << "stderr was: " << r.err;
+    EXPECT_EQ(r.err.find("costmap_tool"), 0u) << r.err;
+    EXPECT_EQ(r.out, "") << c.needle;  // no JSON line on failure
+  }
+  // The unknown type's error lists what is available.
+  const ToolResult r = runTool({"--map", map, "--params", unknown}, dir);
+  EXPECT_NE(r.err.find("costmap_layers/GradientLayer"), std::string::npos) << r.err;
+}
