@@ -1,0 +1,104 @@
+// costmap_2d's StaticLayer: a map from a topic, interpreted into costs once per map, copied (or
+// maximised) into the master grid. When the costmap is not rolling the master takes the map's size,
+// resolution and origin; in a rolling window the map is sampled through the transform from the
+// costmap's frame into the map's frame. Maps arrive on another thread: they are validated there, handed
+// over under a mutex, and interpreted on the update thread (in updateBounds).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "costmap_layers/core/costmap_layer.hpp"
+#include "costmap_layers/core/grid_data.hpp"
+
+namespace costmap_layers
+{
+class ParamReader;
+
+struct StaticConfig
+{
+  bool enabled = true;
+  std::string map_topic = "map";
+  bool first_map_only = false;        ///< ignore every map after the first accepted one
+  bool subscribe_to_updates = false;  ///< accept applyUpdate() (the adapter subscribes <map_topic>_updates)
+  bool track_unknown_space = true;    ///< default: the costmap's track_unknown_space
+  bool use_maximum = false;           ///< max into the master instead of overwriting it
+  int lethal_cost_threshold = 100;    ///< occupancy at or above this is lethal (clamped to [0, 100])
+  int unknown_cost_value = -1;        ///< the occupancy value meaning "unknown" (compared as a byte)
+  bool trinary_costmap = true;        ///< below the threshold: free, else scaled
+};
+
+/// Reads the parameters with costmap_2d's names; track_unknown_space defaults to default_track_unknown.
+/// Throws std::invalid_argument naming the parameter.
+StaticConfig parseStaticConfig(const ParamReader& params, bool default_track_unknown);
+
+/// costmap_2d's interpretValue: the cost of one occupancy value, both read as bytes (so -1 is 255).
+/// unknown (with tracking) -> NO_INFORMATION, unknown (without) -> FREE_SPACE, >= threshold ->
+/// LETHAL_OBSTACLE, trinary -> FREE_SPACE, otherwise value / threshold * LETHAL_OBSTACLE truncated.
+uint8_t interpretStaticValue(int8_t value, const StaticConfig& config);
+
+class StaticLayer : public CostmapLayer
+{
+public:
+  void updateBounds(double robot_x, double robot_y, double robot_yaw, double* min_x, double* min_y, double* max_x,
+                    double* max_y) override;
+  void updateCosts(Costmap2D& master_grid, int min_i, int min_j, int max_i, int max_j) override;
+  /// Not rolling: follows the master (keeping the map when the geometry is unchanged). Rolling: the own
+  /// grid is the map's and stays.
+  void matchSize() override;
+  /// Redraws the whole map on the next update.
+  void reset() override;
+  void activate() override { reset(); }
+
+  const StaticConfig& config() const { return config_; }
+
+  /// Hands over a new map; safe from any thread. A map failing validateGrid() is rejected and the
+  /// previous map stays. With first_map_only, maps after the first accepted one are ignored.
+  /// @return an empty string when accepted (or ignored), else the reason (also reported as an Error).
+  std::string setMap(std::shared_ptr<const OccupancyGridData> map);
+  /// A partial update of the latest map (map_msgs/OccupancyGridUpdate): width x height values, row-major,
+  /// for the cells [x, x + width) x [y, y + height). Safe from any thread; applied on the next update.
+  /// Rejected (returned and reported) when subscribe_to_updates is off, before any map, when the data
+  /// size is not width * height or when the rectangle leaves the map.
+  std::string applyUpdate(uint32_t x, uint32_t y, uint32_t width, uint32_t height, const std::vector<int8_t>& data);
+
+  /// True once a map has been interpreted (on the update thread).
+  bool mapReceived() const { return map_received_; }
+  /// The frame of the map in force.
+  const std::string& mapFrame() const { return map_frame_; }
+
+protected:
+  void onInitialize() override;
+
+private:
+  struct PendingUpdate
+  {
+    uint32_t x, y, width, height;
+    std::vector<int8_t> data;
+  };
+  void processMap(const OccupancyGridData& map);
+  void processUpdate(const PendingUpdate& update);
+  void markDirty(unsigned x0, unsigned y0, unsigned x1, unsigned y1);
+  void rebuildTable();
+
+  StaticConfig config_;
+  uint8_t table_[256] = {};  ///< cost per occupancy byte
+
+  // Shared with the threads that deliver maps and updates.
+  std::mutex mutex_;
+  std::shared_ptr<const OccupancyGridData> pending_map_;
+  std::vector<PendingUpdate> pending_updates_;
+  bool accepted_any_ = false;           ///< a map was accepted (for first_map_only and updates)
+  uint32_t latest_width_ = 0, latest_height_ = 0;
+
+  // Update thread only.
+  bool map_received_ = false;
+  bool dirty_ = false;
+  unsigned dirty_x0_ = 0, dirty_y0_ = 0, dirty_x1_ = 0, dirty_y1_ = 0;  ///< own cells [x0, x1) x [y0, y1)
+  std::string map_frame_;
+  double map_yaw_ = 0.0;
+};
+}  // namespace costmap_layers

@@ -1,0 +1,301 @@
+#include "costmap_layers/core/static_layer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "costmap_layers/core/cost_values.hpp"
+#include "costmap_layers/core/costmap_filter.hpp"
+#include "costmap_layers/core/layered_costmap.hpp"
+#include "costmap_layers/core/param_reader.hpp"
+
+namespace costmap_layers
+{
+StaticConfig parseStaticConfig(const ParamReader& params, bool default_track_unknown)
+{
+  StaticConfig cfg;
+  cfg.enabled = params.getBool("enabled", cfg.enabled);
+  cfg.map_topic = params.getString("map_topic", cfg.map_topic);
+  if (cfg.map_topic.empty()) params.fail("map_topic", "must not be empty");
+  cfg.first_map_only = params.getBool("first_map_only", cfg.first_map_only);
+  cfg.subscribe_to_updates = params.getBool("subscribe_to_updates", cfg.subscribe_to_updates);
+  cfg.track_unknown_space = params.getBool("track_unknown_space", default_track_unknown);
+  cfg.use_maximum = params.getBool("use_maximum", cfg.use_maximum);
+  // costmap_2d clamps the threshold to [0, 100] rather than rejecting it.
+  cfg.lethal_cost_threshold = std::clamp(params.getInt("lethal_cost_threshold", cfg.lethal_cost_threshold), 0, 100);
+  cfg.unknown_cost_value = params.getInt("unknown_cost_value", cfg.unknown_cost_value, -128, 255);
+  cfg.trinary_costmap = params.getBool("trinary_costmap", cfg.trinary_costmap);
+  return cfg;
+}
+
+uint8_t interpretStaticValue(int8_t value, const StaticConfig& config)
+{
+  // As costmap_2d: the message value and the unknown value both as unsigned bytes.
+  const uint8_t v = static_cast<uint8_t>(value);
+  const uint8_t unknown = static_cast<uint8_t>(config.unknown_cost_value);
+  const int threshold = config.lethal_cost_threshold;
+  if (v == unknown) return config.track_unknown_space ? NO_INFORMATION : FREE_SPACE;
+  if (v >= threshold) return LETHAL_OBSTACLE;
+  if (config.trinary_costmap) return FREE_SPACE;
+  const double scale = static_cast<double>(v) / threshold;  // threshold > v >= 0 here
+  return static_cast<uint8_t>(scale * LETHAL_OBSTACLE);
+}
+
+void StaticLayer::onInitialize()
+{
+  config_ = parseStaticConfig(ParamReader(context_->params(), name_), layered_costmap_->isTrackingUnknown());
+  enabled_ = config_.enabled;
+  rebuildTable();
+  current_ = false;  // until the first map
+  context_->subscribeGrid(config_.map_topic, GridKind::Map,
+                          [this](const std::shared_ptr<const OccupancyGridData>& map) { setMap(map); });
+}
+
+void StaticLayer::rebuildTable()
+{
+  for (int b = 0; b < 256; ++b) table_[b] = interpretStaticValue(static_cast<int8_t>(static_cast<uint8_t>(b)), config_);
+}
+
+std::string StaticLayer::setMap(std::shared_ptr<const OccupancyGridData> map)
+{
+  std::string error = map ? validateGrid(*map) : std::string("no map");
+  if (!error.empty())
+  {
+    error = name_ + ": map on " + config_.map_topic + " rejected, keeping the previous one: " + error;
+    context_->report(Severity::Error, "map", error);
+    return error;
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (config_.first_map_only && accepted_any_) return {};
+  pending_map_ = std::move(map);
+  pending_updates_.clear();  // they referred to the previous map
+  accepted_any_ = true;
+  latest_width_ = pending_map_->width;
+  latest_height_ = pending_map_->height;
+  return {};
+}
+
+std::string StaticLayer::applyUpdate(uint32_t x, uint32_t y, uint32_t width, uint32_t height,
+                                     const std::vector<int8_t>& data)
+{
+  std::ostringstream err;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!config_.subscribe_to_updates)
+      err << "subscribe_to_updates is false";
+    else if (!accepted_any_)
+      err << "no map yet";
+    else if (data.size() != static_cast<uint64_t>(width) * height)
+      err << "data has " << data.size() << " values, expected width x height = " << width << "x" << height;
+    else if (static_cast<uint64_t>(x) + width > latest_width_ || static_cast<uint64_t>(y) + height > latest_height_)
+      err << "rectangle x=" << x << " y=" << y << " " << width << "x" << height << " leaves the " << latest_width_
+          << "x" << latest_height_ << " map";
+    else
+    {
+      pending_updates_.push_back(PendingUpdate{x, y, width, height, data});
+      return {};
+    }
+  }
+  const std::string error = name_ + ": map update rejected: " + err.str();
+  context_->report(Severity::Error, "map_update", error);
+  return error;
+}
+
+void StaticLayer::markDirty(unsigned x0, unsigned y0, unsigned x1, unsigned y1)
+{
+  if (x0 >= x1 || y0 >= y1) return;
+  if (!dirty_)
+  {
+    dirty_x0_ = x0, dirty_y0_ = y0, dirty_x1_ = x1, dirty_y1_ = y1;
+    dirty_ = true;
+    return;
+  }
+  dirty_x0_ = std::min(dirty_x0_, x0);
+  dirty_y0_ = std::min(dirty_y0_, y0);
+  dirty_x1_ = std::max(dirty_x1_, x1);
+  dirty_y1_ = std::max(dirty_y1_, y1);
+}
+
+void StaticLayer::processMap(const OccupancyGridData& map)
+{
+  const bool rolling = layered_costmap_->isRolling();
+  auto differs = [&map](const Costmap2D& c) {
+    return c.getSizeInCellsX() != map.width || c.getSizeInCellsY() != map.height ||
+           c.getResolution() != map.resolution || c.getOriginX() != map.origin_x || c.getOriginY() != map.origin_y;
+  };
+  // Fill the own grid at the map's geometry first; a resize of the master then finds it matching
+  // (see matchSize) and keeps it.
+  if (differs(costmap_)) costmap_.resizeMap(map.width, map.height, map.resolution, map.origin_x, map.origin_y);
+  const std::size_t n = map.data.size();
+  uint8_t* out = costmap_.data();
+  const int8_t* in = map.data.data();
+  for (std::size_t k = 0; k < n; ++k) out[k] = table_[static_cast<uint8_t>(in[k])];
+  if (!rolling && differs(layered_costmap_->getCostmap()))
+    layered_costmap_->resizeMap(map.width, map.height, map.resolution, map.origin_x, map.origin_y, true);
+  if (!rolling && map.origin_yaw != 0.0)
+    context_->report(Severity::Warn, "map_yaw",
+                     name_ + ": the map's origin yaw is ignored when the costmap is not rolling (as costmap_2d)");
+  map_frame_ = map.frame_id;
+  map_yaw_ = map.origin_yaw;
+  map_received_ = true;
+  current_ = true;
+  dirty_ = false;
+  markDirty(0, 0, map.width, map.height);
+}
+
+void StaticLayer::processUpdate(const PendingUpdate& u)
+{
+  const unsigned sx = costmap_.getSizeInCellsX(), sy = costmap_.getSizeInCellsY();
+  if (!map_received_ || static_cast<uint64_t>(u.x) + u.width > sx || static_cast<uint64_t>(u.y) + u.height > sy)
+  {
+    context_->report(Severity::Error, "map_update", name_ + ": map update does not fit the map, skipped");
+    return;
+  }
+  const int8_t* in = u.data.data();
+  for (uint32_t row = 0; row < u.height; ++row)
+  {
+    uint8_t* out = costmap_.data() + costmap_.getIndex(u.x, u.y + row);
+    for (uint32_t k = 0; k < u.width; ++k) out[k] = table_[static_cast<uint8_t>(*in++)];
+  }
+  markDirty(u.x, u.y, u.x + u.width, u.y + u.height);
+}
+
+void StaticLayer::matchSize()
+{
+  if (layered_costmap_->isRolling()) return;  // the own grid is the map's
+  const Costmap2D& master = layered_costmap_->getCostmap();
+  if (master.getSizeInCellsX() == costmap_.getSizeInCellsX() &&
+      master.getSizeInCellsY() == costmap_.getSizeInCellsY() &&
+      master.getResolution() == costmap_.getResolution() && master.getOriginX() == costmap_.getOriginX() &&
+      master.getOriginY() == costmap_.getOriginY())
+    return;  // e.g. the resize this layer asked for: the map just drawn stays
+  CostmapLayer::matchSize();
+}
+
+void StaticLayer::reset()
+{
+  if (map_received_) markDirty(0, 0, costmap_.getSizeInCellsX(), costmap_.getSizeInCellsY());
+}
+
+void StaticLayer::updateBounds(double, double, double, double* min_x, double* min_y, double* max_x, double* max_y)
+{
+  std::shared_ptr<const OccupancyGridData> map;
+  std::vector<PendingUpdate> updates;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    map = std::move(pending_map_);
+    pending_map_.reset();
+    updates.swap(pending_updates_);
+  }
+  if (map) processMap(*map);
+  for (const auto& u : updates) processUpdate(u);
+  useExtraBounds(min_x, min_y, max_x, max_y);
+  if (!map_received_) return;
+
+  if (!layered_costmap_->isRolling())
+  {
+    if (!dirty_) return;
+    // Centres of the first and last dirty cells.
+    double wx, wy;
+    costmap_.mapToWorld(dirty_x0_, dirty_y0_, wx, wy);
+    touch(wx, wy, min_x, min_y, max_x, max_y);
+    costmap_.mapToWorld(dirty_x1_ - 1, dirty_y1_ - 1, wx, wy);
+    touch(wx, wy, min_x, min_y, max_x, max_y);
+    dirty_ = false;
+    return;
+  }
+  // Rolling: the window moves, so the map's whole extent (in the costmap's frame) is asked for every
+  // cycle, as costmap_2d does.
+  dirty_ = false;
+  const std::string& global = context_->globalFrame();
+  Transform2D from_map;
+  if (!map_frame_.empty() && map_frame_ != global)
+  {
+    std::string error;
+    const auto t = context_->lookupTransform(global, map_frame_, &error);
+    if (!t)
+    {
+      context_->report(Severity::Error, "transform",
+                       name_ + ": no transform from " + map_frame_ + " to " + global + ": " + error);
+      return;
+    }
+    from_map = *t;
+  }
+  const double w = costmap_.getSizeInMetersX(), h = costmap_.getSizeInMetersY();
+  const double c = std::cos(map_yaw_), s = std::sin(map_yaw_);
+  for (const auto& corner : {std::pair<double, double>{0, 0}, {w, 0}, {0, h}, {w, h}})
+  {
+    const double mx = costmap_.getOriginX() + c * corner.first - s * corner.second;
+    const double my = costmap_.getOriginY() + s * corner.first + c * corner.second;
+    double gx, gy;
+    from_map.apply(mx, my, gx, gy);
+    touch(gx, gy, min_x, min_y, max_x, max_y);
+  }
+}
+
+void StaticLayer::updateCosts(Costmap2D& master_grid, int min_i, int min_j, int max_i, int max_j)
+{
+  if (!map_received_ || !enabled_) return;
+  if (!layered_costmap_->isRolling())
+  {
+    if (config_.use_maximum)
+      updateWithMax(master_grid, min_i, min_j, max_i, max_j);
+    else
+      updateWithTrueOverwrite(master_grid, min_i, min_j, max_i, max_j);
+    return;
+  }
+  min_i = std::max(min_i, 0);
+  min_j = std::max(min_j, 0);
+  max_i = std::min(max_i, static_cast<int>(master_grid.getSizeInCellsX()));
+  max_j = std::min(max_j, static_cast<int>(master_grid.getSizeInCellsY()));
+  if (min_i >= max_i || min_j >= max_j) return;
+
+  // Master cell centre -> costmap frame -> map frame -> map cell, an affine map computed once.
+  const std::string& global = context_->globalFrame();
+  Transform2D to_map;
+  if (!map_frame_.empty() && map_frame_ != global)
+  {
+    std::string error;
+    const auto t = context_->lookupTransform(map_frame_, global, &error);
+    if (!t)
+    {
+      context_->report(Severity::Error, "transform",
+                       name_ + ": no transform from " + global + " to " + map_frame_ + ": " + error);
+      return;
+    }
+    to_map = *t;
+  }
+  const double inv = 1.0 / costmap_.getResolution();
+  const double c = std::cos(map_yaw_), s = std::sin(map_yaw_);
+  auto toCell = [&](double wx, double wy, double& gx, double& gy) {
+    double fx, fy;
+    to_map.apply(wx, wy, fx, fy);
+    fx -= costmap_.getOriginX();
+    fy -= costmap_.getOriginY();
+    gx = (c * fx + s * fy) * inv;
+    gy = (-s * fx + c * fy) * inv;
+  };
+  double wx0, wy0;
+  master_grid.mapToWorld(static_cast<unsigned>(min_i), static_cast<unsigned>(min_j), wx0, wy0);
+  const double res = master_grid.getResolution();
+  double p0x, p0y, pux, puy, pvx, pvy;
+  toCell(wx0, wy0, p0x, p0y);
+  toCell(wx0 + res, wy0, pux, puy);
+  toCell(wx0, wy0 + res, pvx, pvy);
+  const double dux = pux - p0x, duy = puy - p0y, dvx = pvx - p0x, dvy = pvy - p0y;
+  const double sx = costmap_.getSizeInCellsX(), sy = costmap_.getSizeInCellsY();
+  const bool use_max = config_.use_maximum;
+  for (int j = min_j; j < max_j; ++j)
+  {
+    uint8_t* row = master_grid.data() + master_grid.getIndex(0, static_cast<unsigned>(j));
+    const double rx = p0x + (j - min_j) * dvx, ry = p0y + (j - min_j) * dvy;
+    for (int i = min_i; i < max_i; ++i)
+    {
+      const double gx = rx + (i - min_i) * dux, gy = ry + (i - min_i) * duy;
+      if (!(gx >= 0.0) || !(gy >= 0.0) || gx >= sx || gy >= sy) continue;
+      const uint8_t v = costmap_.getCost(static_cast<unsigned>(gx), static_cast<unsigned>(gy));
+      row[i] = use_max ? std::max(v, row[i]) : v;
+    }
+  }
+}
+}  // namespace costmap_layers

@@ -1,0 +1,416 @@
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <thread>
+#include <vector>
+
+#include "costmap_layers/core/cost_values.hpp"
+#include "costmap_layers/core/layered_costmap.hpp"
+#include "costmap_layers/core/param_reader.hpp"
+#include "costmap_layers/core/static_layer.hpp"
+#include "fake_context.hpp"
+
+using namespace costmap_layers;
+using costmap_layers_test::FakeContext;
+
+namespace
+{
+OccupancyGridData makeMap(uint32_t w, uint32_t h, double res, double ox, double oy, int8_t fill = 0,
+                          const std::string& frame = "map")
+{
+  OccupancyGridData m;
+  m.frame_id = frame;
+  m.width = w;
+  m.height = h;
+  m.resolution = res;
+  m.origin_x = ox;
+  m.origin_y = oy;
+  m.data.assign(static_cast<std::size_t>(w) * h, fill);
+  return m;
+}
+
+void setCell(OccupancyGridData& m, uint32_t x, uint32_t y, int8_t v) { m.data[static_cast<std::size_t>(y) * m.width + x] = v; }
+
+/// Writes one value over the whole window, below the static layer.
+class FillLayer : public Layer
+{
+public:
+  uint8_t value = 0;
+  unsigned x = 0, y = 0;  ///< only this cell
+  void updateBounds(double, double, double, double*, double*, double*, double*) override {}
+  void updateCosts(Costmap2D& master, int min_i, int min_j, int max_i, int max_j) override
+  {
+    if (int(x) >= min_i && int(x) < max_i && int(y) >= min_j && int(y) < max_j) master.setCost(x, y, value);
+  }
+};
+
+struct Rig
+{
+  explicit Rig(ParamValue params = ParamValue::makeMap(), bool rolling = false, bool track_unknown = false,
+               std::string global = "map")
+    : lc(global, rolling, track_unknown)
+  {
+    lc.resizeMap(10, 10, 1.0, 0.0, 0.0);
+    ctx = std::make_shared<FakeContext>(std::move(params), global);
+    layer = std::make_shared<StaticLayer>();
+    layer->initialize(&lc, "static_layer", ctx);
+    lc.addPlugin(layer);
+  }
+  void publish(const OccupancyGridData& m) { ctx->publishGrid(GridKind::Map, m); }
+  void update(double x = 0, double y = 0) { lc.updateMap(x, y, 0); }
+  uint8_t at(unsigned x, unsigned y) const { return lc.getCostmap().getCost(x, y); }
+
+  LayeredCostmap lc;
+  std::shared_ptr<FakeContext> ctx;
+  std::shared_ptr<StaticLayer> layer;
+};
+
+ParamValue params(std::initializer_list<std::pair<const char*, ParamValue>> items)
+{
+  ParamValue p = ParamValue::makeMap();
+  for (const auto& it : items) p.set(it.first, it.second);
+  return p;
+}
+}  // namespace
+
+TEST(StaticConfig, DefaultsFollowCostmap2d)
+{
+  const ParamValue empty = ParamValue::makeMap();
+  for (bool track : {false, true})
+  {
+    const StaticConfig c = parseStaticConfig(ParamReader(empty, "s"), track);
+    EXPECT_EQ(c.map_topic, "map");
+    EXPECT_FALSE(c.first_map_only);
+    EXPECT_FALSE(c.subscribe_to_updates);
+    EXPECT_EQ(c.track_unknown_space, track);
+    EXPECT_FALSE(c.use_maximum);
+    EXPECT_EQ(c.lethal_cost_threshold, 100);
+    EXPECT_EQ(c.unknown_cost_value, -1);
+    EXPECT_TRUE(c.trinary_costmap);
+  }
+  const ParamValue clamp = params({{"lethal_cost_threshold", ParamValue::makeInt(150)}});
+  EXPECT_EQ(parseStaticConfig(ParamReader(clamp, "s"), true).lethal_cost_threshold, 100);
+  EXPECT_THROW(parseStaticConfig(ParamReader(params({{"map_topic", ParamValue::makeInt(3)}}), "s"), true),
+               std::invalid_argument);
+  EXPECT_THROW(parseStaticConfig(ParamReader(params({{"unknown_cost_value", ParamValue::makeInt(300)}}), "s"), true),
+               std::invalid_argument);
+  EXPECT_THROW(parseStaticConfig(ParamReader(params({{"use_maximum", ParamValue::makeString("x")}}), "s"), true),
+               std::invalid_argument);
+}
+
+TEST(StaticLayer, InterpretsValuesAsCostmap2d)
+{
+  StaticConfig c;
+  EXPECT_EQ(interpretStaticValue(-1, c), NO_INFORMATION);
+  EXPECT_EQ(interpretStaticValue(100, c), LETHAL_OBSTACLE);
+  EXPECT_EQ(interpretStaticValue(99, c), FREE_SPACE);
+  EXPECT_EQ(interpretStaticValue(0, c), FREE_SPACE);
+  c.track_unknown_space = false;
+  EXPECT_EQ(interpretStaticValue(-1, c), FREE_SPACE);
+  c.track_unknown_space = true;
+  c.trinary_costmap = false;
+  EXPECT_EQ(interpretStaticValue(50, c), static_cast<uint8_t>(0.5 * 254));
+  EXPECT_EQ(interpretStaticValue(1, c), static_cast<uint8_t>(0.01 * 254));
+  c.lethal_cost_threshold = 60;
+  EXPECT_EQ(interpretStaticValue(60, c), LETHAL_OBSTACLE);
+  EXPECT_EQ(interpretStaticValue(30, c), static_cast<uint8_t>(0.5 * 254));
+  // Another unknown value: -1 is then a byte of 255, above the threshold.
+  c.unknown_cost_value = 50;
+  EXPECT_EQ(interpretStaticValue(50, c), NO_INFORMATION);
+  EXPECT_EQ(interpretStaticValue(-1, c), LETHAL_OBSTACLE);
+  c.unknown_cost_value = 255;  // the same byte as -1
+  EXPECT_EQ(interpretStaticValue(-1, c), NO_INFORMATION);
+  c.lethal_cost_threshold = 0;
+  c.unknown_cost_value = -1;
+  EXPECT_EQ(interpretStaticValue(0, c), LETHAL_OBSTACLE);
+}
+
+TEST(StaticLayer, SubscribesToMapTopic)
+{
+  Rig rig(params({{"map_topic", ParamValue::makeString("/other_map")}}));
+  ASSERT_EQ(rig.ctx->grid_subs.size(), 1u);
+  EXPECT_EQ(rig.ctx->grid_subs[0].topic, "/other_map");
+  EXPECT_EQ(rig.ctx->grid_subs[0].kind, GridKind::Map);
+  EXPECT_EQ(rig.layer->config().map_topic, "/other_map");
+}
+
+TEST(StaticLayer, ResizesMasterToMapAndDrawsIt)
+{
+  Rig rig(ParamValue::makeMap(), false, true);
+  EXPECT_FALSE(rig.layer->isCurrent());
+  OccupancyGridData m = makeMap(20, 15, 0.5, -3.0, 2.0);
+  setCell(m, 3, 4, 100);
+  setCell(m, 5, 6, -1);
+  setCell(m, 7, 8, 50);
+  rig.publish(m);
+  EXPECT_FALSE(rig.layer->mapReceived());  // processed on the update thread
+  rig.update();
+  EXPECT_TRUE(rig.layer->mapReceived());
+  EXPECT_TRUE(rig.layer->isCurrent());
+  const Costmap2D& c = rig.lc.getCostmap();
+  EXPECT_EQ(c.getSizeInCellsX(), 20u);
+  EXPECT_EQ(c.getSizeInCellsY(), 15u);
+  EXPECT_DOUBLE_EQ(c.getResolution(), 0.5);
+  EXPECT_DOUBLE_EQ(c.getOriginX(), -3.0);
+  EXPECT_DOUBLE_EQ(c.getOriginY(), 2.0);
+  EXPECT_TRUE(rig.lc.isSizeLocked());
+  EXPECT_EQ(rig.at(3, 4), LETHAL_OBSTACLE);
+  EXPECT_EQ(rig.at(5, 6), NO_INFORMATION);
+  EXPECT_EQ(rig.at(7, 8), FREE_SPACE);
+  EXPECT_EQ(rig.at(0, 0), FREE_SPACE);
+  const CellWindow w = rig.lc.getUpdatedBounds();
+  EXPECT_EQ(w.x0, 0);
+  EXPECT_EQ(w.y0, 0);
+  EXPECT_EQ(w.xn, 20);
+  EXPECT_EQ(w.yn, 15);
+  // Nothing new: nothing to update.
+  rig.update();
+  EXPECT_TRUE(rig.lc.getUpdatedBounds().empty());
+}
+
+TEST(StaticLayer, TrackUnknownSpaceAndTrinaryAndThreshold)
+{
+  OccupancyGridData m = makeMap(10, 10, 1.0, 0, 0);
+  setCell(m, 1, 1, -1);
+  setCell(m, 2, 2, 70);
+  setCell(m, 3, 3, 40);
+  {
+    Rig rig(params({{"track_unknown_space", ParamValue::makeBool(false)}}), false, true);
+    rig.publish(m);
+    rig.update();
+    EXPECT_EQ(rig.at(1, 1), FREE_SPACE);
+    EXPECT_EQ(rig.at(2, 2), FREE_SPACE);
+  }
+  {
+    Rig rig(params({{"lethal_cost_threshold", ParamValue::makeInt(65)},
+                    {"trinary_costmap", ParamValue::makeBool(false)}}),
+            false, false);
+    EXPECT_FALSE(rig.layer->config().track_unknown_space);  // the costmap's
+    rig.publish(m);
+    rig.update();
+    EXPECT_EQ(rig.at(1, 1), FREE_SPACE);
+    EXPECT_EQ(rig.at(2, 2), LETHAL_OBSTACLE);
+    EXPECT_EQ(rig.at(3, 3), static_cast<uint8_t>(40.0 / 65 * 254));
+  }
+  {
+    Rig rig(params({{"unknown_cost_value", ParamValue::makeInt(40)}}), false, true);
+    rig.publish(m);
+    rig.update();
+    EXPECT_EQ(rig.at(3, 3), NO_INFORMATION);
+    EXPECT_EQ(rig.at(1, 1), LETHAL_OBSTACLE);
+  }
+}
+
+TEST(StaticLayer, UseMaximum)
+{
+  for (bool use_max : {false, true})
+  {
+    LayeredCostmap lc("map", false, false);
+    lc.resizeMap(10, 10, 1.0, 0, 0);
+    auto below = std::make_shared<FillLayer>();
+    below->value = 200;
+    below->x = 4;
+    below->y = 4;
+    below->initialize(&lc, "below", std::make_shared<FakeContext>());
+    lc.addPlugin(below);
+    auto ctx = std::make_shared<FakeContext>(params({{"use_maximum", ParamValue::makeBool(use_max)}}));
+    auto layer = std::make_shared<StaticLayer>();
+    layer->initialize(&lc, "static_layer", ctx);
+    lc.addPlugin(layer);
+    OccupancyGridData m = makeMap(10, 10, 1.0, 0, 0);
+    setCell(m, 5, 5, 100);
+    ctx->publishGrid(GridKind::Map, m);
+    lc.updateMap(0, 0, 0);
+    EXPECT_EQ(lc.getCostmap().getCost(4, 4), use_max ? 200 : FREE_SPACE);
+    EXPECT_EQ(lc.getCostmap().getCost(5, 5), LETHAL_OBSTACLE);
+  }
+}
+
+TEST(StaticLayer, NewMapReplacesOldOneAndFirstMapOnly)
+{
+  for (bool first_only : {false, true})
+  {
+    Rig rig(params({{"first_map_only", ParamValue::makeBool(first_only)}}));
+    OccupancyGridData a = makeMap(10, 10, 1.0, 0, 0);
+    setCell(a, 1, 1, 100);
+    rig.publish(a);
+    rig.update();
+    OccupancyGridData b = makeMap(12, 8, 1.0, 1.0, 0);
+    setCell(b, 2, 2, 100);
+    rig.publish(b);
+    rig.update();
+    if (first_only)
+    {
+      EXPECT_EQ(rig.lc.getCostmap().getSizeInCellsX(), 10u);
+      EXPECT_EQ(rig.at(1, 1), LETHAL_OBSTACLE);
+      EXPECT_EQ(rig.at(2, 2), FREE_SPACE);
+    }
+    else
+    {
+      EXPECT_EQ(rig.lc.getCostmap().getSizeInCellsX(), 12u);
+      EXPECT_EQ(rig.lc.getCostmap().getSizeInCellsY(), 8u);
+      EXPECT_DOUBLE_EQ(rig.lc.getCostmap().getOriginX(), 1.0);
+      EXPECT_EQ(rig.at(1, 1), FREE_SPACE);
+      EXPECT_EQ(rig.at(2, 2), LETHAL_OBSTACLE);
+    }
+  }
+}
+
+TEST(StaticLayer, SameGeometryMapUpdatesInPlace)
+{
+  Rig rig;
+  OccupancyGridData a = makeMap(10, 10, 1.0, 0, 0);
+  rig.publish(a);
+  rig.update();
+  setCell(a, 6, 7, 100);
+  rig.publish(a);
+  rig.update();
+  EXPECT_FALSE(rig.lc.isSizeLocked());  // the master already had the map's geometry: never resized
+  EXPECT_EQ(rig.at(6, 7), LETHAL_OBSTACLE);
+}
+
+TEST(StaticLayer, RejectsMalformedMapsAndKeepsThePrevious)
+{
+  Rig rig;
+  OccupancyGridData good = makeMap(10, 10, 1.0, 0, 0);
+  setCell(good, 2, 3, 100);
+  rig.publish(good);
+  rig.update();
+
+  std::vector<OccupancyGridData> bad;
+  OccupancyGridData wrong_size = makeMap(10, 10, 1.0, 0, 0);
+  wrong_size.data.pop_back();
+  bad.push_back(wrong_size);
+  OccupancyGridData zero_res = makeMap(10, 10, 0.0, 0, 0);
+  bad.push_back(zero_res);
+  OccupancyGridData nan_res = makeMap(10, 10, std::numeric_limits<double>::quiet_NaN(), 0, 0);
+  bad.push_back(nan_res);
+  OccupancyGridData absurd = makeMap(1, 1, 1.0, 0, 0);
+  absurd.width = 100000;
+  absurd.height = 100000;
+  bad.push_back(absurd);
+  OccupancyGridData empty = makeMap(0, 0, 1.0, 0, 0);
+  bad.push_back(empty);
+
+  for (const auto& m : bad)
+  {
+    const std::size_t before = rig.ctx->reports.size();
+    EXPECT_FALSE(rig.layer->setMap(std::make_shared<const OccupancyGridData>(m)).empty());
+    rig.publish(m);
+    ASSERT_EQ(rig.ctx->reports.size(), before + 2);
+    EXPECT_EQ(rig.ctx->reports.back().severity, Severity::Error);
+    EXPECT_NE(rig.ctx->reports.back().message.find("rejected, keeping the previous one"), std::string::npos);
+    rig.layer->reset();
+    rig.update();
+    EXPECT_EQ(rig.lc.getCostmap().getSizeInCellsX(), 10u);
+    EXPECT_EQ(rig.at(2, 3), LETHAL_OBSTACLE);
+  }
+  EXPECT_GE(rig.ctx->countReports("data has 99 values"), 1);
+  EXPECT_GE(rig.ctx->countReports("resolution"), 2);
+  EXPECT_GE(rig.ctx->countReports("exceeds the limit"), 1);
+}
+
+TEST(StaticLayer, PartialUpdates)
+{
+  Rig off;
+  off.publish(makeMap(10, 10, 1.0, 0, 0));
+  EXPECT_NE(off.layer->applyUpdate(0, 0, 1, 1, {100}).find("subscribe_to_updates"), std::string::npos);
+
+  Rig rig(params({{"subscribe_to_updates", ParamValue::makeBool(true)}}), false, true);
+  EXPECT_NE(rig.layer->applyUpdate(0, 0, 1, 1, {100}).find("no map"), std::string::npos);
+  rig.publish(makeMap(10, 10, 1.0, 0, 0));
+  rig.update();
+  EXPECT_TRUE(rig.layer->applyUpdate(2, 3, 3, 2, {100, 0, -1, 0, 100, 0}).empty());
+  EXPECT_TRUE(rig.layer->applyUpdate(8, 8, 1, 1, {100}).empty());
+  EXPECT_FALSE(rig.layer->applyUpdate(8, 8, 3, 1, {0, 0, 0}).empty());  // leaves the map
+  EXPECT_FALSE(rig.layer->applyUpdate(0, 0, 2, 2, {0, 0, 0}).empty());  // wrong data size
+  rig.update();
+  EXPECT_EQ(rig.at(2, 3), LETHAL_OBSTACLE);
+  EXPECT_EQ(rig.at(4, 3), NO_INFORMATION);
+  EXPECT_EQ(rig.at(3, 4), LETHAL_OBSTACLE);
+  EXPECT_EQ(rig.at(8, 8), LETHAL_OBSTACLE);
+  // Only the union of the updated rectangles is redrawn.
+  const CellWindow w = rig.lc.getUpdatedBounds();
+  EXPECT_EQ(w.x0, 2);
+  EXPECT_EQ(w.y0, 3);
+  EXPECT_EQ(w.xn, 9);
+  EXPECT_EQ(w.yn, 9);
+  // An update queued before a new map is dropped with it.
+  EXPECT_TRUE(rig.layer->applyUpdate(0, 0, 1, 1, {100}).empty());
+  rig.publish(makeMap(10, 10, 1.0, 0, 0));
+  rig.update();
+  EXPECT_EQ(rig.at(0, 0), FREE_SPACE);
+  EXPECT_EQ(rig.at(2, 3), FREE_SPACE);
+}
+
+TEST(StaticLayer, RollingWindowSamplesMapThroughTransform)
+{
+  Rig rig(ParamValue::makeMap(), true, true, "odom");
+  rig.lc.resizeMap(20, 20, 0.5, 0, 0);
+  // The map frame sits 3 m along x and rotated by 90 degrees relative to odom.
+  // (Offsets keep cell centres away from map cell borders, where rounding could go either way.)
+  Transform2D odom_from_map{3.07, 0.0, M_PI / 2};
+  rig.ctx->transforms[{"odom", "map"}] = odom_from_map;
+  rig.ctx->transforms[{"map", "odom"}] = odom_from_map.inverse();
+  OccupancyGridData m = makeMap(40, 40, 0.25, -5.1, -4.91, 0, "map");
+  for (uint32_t y = 0; y < 40; ++y)
+    for (uint32_t x = 0; x < 40; ++x) setCell(m, x, y, static_cast<int8_t>((x * 7 + y * 3) % 5 == 0 ? 100 : 0));
+  setCell(m, 0, 0, -1);
+  rig.publish(m);
+  rig.update(2.0, 1.0);  // the window is [-3, 7) x [-4, 6) in odom
+  const Costmap2D& c = rig.lc.getCostmap();
+  EXPECT_EQ(c.getSizeInCellsX(), 20u);  // never resized
+  const Transform2D map_from_odom = odom_from_map.inverse();
+  int inside = 0;
+  for (unsigned j = 0; j < 20; ++j)
+    for (unsigned i = 0; i < 20; ++i)
+    {
+      double wx, wy, mx, my;
+      c.mapToWorld(i, j, wx, wy);
+      map_from_odom.apply(wx, wy, mx, my);
+      const double gx = (mx + 5.1) / 0.25, gy = (my + 4.91) / 0.25;
+      if (gx < 0 || gy < 0 || gx >= 40 || gy >= 40)
+      {
+        EXPECT_EQ(c.getCost(i, j), NO_INFORMATION) << i << "," << j;
+        continue;
+      }
+      ++inside;
+      const int8_t v = m.data[unsigned(gy) * 40 + unsigned(gx)];
+      EXPECT_EQ(c.getCost(i, j), v == 100 ? LETHAL_OBSTACLE : (v == -1 ? NO_INFORMATION : FREE_SPACE))
+          << i << "," << j;
+    }
+  EXPECT_GT(inside, 100);
+  // Without the transform: reported, nothing drawn.
+  rig.ctx->transforms.clear();
+  const std::size_t before = rig.ctx->reports.size();
+  rig.update(2.5, 1.0);
+  EXPECT_GT(rig.ctx->reports.size(), before);
+  EXPECT_EQ(rig.ctx->reports.back().severity, Severity::Error);
+}
+
+TEST(StaticLayer, MapsFromAnotherThread)
+{
+  Rig rig;
+  std::atomic<bool> stop{false};
+  std::atomic<int> published{0};
+  std::thread publisher([&] {
+    int k = 0;
+    while (!stop || k < 50)
+    {
+      OccupancyGridData m = makeMap(10, 10, 1.0, 0, 0);
+      setCell(m, static_cast<uint32_t>(k % 10), 0, 100);
+      rig.publish(m);
+      published = ++k;
+    }
+  });
+  for (int i = 0; i < 200 || published < 50; ++i) rig.update();
+  stop = true;
+  publisher.join();
+  rig.update();
+  int lethal = 0;
+  for (unsigned x = 0; x < 10; ++x) lethal += rig.at(x, 0) == LETHAL_OBSTACLE;
+  EXPECT_EQ(lethal, 1);
+}
