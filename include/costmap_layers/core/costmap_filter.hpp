@@ -38,6 +38,15 @@ public:
   template <class Fn>
   void forEach(Costmap2D& master, const OccupancyGridData& mask, Fn&& fn) const;
 
+  /// Row-wise form for fast kernels. `source` holds one value per mask cell (mask-sized, row-major).
+  /// For each window row that meets the mask, calls fn(master_cells, values, n): values[k] belongs to
+  /// master_cells[k]. Mask cells are read in place when the mapping is an offset; otherwise they are
+  /// gathered into scratch (reused when consecutive rows share a mask row), with `neutral` for cells
+  /// that fall outside the mask.
+  template <class T, class RowFn>
+  void forEachRow(Costmap2D& master, const T* source, uint32_t source_width, uint32_t source_height, T neutral,
+                  std::vector<T>& scratch, RowFn&& fn) const;
+
   /// True when rows and columns map independently (no rotation between costmap and mask).
   bool axisAligned() const { return axis_aligned_; }
   /// True when, in addition, one master cell is one mask cell (an offset).
@@ -97,6 +106,9 @@ protected:
   /// The mask value at a world point (global frame), or nullopt when outside the mask.
   static std::optional<int8_t> maskValueAt(const OccupancyGridData& mask, const Transform2D& to_mask, double wx,
                                            double wy);
+  /// The mask of the current cycle (the one process() receives); the pointer changes only when a new
+  /// mask was accepted, so subclasses can key derived data on it.
+  const std::shared_ptr<const OccupancyGridData>& activeMask() const { return active_mask_; }
   /// The transform used by the last update (global frame -> mask frame).
   const Transform2D& lastTransform() const { return to_mask_; }
 
@@ -116,6 +128,54 @@ private:
   Transform2D to_mask_;
   MaskMapping mapping_;
 };
+
+template <class T, class RowFn>
+void MaskMapping::forEachRow(Costmap2D& master, const T* source, uint32_t source_width, uint32_t source_height,
+                             T neutral, std::vector<T>& scratch, RowFn&& fn) const
+{
+  if (window_.empty()) return;
+  const int mask_w = static_cast<int>(source_width);
+  const int mask_h = static_cast<int>(source_height);
+  const std::size_t n = static_cast<std::size_t>(window_.xn - window_.x0);
+  if (!offset_) scratch.resize(n);
+  int cached_row = -1;
+  for (int j = window_.y0; j < window_.yn; ++j)
+  {
+    uint8_t* row = master.data() + static_cast<std::size_t>(j) * master.getSizeInCellsX();
+    if (offset_)
+    {
+      const int my = j + offset_y_;
+      if (my < 0 || my >= mask_h) continue;
+      const int i0 = std::max(window_.x0, -offset_x_);
+      const int i1 = std::min(window_.xn, mask_w - offset_x_);
+      if (i0 >= i1) continue;
+      fn(row + i0, source + static_cast<std::size_t>(my) * mask_w + offset_x_ + i0, static_cast<std::size_t>(i1 - i0));
+    }
+    else if (axis_aligned_)
+    {
+      const int my = rows_[static_cast<std::size_t>(j - window_.y0)];
+      if (my < 0) continue;
+      if (my != cached_row)
+      {
+        const T* mrow = source + static_cast<std::size_t>(my) * mask_w;
+        for (std::size_t k = 0; k < n; ++k) scratch[k] = cols_[k] >= 0 ? mrow[cols_[k]] : neutral;
+        cached_row = my;
+      }
+      fn(row + window_.x0, scratch.data(), n);
+    }
+    else
+    {
+      double px = p0x_ + window_.x0 * dux_ + j * dvx_;
+      double py = p0y_ + window_.x0 * duy_ + j * dvy_;
+      for (std::size_t k = 0; k < n; ++k, px += dux_, py += duy_)
+      {
+        const bool inside = px >= 0.0 && py >= 0.0 && px < mask_w && py < mask_h;
+        scratch[k] = inside ? source[static_cast<std::size_t>(py) * mask_w + static_cast<std::size_t>(px)] : neutral;
+      }
+      fn(row + window_.x0, scratch.data(), n);
+    }
+  }
+}
 
 template <class Fn>
 void MaskMapping::forEach(Costmap2D& master, const OccupancyGridData& mask, Fn&& fn) const

@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# Builds (Release) and runs every benchmark in bench/, then prints each result as a ratio to the
+# memcpy of the same 4000x4000 grid measured in the same run.
+set -euo pipefail
+source "$(dirname "$0")/common.sh"
+build_package
+OUT="${BENCH_OUTPUT:-$ROOT/log/bench}"
+mkdir -p "$OUT"
+for exe in "$ROOT"/build/costmap_layers/devel/lib/costmap_layers/bench_*; do
+  [ -x "$exe" ] || continue
+  name=$(basename "$exe")
+  echo "== $name"
+  "$exe" --benchmark_repetitions="${BENCH_REPETITIONS:-5}" --benchmark_report_aggregates_only=true \
+    --benchmark_out="$OUT/$name.json" --benchmark_out_format=json "$@"
+  python3 "$ROOT/scripts/bench_ratios.py" "$OUT/$name.json"
+done
