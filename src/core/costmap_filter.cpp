@@ -104,6 +104,8 @@ void CostmapFilter::setFilterEnabled(bool on)
   std::lock_guard<std::mutex> lock(mask_mutex_);
   if (filter_enabled_ == on) return;
   filter_enabled_ = on;
+  // The mask drawn so far must be redrawn even if another one replaces it before the next update.
+  if (!mask_changed_) pending_old_ = mask_;
   mask_changed_ = true;  // the mask's extent must be redrawn
 }
 
