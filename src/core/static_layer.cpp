@@ -49,6 +49,19 @@ void StaticLayer::onInitialize()
   current_ = false;  // until the first map
   context_->subscribeGrid(config_.map_topic, GridKind::Map,
                           [this](const std::shared_ptr<const OccupancyGridData>& map) { setMap(map); });
+  if (config_.subscribe_to_updates)
+    context_->subscribeGridUpdates(config_.map_topic + "_updates",
+                                   [this](const std::shared_ptr<const OccupancyGridUpdateData>& u) {
+                                     if (u->x < 0 || u->y < 0)
+                                     {
+                                       context_->report(Severity::Error, "map_update",
+                                                        name_ + ": map update rejected: negative x/y (" +
+                                                            std::to_string(u->x) + ", " + std::to_string(u->y) + ")");
+                                       return;
+                                     }
+                                     applyUpdate(static_cast<uint32_t>(u->x), static_cast<uint32_t>(u->y), u->width,
+                                                 u->height, u->data);
+                                   });
 }
 
 void StaticLayer::rebuildTable()

@@ -34,6 +34,19 @@ costmap_layers::SpeedLimitsData fromMsg(const costmap_layers::SpeedLimits& msg)
   return d;
 }
 
+costmap_layers::OccupancyGridUpdateData fromMsg(const map_msgs::OccupancyGridUpdate& msg)
+{
+  costmap_layers::OccupancyGridUpdateData u;
+  u.frame_id = msg.header.frame_id;
+  u.stamp_ns = msg.header.stamp.toNSec();
+  u.x = msg.x;
+  u.y = msg.y;
+  u.width = msg.width;
+  u.height = msg.height;
+  u.data.assign(msg.data.begin(), msg.data.end());
+  return u;
+}
+
 void toOccupancyGrid(const costmap_layers::Costmap2D& costmap, const std::string& frame, const ros::Time& stamp,
                      nav_msgs::OccupancyGrid& msg)
 {

@@ -1,5 +1,6 @@
 #include "costmap_layers/ros/ros_layer_context.hpp"
 
+#include <map_msgs/OccupancyGridUpdate.h>
 #include <nav_msgs/OccupancyGrid.h>
 #include <std_srvs/SetBool.h>
 #include <tf2/exceptions.h>
@@ -57,6 +58,22 @@ void RosLayerContext::subscribeGrid(const std::string& topic, costmap_layers::Gr
         catch (const std::exception& e)
         {
           log->log(Severity::Error, owner + topic, owner + ": dropped a grid on " + topic + ": " + e.what());
+        }
+      }));
+}
+
+void RosLayerContext::subscribeGridUpdates(const std::string& topic, costmap_layers::GridUpdateCallback cb)
+{
+  const std::string owner = private_nh_.getNamespace();
+  subscribers_.push_back(public_nh_.subscribe<map_msgs::OccupancyGridUpdate>(
+      topic, 10, [cb, owner, topic, log = log_](const map_msgs::OccupancyGridUpdate::ConstPtr& msg) {
+        try
+        {
+          cb(std::make_shared<const costmap_layers::OccupancyGridUpdateData>(fromMsg(*msg)));
+        }
+        catch (const std::exception& e)
+        {
+          log->log(Severity::Error, owner + topic, owner + ": dropped a map update on " + topic + ": " + e.what());
         }
       }));
 }

@@ -187,3 +187,93 @@ TEST(CostmapTool, BadInputGivesOneClearLineAndNonZeroExit)
   const ToolResult r = runTool({"--map", map, "--params", unknown}, dir);
   EXPECT_NE(r.err.find("costmap_layers/GradientLayer"), std::string::npos) << r.err;
 }
+
+#include <cmath>
+
+#include "costmap_layers/io/map_file.hpp"
+
+namespace
+{
+/// costmap_2d's static interpretation (default parameters, tracking unknown space) followed by the
+/// inflation rule applied naively: for every cell, the nearest lethal cell within the radius found by
+/// looking at every cell of the disc around it.
+std::vector<uint8_t> bruteForceStaticInflation(const costmap_layers::OccupancyGridData& map, double radius,
+                                               double factor, double inscribed)
+{
+  const int w = static_cast<int>(map.width), h = static_cast<int>(map.height);
+  std::vector<uint8_t> master(map.data.size());
+  for (std::size_t k = 0; k < master.size(); ++k)
+  {
+    const int v = map.data[k];
+    master[k] = v == -1 ? 255 : (v >= 100 ? 254 : 0);  // trinary: below the threshold is free
+  }
+  const int r = static_cast<int>(std::ceil(radius / map.resolution));
+  std::vector<uint8_t> out = master;
+  for (int y = 0; y < h; ++y)
+  {
+    for (int x = 0; x < w; ++x)
+    {
+      int best = -1;
+      for (int dy = -r; dy <= r; ++dy)
+        for (int dx = -r; dx <= r; ++dx)
+        {
+          const int sx = x + dx, sy = y + dy;
+          if (sx < 0 || sy < 0 || sx >= w || sy >= h || master[static_cast<std::size_t>(sy * w + sx)] != 254) continue;
+          const int d2 = dx * dx + dy * dy;
+          if (d2 <= r * r && (best < 0 || d2 < best)) best = d2;
+        }
+      if (best < 0) continue;
+      const double d = std::sqrt(static_cast<double>(best));
+      uint8_t cost;
+      if (best == 0)
+        cost = 254;
+      else if (d * map.resolution <= inscribed)
+        cost = 253;
+      else
+        cost = static_cast<uint8_t>(252 * std::exp(-factor * (d * map.resolution - inscribed)));
+      uint8_t& cell = out[static_cast<std::size_t>(y * w + x)];
+      if (cell == 255)
+        cell = cost >= 253 ? cost : cell;
+      else
+        cell = std::max(cell, cost);
+    }
+  }
+  return out;
+}
+}  // namespace
+
+TEST(CostmapTool, StaticPlusInflationOnRealMapsEqualsBruteForce)
+{
+  const std::string params_text = R"(
+track_unknown_space: true
+footprint: [[0.22, 0.22], [0.22, -0.22], [-0.22, -0.22], [-0.22, 0.22]]
+footprint_padding: 0.0
+plugins:
+  - {name: static_layer, type: costmap_layers/StaticLayer}
+  - {name: inflation_layer, type: costmap_layers/InflationLayer}
+inflation_layer: {inflation_radius: 0.55, cost_scaling_factor: 10.0}
+)";
+  for (const std::string name : {"turtlebot3_world", "depot", "warehouse", "willow-full-0.05"})
+  {
+    const std::string map = sharedMaps() + "/" + name + ".yaml";
+    if (!std::filesystem::exists(map)) GTEST_SKIP() << "../shared/maps is absent";
+    TempDir dir;
+    const std::string params = dir.write("params.yaml", params_text);
+    const ToolResult r = runTool({"--map", map, "--params", params, "--out-raw", dir.file("out.raw")}, dir);
+    ASSERT_EQ(r.exit_code, 0) << name << ": " << r.err;
+    const auto grid = costmap_layers::io::loadMapFile(map);
+    const auto expected = bruteForceStaticInflation(grid, 0.55, 10.0, 0.22);
+    const auto got = rawCells(dir.file("out.raw"));
+    ASSERT_EQ(got.size(), expected.size()) << name;
+    std::size_t mismatches = 0, first = 0;
+    for (std::size_t k = 0; k < got.size(); ++k)
+      if (got[k] != expected[k] && mismatches++ == 0) first = k;
+    EXPECT_EQ(mismatches, 0u) << name << ": first mismatch at cell " << first << " (got " << int(got[first])
+                              << ", expected " << int(expected[first]) << ")";
+    // The maps really exercise the rule: lethal, inscribed, graded and unknown cells all occur.
+    std::size_t counts[4] = {0, 0, 0, 0};
+    for (uint8_t c : got) ++counts[c == 254 ? 0 : c == 253 ? 1 : (c > 0 && c < 253) ? 2 : c == 255 ? 3 : 0];
+    EXPECT_GT(counts[1], 0u) << name;
+    EXPECT_GT(counts[2], 0u) << name;
+  }
+}

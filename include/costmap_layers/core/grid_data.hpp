@@ -23,6 +23,18 @@ struct OccupancyGridData
   std::vector<int8_t> data;
 };
 
+/// A partial update of an occupancy grid, as map_msgs/OccupancyGridUpdate carries it.
+struct OccupancyGridUpdateData
+{
+  std::string frame_id;
+  uint64_t stamp_ns = 0;
+  int32_t x = 0;  ///< [cells] column of the window's first cell
+  int32_t y = 0;  ///< [cells] row of the window's first cell
+  uint32_t width = 0;
+  uint32_t height = 0;
+  std::vector<int8_t> data;  ///< row-major, width * height values
+};
+
 struct SpeedLimitEntry
 {
   uint32_t area_id = 0;

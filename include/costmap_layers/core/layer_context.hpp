@@ -21,6 +21,7 @@ enum class Severity { Debug, Info, Warn, Error };
 enum class GridKind { Map, Mask };
 
 using GridCallback = std::function<void(const std::shared_ptr<const OccupancyGridData>&)>;
+using GridUpdateCallback = std::function<void(const std::shared_ptr<const OccupancyGridUpdateData>&)>;
 using SpeedLimitsCallback = std::function<void(const std::shared_ptr<const SpeedLimitsData>&)>;
 using MaxSpeedPublisher = std::function<void(double max_speed)>;
 
@@ -39,6 +40,8 @@ public:
   /// Delivers every grid received on topic (also one published before the subscription, when latched).
   /// Callbacks may run on another thread than the update loop.
   virtual void subscribeGrid(const std::string& topic, GridKind kind, GridCallback cb) = 0;
+  /// Partial map updates (map_msgs/OccupancyGridUpdate). Hosts without such a source ignore it.
+  virtual void subscribeGridUpdates(const std::string& topic, GridUpdateCallback cb) { (void)topic, (void)cb; }
   virtual void subscribeSpeedLimits(const std::string& topic, SpeedLimitsCallback cb) = 0;
   /// A latched publisher of the current speed limit [m/s] on topic.
   virtual MaxSpeedPublisher advertiseMaxSpeed(const std::string& topic) = 0;

@@ -16,6 +16,7 @@ namespace costmap_layers_ros
 /// Copies the grid; the yaw of the origin comes from its quaternion. Does not validate.
 costmap_layers::OccupancyGridData fromMsg(const nav_msgs::OccupancyGrid& msg);
 costmap_layers::SpeedLimitsData fromMsg(const costmap_layers::SpeedLimits& msg);
+costmap_layers::OccupancyGridUpdateData fromMsg(const map_msgs::OccupancyGridUpdate& msg);
 
 /// The whole costmap as an OccupancyGrid (costs translated as costmap_2d does).
 void toOccupancyGrid(const costmap_layers::Costmap2D& costmap, const std::string& frame, const ros::Time& stamp,

@@ -46,6 +46,7 @@ public:
   const std::string& globalFrame() const override { return global_frame_; }
   double transformTolerance() const override { return transform_tolerance_; }
   void subscribeGrid(const std::string& topic, costmap_layers::GridKind kind, costmap_layers::GridCallback cb) override;
+  void subscribeGridUpdates(const std::string& topic, costmap_layers::GridUpdateCallback cb) override;
   void subscribeSpeedLimits(const std::string& topic, costmap_layers::SpeedLimitsCallback cb) override;
   costmap_layers::MaxSpeedPublisher advertiseMaxSpeed(const std::string& topic) override;
   void advertiseToggle(std::function<void(bool)> cb) override;
