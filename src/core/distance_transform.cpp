@@ -13,6 +13,13 @@
 
 #if (defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__))
 #define COSTMAP_LAYERS_DT_AVX2_DISPATCH 1
+#include <immintrin.h>
+#endif
+#if defined(__aarch64__) && defined(__ARM_NEON)
+#define COSTMAP_LAYERS_DT_NEON 1
+#include <arm_neon.h>
+#endif
+#if defined(__GNUC__) || defined(__clang__)
 #define COSTMAP_LAYERS_DT_INLINE inline __attribute__((always_inline))
 #else
 #define COSTMAP_LAYERS_DT_INLINE inline
@@ -209,23 +216,72 @@ __attribute__((target("avx2"))) void bandedAvx2(const uint8_t* grid, int width, 
 {
   bandedKernel<T>(grid, width, height, stride, source, cap, win, run, up, row, acc, sink);
 }
-
-bool cpuHasAvx2()
-{
-  static const bool has = [] {
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("avx2") != 0;
-  }();
-  return has;
-}
 #endif
 
-std::atomic<bool> g_allow_simd{true};
+// ---- Kernel choice -------------------------------------------------------------------------------
+
+enum Kernel : int
+{
+  kPortable = 0,
+  kSse41 = 1,
+  kAvx2 = 2,
+  kAvx512 = 3,
+  kNeon = 4,
+  kKernelCount = 5,
+  kAuto = -1
+};
+const char* const kKernelNames[kKernelCount] = {"portable", "sse4.1", "avx2", "avx512bw", "neon"};
+
+bool cpuRuns(int k)
+{
+  switch (k)
+  {
+    case kPortable:
+      return true;
+#ifdef COSTMAP_LAYERS_DT_AVX2_DISPATCH
+    case kSse41:
+      __builtin_cpu_init();
+      return __builtin_cpu_supports("sse4.1") != 0;
+    case kAvx2:
+      __builtin_cpu_init();
+      return __builtin_cpu_supports("avx2") != 0;
+    case kAvx512:
+      __builtin_cpu_init();
+      return __builtin_cpu_supports("avx512f") != 0 && __builtin_cpu_supports("avx512bw") != 0;
+#endif
+#ifdef COSTMAP_LAYERS_DT_NEON
+    case kNeon:
+      return true;  // part of AArch64
+#endif
+    default:
+      return false;
+  }
+}
+
+int bestKernel()
+{
+  static const int best = [] {
+    int b = kPortable;
+    for (int k = 0; k < kKernelCount; ++k)
+      if (cpuRuns(k)) b = k;
+    return b;
+  }();
+  return best;
+}
+
+std::atomic<int> g_forced_kernel{kAuto};
+
+int currentKernel()
+{
+  const int forced = g_forced_kernel.load(std::memory_order_relaxed);
+  return forced == kAuto ? bestKernel() : forced;
+}
 
 bool useAvx2()
 {
 #ifdef COSTMAP_LAYERS_DT_AVX2_DISPATCH
-  return g_allow_simd.load(std::memory_order_relaxed) && cpuHasAvx2();
+  const int k = currentKernel();
+  return k == kAvx2 || k == kAvx512;
 #else
   return false;
 #endif
@@ -261,6 +317,357 @@ void runBanded(const uint8_t* grid, int width, int height, std::ptrdiff_t stride
   bandedPortable<T>(grid, width, height, stride, source, cap, win, run.data(), up.data(), row.data(), acc.data(),
                     sink);
 }
+
+// ---- Cost merge: the banded 8-bit transform in the cost domain, written into the grid ------------
+
+/// Widest vector (bytes) of any kernel: the padding on both sides of a stripe row.
+constexpr int kMaxLanes = 64;
+
+/// One row of the row pass. g[k] is the vertical distance (saturated at cap + 1) of window column k,
+/// readable for k in [-cap - kMaxLanes, n + cap + kMaxLanes); out is the grid row at the window.
+struct MergeRow
+{
+  const uint8_t* g;
+  uint8_t* out;
+  int n;
+};
+
+/// Bytes per column offset in the tables: a 16-entry table repeated for every 128-bit lane.
+constexpr int kLutRow = 64;
+
+/// What the row passes share: the tables lut[kLutRow * dx + v] = cost of dx^2 + (v % 16)^2 (0 past
+/// cap or for v % 16 > cap), and cost_sq, the cost per squared distance (256 entries, 0 past cap^2).
+struct MergeConsts
+{
+  const uint8_t* lut;
+  const uint8_t* cost_sq;
+  int cap;
+  uint8_t far;
+  uint8_t special;
+  uint8_t threshold;
+};
+
+COSTMAP_LAYERS_DT_INLINE uint8_t mergeCell(uint8_t old, uint8_t c, uint8_t special, uint8_t threshold)
+{
+  const uint8_t for_special = c >= threshold ? c : special;
+  const uint8_t for_known = old > c ? old : c;
+  return old == special ? for_special : for_known;
+}
+
+/// The portable row pass: squared distances by a min-plus over the column offsets (the compiler
+/// vectorises every loop), one table lookup per cell, then the merge rule; blocks of kBlock columns
+/// with no vertical distance below cap + 1 within cap are skipped.
+COSTMAP_LAYERS_DT_INLINE void mergeRowPortable(const MergeRow& r, const MergeConsts& k)
+{
+  constexpr int kBlock = 64;
+  const int cap = k.cap;
+  const uint8_t far = k.far;
+  const uint8_t far_sq = static_cast<uint8_t>(cap * cap + 1);
+  for (int x = 0; x < r.n; x += kBlock)
+  {
+    const uint8_t* __restrict g = r.g + x;
+    uint8_t near = far;
+    for (int i = -cap; i < kBlock + cap; ++i) near = g[i] < near ? g[i] : near;
+    if (near >= far) continue;
+    uint8_t d[kBlock];
+    uint8_t c[kBlock];
+    for (int i = 0; i < kBlock; ++i)
+    {
+      const uint8_t s = static_cast<uint8_t>(g[i] * g[i]);
+      d[i] = s < far_sq ? s : far_sq;
+    }
+    for (int dx = 1; dx <= cap; ++dx)
+    {
+      const uint8_t dx2 = static_cast<uint8_t>(dx * dx);
+      for (int i = 0; i < kBlock; ++i)
+      {
+        const uint8_t m = g[i - dx] < g[i + dx] ? g[i - dx] : g[i + dx];
+        uint8_t s = static_cast<uint8_t>(m * m);
+        s = s < far_sq ? s : far_sq;
+        s = static_cast<uint8_t>(s + dx2);
+        d[i] = d[i] < s ? d[i] : s;
+      }
+    }
+    for (int i = 0; i < kBlock; ++i) c[i] = k.cost_sq[d[i]];
+    const int len = std::min(kBlock, r.n - x);
+    uint8_t* __restrict out = r.out + x;
+    for (int i = 0; i < len; ++i) out[i] = mergeCell(out[i], c[i], k.special, k.threshold);
+  }
+}
+
+#ifdef COSTMAP_LAYERS_DT_AVX2_DISPATCH
+__attribute__((target("sse4.1"), always_inline)) inline __m128i load(const uint8_t* p)
+{
+  return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
+}
+__attribute__((target("avx2"), always_inline)) inline __m256i load256(const uint8_t* p)
+{
+  return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p));
+}
+__attribute__((target("avx512f,avx512bw"), always_inline)) inline __m512i load512(const uint8_t* p)
+{
+  return _mm512_loadu_si512(p);
+}
+
+__attribute__((target("sse4.1"))) void mergeRowSse41(const MergeRow& r, const MergeConsts& k)
+{
+  constexpr int V = 16;
+  const int cap = k.cap;
+  const __m128i far = _mm_set1_epi8(static_cast<char>(k.far));
+  const __m128i special = _mm_set1_epi8(static_cast<char>(k.special));
+  const __m128i threshold = _mm_set1_epi8(static_cast<char>(k.threshold));
+  for (int x = 0; x < r.n; x += V)
+  {
+    const uint8_t* g = r.g + x;
+    __m128i near = load(g - cap);
+    for (int o = V - cap;; o += V)
+    {
+      const int oo = o < cap ? o : cap;
+      near = _mm_min_epu8(near, load(g + oo));
+      if (oo == cap) break;
+    }
+    if (_mm_movemask_epi8(_mm_cmpeq_epi8(near, far)) == 0xFFFF) continue;
+    __m128i c = _mm_shuffle_epi8(load(k.lut), load(g));
+    for (int dx = 1; dx <= cap; ++dx)
+      c = _mm_max_epu8(c, _mm_shuffle_epi8(load(k.lut + kLutRow * dx), _mm_min_epu8(load(g - dx), load(g + dx))));
+    uint8_t tmp[V];
+    const bool whole = x + V <= r.n;
+    uint8_t* dst = whole ? r.out + x : tmp;
+    if (!whole) std::memcpy(tmp, r.out + x, static_cast<std::size_t>(r.n - x));
+    const __m128i old = load(dst);
+    const __m128i for_special = _mm_blendv_epi8(special, c, _mm_cmpeq_epi8(_mm_max_epu8(c, threshold), c));
+    const __m128i res = _mm_blendv_epi8(_mm_max_epu8(old, c), for_special, _mm_cmpeq_epi8(old, special));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(dst), res);
+    if (!whole) std::memcpy(r.out + x, tmp, static_cast<std::size_t>(r.n - x));
+  }
+}
+
+__attribute__((target("avx2"))) void mergeRowAvx2(const MergeRow& r, const MergeConsts& k)
+{
+  constexpr int V = 32;
+  const int cap = k.cap;
+  const __m256i far = _mm256_set1_epi8(static_cast<char>(k.far));
+  const __m256i special = _mm256_set1_epi8(static_cast<char>(k.special));
+  const __m256i threshold = _mm256_set1_epi8(static_cast<char>(k.threshold));
+  __m256i lut[kMaxBandedCap8 + 1];
+  for (int dx = 0; dx <= cap; ++dx)
+    lut[dx] = load256(k.lut + kLutRow * dx);
+  for (int x = 0; x < r.n; x += V)
+  {
+    const uint8_t* g = r.g + x;
+    __m256i near = load256(g - cap);
+    for (int o = V - cap;; o += V)
+    {
+      const int oo = o < cap ? o : cap;
+      near = _mm256_min_epu8(near, load256(g + oo));
+      if (oo == cap) break;
+    }
+    if (_mm256_movemask_epi8(_mm256_cmpeq_epi8(near, far)) == -1) continue;
+    __m256i c = _mm256_shuffle_epi8(lut[0], load256(g));
+    for (int dx = 1; dx <= cap; ++dx)
+      c = _mm256_max_epu8(c, _mm256_shuffle_epi8(lut[dx], _mm256_min_epu8(load256(g - dx), load256(g + dx))));
+    uint8_t tmp[V];
+    const bool whole = x + V <= r.n;
+    uint8_t* dst = whole ? r.out + x : tmp;
+    if (!whole) std::memcpy(tmp, r.out + x, static_cast<std::size_t>(r.n - x));
+    const __m256i old = load256(dst);
+    const __m256i for_special =
+        _mm256_blendv_epi8(special, c, _mm256_cmpeq_epi8(_mm256_max_epu8(c, threshold), c));
+    const __m256i res = _mm256_blendv_epi8(_mm256_max_epu8(old, c), for_special, _mm256_cmpeq_epi8(old, special));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst), res);
+    if (!whole) std::memcpy(r.out + x, tmp, static_cast<std::size_t>(r.n - x));
+  }
+}
+
+__attribute__((target("avx512f,avx512bw"))) void mergeRowAvx512(const MergeRow& r, const MergeConsts& k)
+{
+  constexpr int V = 64;
+  const int cap = k.cap;
+  const __m512i far = _mm512_set1_epi8(static_cast<char>(k.far));
+  const __m512i special = _mm512_set1_epi8(static_cast<char>(k.special));
+  const __m512i threshold = _mm512_set1_epi8(static_cast<char>(k.threshold));
+  __m512i lut[kMaxBandedCap8 + 1];
+  for (int dx = 0; dx <= cap; ++dx)
+    lut[dx] = load512(k.lut + kLutRow * dx);
+  for (int x = 0; x < r.n; x += V)
+  {
+    const uint8_t* g = r.g + x;
+    __m512i near = load512(g - cap);
+    for (int o = V - cap;; o += V)
+    {
+      const int oo = o < cap ? o : cap;
+      near = _mm512_min_epu8(near, load512(g + oo));
+      if (oo == cap) break;
+    }
+    if (_mm512_cmpneq_epu8_mask(near, far) == 0) continue;
+    __m512i c = _mm512_shuffle_epi8(lut[0], load512(g));
+    for (int dx = 1; dx <= cap; ++dx)
+      c = _mm512_max_epu8(c, _mm512_shuffle_epi8(lut[dx], _mm512_min_epu8(load512(g - dx), load512(g + dx))));
+    const int left = r.n - x;
+    const __mmask64 lanes = left >= V ? ~__mmask64{0} : ((__mmask64{1} << left) - 1);
+    uint8_t* dst = r.out + x;
+    const __m512i old = _mm512_maskz_loadu_epi8(lanes, dst);
+    const __m512i for_special = _mm512_mask_blend_epi8(_mm512_cmpge_epu8_mask(c, threshold), special, c);
+    const __m512i res = _mm512_mask_blend_epi8(_mm512_cmpeq_epi8_mask(old, special), _mm512_max_epu8(old, c),
+                                               for_special);
+    _mm512_mask_storeu_epi8(dst, lanes, res);
+  }
+}
+#endif
+
+#ifdef COSTMAP_LAYERS_DT_NEON
+void mergeRowNeon(const MergeRow& r, const MergeConsts& k)
+{
+  constexpr int V = 16;
+  const int cap = k.cap;
+  const uint8x16_t special = vdupq_n_u8(k.special);
+  const uint8x16_t threshold = vdupq_n_u8(k.threshold);
+  uint8x16_t lut[kMaxBandedCap8 + 1];
+  for (int dx = 0; dx <= cap; ++dx) lut[dx] = vld1q_u8(k.lut + kLutRow * dx);
+  for (int x = 0; x < r.n; x += V)
+  {
+    const uint8_t* g = r.g + x;
+    uint8x16_t near = vld1q_u8(g - cap);
+    for (int o = V - cap;; o += V)
+    {
+      const int oo = o < cap ? o : cap;
+      near = vminq_u8(near, vld1q_u8(g + oo));
+      if (oo == cap) break;
+    }
+    if (vminvq_u8(near) >= k.far) continue;
+    uint8x16_t c = vqtbl1q_u8(lut[0], vld1q_u8(g));
+    for (int dx = 1; dx <= cap; ++dx)
+      c = vmaxq_u8(c, vqtbl1q_u8(lut[dx], vminq_u8(vld1q_u8(g - dx), vld1q_u8(g + dx))));
+    uint8_t tmp[V];
+    const bool whole = x + V <= r.n;
+    uint8_t* dst = whole ? r.out + x : tmp;
+    if (!whole) std::memcpy(tmp, r.out + x, static_cast<std::size_t>(r.n - x));
+    const uint8x16_t old = vld1q_u8(dst);
+    const uint8x16_t for_special = vbslq_u8(vcgeq_u8(c, threshold), c, special);
+    const uint8x16_t res = vbslq_u8(vceqq_u8(old, special), for_special, vmaxq_u8(old, c));
+    vst1q_u8(dst, res);
+    if (!whole) std::memcpy(r.out + x, tmp, static_cast<std::size_t>(r.n - x));
+  }
+}
+#endif
+
+/// Everything one merge needs; buffers sized by the caller.
+struct MergeJob
+{
+  uint8_t* grid;
+  int width, height;
+  std::ptrdiff_t stride;
+  SourceRange source;
+  DistanceWindow win;  // clipped, non-empty
+  MergeConsts consts;
+  uint8_t* rows;       // stripe rows of row_stride bytes each; window column 0 at offset pad
+  int row_stride;
+  int pad;
+  int stripe;          // rows per stripe
+  uint8_t* run;        // the vertical distances of the row before the stripe, band width
+  uint8_t* up;         // the upward running distance past the stripe, band width
+};
+
+/// The vertical pass, in stripes of rows, and the row pass per row. The vertical distance of a row is
+/// min(its own upward distance, the row before's + 1), both saturating at cap + 1; the upward
+/// distances of a stripe come from sweeping up from cap rows past it. RowPass is inlined into the
+/// caller's instruction set.
+template <class RowPass>
+COSTMAP_LAYERS_DT_INLINE void mergeDriver(const MergeJob& j, RowPass row_pass)
+{
+  const int cap = j.consts.cap;
+  const DistanceWindow& win = j.win;
+  const int cx0 = std::max(0, win.x0 - cap), cx1 = std::min(j.width, win.x1 + cap);
+  const int ry0 = std::max(0, win.y0 - cap), ry1 = std::min(j.height, win.y1 + cap);
+  const int cw = cx1 - cx0;
+  const int n = win.x1 - win.x0;
+  const uint8_t lo = j.source.lo;
+  const uint8_t span = static_cast<uint8_t>(j.source.hi - j.source.lo);
+  const uint8_t far = j.consts.far;
+  const int band_off = j.pad + (cx0 - win.x0);  // offset of column cx0 in a stripe row
+
+  // Columns outside the band stay far in every stripe row.
+  const int used_rows = std::min(j.stripe, win.y1 - win.y0);
+  std::memset(j.rows, far, static_cast<std::size_t>(used_rows) * static_cast<std::size_t>(j.row_stride));
+
+  // The rows above the window: the downward distance only.
+  uint8_t* __restrict run = j.run;
+  std::memset(run, far, static_cast<std::size_t>(cw));
+  for (int y = ry0; y < win.y0; ++y)
+  {
+    const uint8_t* __restrict src = j.grid + y * j.stride + cx0;
+    for (int k = 0; k < cw; ++k)
+    {
+      uint8_t r = static_cast<uint8_t>(run[k] + 1);
+      r = r < far ? r : far;
+      run[k] = static_cast<uint8_t>(src[k] - lo) <= span ? uint8_t{0} : r;
+    }
+  }
+
+  for (int s0 = win.y0; s0 < win.y1; s0 += j.stripe)
+  {
+    const int s1 = std::min(win.y1, s0 + j.stripe);
+    // Upward: from cap rows past the stripe (the grid's end at most) to its first row.
+    uint8_t* __restrict up = j.up;
+    std::memset(up, far, static_cast<std::size_t>(cw));
+    const int top = std::min(ry1, s1 + cap);
+    for (int y = top - 1; y >= s1; --y)
+    {
+      const uint8_t* __restrict src = j.grid + y * j.stride + cx0;
+      for (int k = 0; k < cw; ++k)
+      {
+        uint8_t r = static_cast<uint8_t>(up[k] + 1);
+        r = r < far ? r : far;
+        up[k] = static_cast<uint8_t>(src[k] - lo) <= span ? uint8_t{0} : r;
+      }
+    }
+    const uint8_t* below = up;
+    for (int y = s1 - 1; y >= s0; --y)
+    {
+      const uint8_t* __restrict src = j.grid + y * j.stride + cx0;
+      uint8_t* __restrict dst = j.rows + static_cast<std::size_t>(y - s0) * j.row_stride + band_off;
+      const uint8_t* __restrict b = below;
+      for (int k = 0; k < cw; ++k)
+      {
+        uint8_t r = static_cast<uint8_t>(b[k] + 1);
+        r = r < far ? r : far;
+        dst[k] = static_cast<uint8_t>(src[k] - lo) <= span ? uint8_t{0} : r;
+      }
+      below = dst;
+    }
+    // Downward, then the row pass, one row at a time while it is in cache.
+    const uint8_t* above = run;
+    for (int y = s0; y < s1; ++y)
+    {
+      uint8_t* __restrict gr = j.rows + static_cast<std::size_t>(y - s0) * j.row_stride;
+      uint8_t* __restrict dst = gr + band_off;
+      const uint8_t* __restrict a = above;
+      for (int k = 0; k < cw; ++k)
+      {
+        uint8_t r = static_cast<uint8_t>(a[k] + 1);
+        r = r < far ? r : far;
+        dst[k] = dst[k] < r ? dst[k] : r;
+      }
+      above = dst;
+      row_pass(MergeRow{gr + j.pad, j.grid + y * j.stride + win.x0, n}, j.consts);
+    }
+    std::memcpy(run, above, static_cast<std::size_t>(cw));
+  }
+}
+
+void mergePortable(const MergeJob& j) { mergeDriver(j, mergeRowPortable); }
+
+#ifdef COSTMAP_LAYERS_DT_AVX2_DISPATCH
+__attribute__((target("sse4.1"))) void mergeSse41(const MergeJob& j) { mergeDriver(j, mergeRowSse41); }
+__attribute__((target("avx2"))) void mergeAvx2(const MergeJob& j) { mergeDriver(j, mergeRowAvx2); }
+__attribute__((target("avx512f,avx512bw"))) void mergeAvx512(const MergeJob& j)
+{
+  mergeDriver(j, mergeRowAvx512);
+}
+#endif
+#ifdef COSTMAP_LAYERS_DT_NEON
+void mergeNeon(const MergeJob& j) { mergeDriver(j, mergeRowNeon); }
+#endif
 }  // namespace
 
 void cappedSquaredDistanceRows8(const uint8_t* grid, int width, int height, std::ptrdiff_t stride,
@@ -281,7 +688,112 @@ void cappedSquaredDistanceRows16(const uint8_t* grid, int width, int height, std
                       scratch.acc16, sink);
 }
 
-void setDistanceTransformSimd(bool allow) { g_allow_simd.store(allow, std::memory_order_relaxed); }
+void cappedCostMerge8(uint8_t* grid, int width, int height, std::ptrdiff_t stride, SourceRange source, int cap,
+                      const DistanceWindow& window, const uint8_t* cost_by_sq_dist, CostMergeRule rule,
+                      DistanceTransformScratch& scratch)
+{
+  if (cap < 0 || cap > kMaxBandedCap8) throw std::invalid_argument("cappedCostMerge8: cap outside [0, kMaxBandedCap8]");
+  if (rule.special_threshold == 0) throw std::invalid_argument("cappedCostMerge8: special_threshold must be >= 1");
+  const int cap_sq = cap * cap;
+  for (int d2 = 1; d2 <= cap_sq; ++d2)
+    if (cost_by_sq_dist[d2] > cost_by_sq_dist[d2 - 1])
+      throw std::invalid_argument("cappedCostMerge8: the cost table increases");
+  DistanceWindow win;
+  win.x0 = std::max(0, window.x0);
+  win.y0 = std::max(0, window.y0);
+  win.x1 = std::min(width, window.x1);
+  win.y1 = std::min(height, window.y1);
+  if (win.x0 >= win.x1 || win.y0 >= win.y1) return;
 
-const char* distanceTransformKernel() { return useAvx2() ? "avx2" : "portable"; }
+  // The tables: 16 entries per column offset, then 256 squared distances.
+  const std::size_t lut_size = static_cast<std::size_t>(kLutRow * (cap + 1) + 256);
+  if (scratch.merge_lut.size() < lut_size) scratch.merge_lut.resize(lut_size);
+  uint8_t* lut = scratch.merge_lut.data();
+  for (int dx = 0; dx <= cap; ++dx)
+    for (int i = 0; i < kLutRow; ++i)
+    {
+      const int v = i % 16;
+      const int d2 = dx * dx + v * v;
+      lut[kLutRow * dx + i] = v <= cap && d2 <= cap_sq ? cost_by_sq_dist[d2] : uint8_t{0};
+    }
+  uint8_t* cost_sq = lut + kLutRow * (cap + 1);
+  for (int d2 = 0; d2 < 256; ++d2) cost_sq[d2] = d2 <= cap_sq ? cost_by_sq_dist[d2] : uint8_t{0};
+
+  const int n = win.x1 - win.x0;
+  const int cw = std::min(width, win.x1 + cap) - std::max(0, win.x0 - cap);
+  const int pad = cap + kMaxLanes;
+  const int row_stride = n + 2 * pad;
+  // A stripe of about 256 KiB: it stays in the level-2 cache between the two vertical sweeps.
+  const int stripe = std::max(16, std::min(win.y1 - win.y0, (256 << 10) / row_stride));
+  const std::size_t rows_size = static_cast<std::size_t>(stripe) * static_cast<std::size_t>(row_stride);
+  if (scratch.merge_g.size() < rows_size) scratch.merge_g.resize(rows_size);
+  if (scratch.run.size() < static_cast<std::size_t>(2 * cw)) scratch.run.resize(static_cast<std::size_t>(2 * cw));
+
+  MergeJob job;
+  job.grid = grid;
+  job.width = width;
+  job.height = height;
+  job.stride = stride;
+  job.source = source;
+  job.win = win;
+  job.consts = MergeConsts{lut, cost_sq, cap, static_cast<uint8_t>(cap + 1), rule.special, rule.special_threshold};
+  job.rows = scratch.merge_g.data();
+  job.row_stride = row_stride;
+  job.pad = pad;
+  job.stripe = stripe;
+  job.run = scratch.run.data();
+  job.up = scratch.run.data() + cw;
+  switch (currentKernel())
+  {
+#ifdef COSTMAP_LAYERS_DT_AVX2_DISPATCH
+    case kSse41:
+      mergeSse41(job);
+      return;
+    case kAvx2:
+      mergeAvx2(job);
+      return;
+    case kAvx512:
+      mergeAvx512(job);
+      return;
+#endif
+#ifdef COSTMAP_LAYERS_DT_NEON
+    case kNeon:
+      mergeNeon(job);
+      return;
+#endif
+    default:
+      mergePortable(job);
+  }
+}
+
+void setDistanceTransformSimd(bool allow)
+{
+  g_forced_kernel.store(allow ? int{kAuto} : int{kPortable}, std::memory_order_relaxed);
+}
+
+std::vector<const char*> distanceTransformKernels()
+{
+  std::vector<const char*> names;
+  for (int k = 0; k < kKernelCount; ++k)
+    if (cpuRuns(k)) names.push_back(kKernelNames[k]);
+  return names;
+}
+
+bool setDistanceTransformKernel(const char* name)
+{
+  if (name == nullptr || *name == '\0')
+  {
+    g_forced_kernel.store(kAuto, std::memory_order_relaxed);
+    return true;
+  }
+  for (int k = 0; k < kKernelCount; ++k)
+    if (std::strcmp(name, kKernelNames[k]) == 0 && cpuRuns(k))
+    {
+      g_forced_kernel.store(k, std::memory_order_relaxed);
+      return true;
+    }
+  return false;
+}
+
+const char* distanceTransformKernel() { return kKernelNames[currentKernel()]; }
 }  // namespace costmap_layers

@@ -84,6 +84,7 @@ void InflationLayer::rebuildTable()
   cell_inflation_radius_ = 0;
   cost_table_.clear();
   table_limit_ = 0;
+  table_non_increasing_ = false;
   if (!(resolution_ > 0.0)) return;
   const double cells = std::ceil(config_.inflation_radius / resolution_);
   cell_inflation_radius_ = static_cast<int>(std::min(cells, 1e6));
@@ -97,6 +98,10 @@ void InflationLayer::rebuildTable()
   for (uint64_t d2 = 0; d2 <= cap_sq; ++d2)
     cost_table_[static_cast<std::size_t>(d2)] = inflationCost(std::sqrt(static_cast<double>(d2)), resolution_,
                                                               inscribed_radius_, config_.cost_scaling_factor);
+  table_non_increasing_ = true;
+  for (uint64_t d2 = 1; d2 <= cap_sq; ++d2)
+    if (cost_table_[static_cast<std::size_t>(d2)] > cost_table_[static_cast<std::size_t>(d2 - 1)])
+      table_non_increasing_ = false;
 }
 
 uint8_t InflationLayer::costAtSquaredDistance(uint32_t d2) const
@@ -188,7 +193,15 @@ void InflationLayer::updateCosts(Costmap2D& master_grid, int min_i, int min_j, i
   const std::ptrdiff_t stride = width;
   // The engines read the sources of a row (and the rows after it) before the sink writes that row;
   // writing never adds or removes a source (a source's cost is 254 and stays so).
-  if (cap <= kMaxBandedCap8)
+  if (cap <= kMaxBandedCap8 && table_non_increasing_)
+  {
+    // The transform in the cost domain, merged into the master in place.
+    CostMergeRule rule;
+    rule.special = NO_INFORMATION;
+    rule.special_threshold = config_.inflate_unknown ? uint8_t{1} : INSCRIBED_INFLATED_OBSTACLE;
+    cappedCostMerge8(data, width, height, stride, sources, cap, win, cost_table_.data(), rule, scratch_);
+  }
+  else if (cap <= kMaxBandedCap8)
   {
     cappedSquaredDistanceRows8(data, width, height, stride, sources, cap, win, scratch_,
                                [&](int y, const uint8_t* d) { writeRow(data + y * stride + win.x0, d, n); });

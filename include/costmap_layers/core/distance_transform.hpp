@@ -9,8 +9,14 @@
 //    min-plus over the 2 * cap + 1 neighbouring columns, in 8- or 16-bit lanes, so that the compiler
 //    vectorises every loop. Rows are streamed to a sink, and only the band of the grid within cap of
 //    the requested window is read.
-// Both are exact: every reported squared distance equals min over sources of dx^2 + dy^2.
-// Neither allocates once its scratch has grown to the largest size used.
+//  - cappedCostMerge8(): the banded transform for caps up to kMaxBandedCap8, mapped through a
+//    non-increasing cost table and merged into the grid in place (inflation). Since the table does not
+//    increase, cost(min over candidates of d^2) = max over candidates of cost(d^2): the row pass works
+//    in the cost domain, one 16-entry lookup per column offset (a byte shuffle on SSE4.1 / AVX2 /
+//    AVX-512 / NEON), blocks with no source within cap are skipped, and the vertical pass streams
+//    through cache in stripes of rows.
+// All are exact: every reported squared distance equals min over sources of dx^2 + dy^2.
+// None allocates once its scratch has grown to the largest size used.
 #pragma once
 
 #include <cstddef>
@@ -51,6 +57,8 @@ struct DistanceTransformScratch
   std::vector<uint8_t> acc8;     ///< banded 8-bit: output row
   std::vector<uint16_t> row16;   ///< banded 16-bit: padded squared vertical distances of one row
   std::vector<uint16_t> acc16;   ///< banded 16-bit: output row
+  std::vector<uint8_t> merge_g;  ///< cost merge: one stripe of padded vertical-distance rows
+  std::vector<uint8_t> merge_lut;  ///< cost merge: the per-offset 16-entry cost tables
 };
 
 /// Exact squared Euclidean distance from every cell of a width x height grid to the nearest source.
@@ -96,9 +104,36 @@ void cappedSquaredDistanceRows16(const uint8_t* grid, int width, int height, std
                                  SourceRange source, int cap, const DistanceWindow& window,
                                  DistanceTransformScratch& scratch, const DistanceRowSink16& sink);
 
-/// Whether the banded kernels may use a wider instruction set chosen at run time (AVX2 on x86-64
-/// with GCC or Clang). The default is true; tests switch it off to compare with the portable path.
+/// How cappedCostMerge8() writes a cost c into a cell holding old:
+///   old == special ? (c >= special_threshold ? c : special) : max(old, c).
+/// special_threshold must be >= 1 (a cell then never changes where c == 0).
+struct CostMergeRule
+{
+  uint8_t special = 255;
+  uint8_t special_threshold = 253;
+};
+
+/// Exact capped transform, mapped through a cost table and merged into the grid, in place.
+/// For every cell of the window (clipped to the grid), with d2 its squared distance to the nearest
+/// source (sources outside the window but within cap count): c = cost_by_sq_dist[d2] if d2 <= cap^2,
+/// else 0, written by `rule`. Every row is read before it is written, so writing may change sources.
+/// @param cost_by_sq_dist  cap^2 + 1 entries, non-increasing (else std::invalid_argument)
+/// @param cap              in [0, kMaxBandedCap8] (else std::invalid_argument)
+void cappedCostMerge8(uint8_t* grid, int width, int height, std::ptrdiff_t stride, SourceRange source, int cap,
+                      const DistanceWindow& window, const uint8_t* cost_by_sq_dist, CostMergeRule rule,
+                      DistanceTransformScratch& scratch);
+
+/// Whether the banded kernels may use a wider instruction set chosen at run time (SSE4.1, AVX2 or
+/// AVX-512BW on x86, NEON on AArch64). The default is true; false forces "portable".
 void setDistanceTransformSimd(bool allow);
-/// The kernel the banded engines use now: "avx2" or "portable".
+/// The kernels this machine runs, "portable" first, then in increasing width ("sse4.1", "avx2",
+/// "avx512bw" on x86; "neon" on AArch64).
+std::vector<const char*> distanceTransformKernels();
+/// Forces one kernel of distanceTransformKernels() (tests compare each with "portable"); an empty
+/// name or nullptr returns to the automatic choice (the widest). Returns false, changing nothing, for
+/// a kernel this machine does not run.
+bool setDistanceTransformKernel(const char* name);
+/// The kernel the banded engines use now. cappedSquaredDistanceRows8/16 run their AVX2 clone when
+/// this is "avx2" or "avx512bw", else their portable form.
 const char* distanceTransformKernel();
 }  // namespace costmap_layers

@@ -68,6 +68,9 @@ private:
   /// Cost per squared cell distance, zero past the radius; sized for every value the engine reports.
   std::vector<uint8_t> cost_table_;
   uint32_t table_limit_ = 0;  ///< squared distances above this are past the radius
+  /// Whether cost_table_ never increases with the distance (it does not for sane parameters): the
+  /// cost-domain engine relies on it.
+  bool table_non_increasing_ = false;
   std::vector<uint8_t> row_costs_;
   std::vector<uint32_t> exact_;  ///< padded window for radii beyond the banded engines
   DistanceTransformScratch scratch_;
