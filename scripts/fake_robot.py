@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Publishes the robot pose as tf (global_frame -> robot_base_frame) so that a costmap node can run
 without a robot: either a fixed pose (~x, ~y, ~yaw) or, with ~route, a route of waypoints
-"x,y;x,y;..." driven at ~speed m/s, once, after which it stays at the last waypoint."""
+"x,y;x,y;..." driven at ~speed m/s, once, after which it stays at the last waypoint. The parameter
+~done is set to true at the last waypoint."""
 import math
 
 import rospy
@@ -44,11 +45,16 @@ def main():
     yaw = float(rospy.get_param("~yaw", 0.0))
     if route:
         x, y = route[0]
+    # With ~wait_for_start the robot holds its first pose until the parameter ~start is true (tests
+    # use it to begin driving once they listen).
+    waiting = bool(rospy.get_param("~wait_for_start", False))
     broadcaster = tf2_ros.TransformBroadcaster()
     rate = rospy.Rate(rate_hz)
     target = 1
     while not rospy.is_shutdown():
-        if target < len(route):
+        if waiting:
+            waiting = not rospy.get_param("~start", False)
+        elif target < len(route):
             tx, ty = route[target]
             dx, dy = tx - x, ty - y
             dist = math.hypot(dx, dy)
@@ -56,6 +62,8 @@ def main():
             if dist <= step:
                 x, y = tx, ty
                 target += 1
+                if target == len(route):
+                    rospy.set_param("~done", True)
             else:
                 yaw = math.atan2(dy, dx)
                 x += dx / dist * step

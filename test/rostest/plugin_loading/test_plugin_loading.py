@@ -4,14 +4,16 @@ two GradientLayer instances with their own parameters, a KeepoutFilter, and the 
 unknown plugin type. Expected values are computed here from the documented formulas."""
 import os
 import subprocess
-import threading
+import sys
 import unittest
 
 import rospy
 import rostest
 import roslib.packages
-from map_msgs.msg import OccupancyGridUpdate
 from nav_msgs.msg import OccupancyGrid
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from grid_watch import GridWatcher, translate  # noqa: E402
 
 W, H = 30, 20
 
@@ -28,55 +30,6 @@ def gradient_row(width, size, factor):
         row.append(c_mod(254 - k * factor, 255) & 0xFF)
         k = k + 1 if k <= size else 0
     return row
-
-
-def translate(cost):
-    """costmap_2d's cost -> OccupancyGrid value."""
-    if cost == 0:
-        return 0
-    if cost == 253:
-        return 99
-    if cost == 254:
-        return 100
-    if cost == 255:
-        return -1
-    return 1 + (97 * (cost - 1)) // 251
-
-
-class GridWatcher:
-    """Keeps the latest costmap, applying ~costmap_updates to it."""
-
-    def __init__(self, ns):
-        self.lock = threading.Condition()
-        self.grid = None
-        rospy.Subscriber(ns + "/costmap", OccupancyGrid, self.on_grid)
-        rospy.Subscriber(ns + "/costmap_updates", OccupancyGridUpdate, self.on_update)
-
-    def on_grid(self, msg):
-        with self.lock:
-            self.grid = list(msg.data)
-            self.width = msg.info.width
-            self.height = msg.info.height
-            self.lock.notify_all()
-
-    def on_update(self, msg):
-        with self.lock:
-            if self.grid is None:
-                return
-            for j in range(msg.height):
-                for i in range(msg.width):
-                    self.grid[(msg.y + j) * self.width + msg.x + i] = msg.data[j * msg.width + i]
-            self.lock.notify_all()
-
-    def wait_for(self, expected, timeout):
-        """Waits until the grid equals expected (updates arrive as the node cycles); returns the last grid."""
-        deadline = rospy.Time.now() + rospy.Duration(timeout)
-        with self.lock:
-            while not rospy.is_shutdown() and rospy.Time.now() < deadline:
-                if self.grid == expected:
-                    break
-                self.lock.wait(0.5)
-            return None if self.grid is None else list(self.grid)
 
 
 class PluginLoadingTest(unittest.TestCase):
@@ -112,7 +65,8 @@ class PluginLoadingTest(unittest.TestCase):
                 if 5 <= j < 10 and 20 <= i < 25:
                     cost = max(cost, 127)
                 expected.append(translate(cost))
-        got = self.a.wait_for(expected, 30.0)
+        self.a.wait_until(lambda g: g.data == expected, 30.0)
+        got = self.a.snapshot()
         self.assertIsNotNone(got, "no costmap published on /costmap_a/costmap")
         self.assertEqual(got, expected)
         # The keepout block really is lethal and the gradient starts at 254 in column 0.
@@ -123,7 +77,8 @@ class PluginLoadingTest(unittest.TestCase):
         row = gradient_row(W, 3, 60)
         self.assertEqual(row[:6], [254, 194, 134, 74, 14, 254])
         expected = [translate(c) for _ in range(H) for c in row]
-        got = self.b.wait_for(expected, 30.0)
+        self.b.wait_until(lambda g: g.data == expected, 30.0)
+        got = self.b.snapshot()
         self.assertIsNotNone(got, "no costmap published on /costmap_b/costmap")
         self.assertEqual(got, expected)
 

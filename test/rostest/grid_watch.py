@@ -1,0 +1,67 @@
+"""Shared by the Python rostests: follows a costmap node's ~costmap and ~costmap_updates, and
+translates costs the way costmap_2d publishes them."""
+import threading
+
+import rospy
+from map_msgs.msg import OccupancyGridUpdate
+from nav_msgs.msg import OccupancyGrid
+
+
+def translate(cost):
+    """costmap_2d's cost -> OccupancyGrid value: 0 -> 0, 1..252 -> 1..98, 253 -> 99, 254 -> 100, 255 -> -1."""
+    if cost == 0:
+        return 0
+    if cost == 253:
+        return 99
+    if cost == 254:
+        return 100
+    if cost == 255:
+        return -1
+    return 1 + (97 * (cost - 1)) // 251
+
+
+class GridWatcher:
+    """Keeps the latest costmap of a node, applying its updates."""
+
+    def __init__(self, ns):
+        self.cond = threading.Condition()
+        self.data = None
+        self.width = self.height = 0
+        self.resolution = 0.0
+        rospy.Subscriber(ns + "/costmap", OccupancyGrid, self._on_grid)
+        rospy.Subscriber(ns + "/costmap_updates", OccupancyGridUpdate, self._on_update)
+
+    def _on_grid(self, msg):
+        with self.cond:
+            self.data = list(msg.data)
+            self.width = msg.info.width
+            self.height = msg.info.height
+            self.resolution = msg.info.resolution
+            self.cond.notify_all()
+
+    def _on_update(self, msg):
+        with self.cond:
+            if self.data is None:
+                return
+            for j in range(msg.height):
+                row = (msg.y + j) * self.width + msg.x
+                self.data[row:row + msg.width] = msg.data[j * msg.width:(j + 1) * msg.width]
+            self.cond.notify_all()
+
+    def at(self, x, y):
+        """The value of the cell containing (x, y) [m], for a grid with its origin at (0, 0)."""
+        return self.data[int(y / self.resolution) * self.width + int(x / self.resolution)]
+
+    def wait_until(self, predicate, timeout):
+        """Waits (on arrivals, not on a fixed sleep) until predicate(self) holds; returns whether it does."""
+        deadline = rospy.Time.now() + rospy.Duration(timeout)
+        with self.cond:
+            while not rospy.is_shutdown() and rospy.Time.now() < deadline:
+                if self.data is not None and predicate(self):
+                    return True
+                self.cond.wait(0.5)
+            return self.data is not None and predicate(self)
+
+    def snapshot(self):
+        with self.cond:
+            return None if self.data is None else list(self.data)
