@@ -40,6 +40,42 @@ public:
     return [this](double v) { published_speeds.push_back(v); };
   }
   void advertiseToggle(std::function<void(bool)> cb) override { toggle = std::move(cb); }
+  void subscribeLaserScan(const std::string& topic, const std::string& sensor_frame,
+                          SensorCallback<LaserScanData> cb) override
+  {
+    scan_subs.push_back({topic, sensor_frame, std::move(cb)});
+  }
+  void subscribePointCloud2(const std::string& topic, const std::string& sensor_frame,
+                            SensorCallback<PointCloud2Data> cb) override
+  {
+    cloud_subs.push_back({topic, sensor_frame, std::move(cb)});
+  }
+  void subscribeRange(const std::string& topic, SensorCallback<RangeData> cb) override
+  {
+    range_subs.push_back({topic, "", std::move(cb)});
+  }
+  /// Delivers a reading to every subscription of its topic (as the node would once tf had the pose).
+  template <class Reading, class Subs>
+  static int deliver(Subs& subs, const std::string& topic, const Reading& reading, const SensorPose& pose)
+  {
+    auto shared = std::make_shared<const Reading>(reading);
+    int n = 0;
+    for (auto& s : subs)
+      if (s.topic == topic) s.cb(shared, pose), ++n;
+    return n;
+  }
+  int publishScan(const std::string& topic, const LaserScanData& scan, const SensorPose& pose = {})
+  {
+    return deliver(scan_subs, topic, scan, pose);
+  }
+  int publishCloud(const std::string& topic, const PointCloud2Data& cloud, const SensorPose& pose = {})
+  {
+    return deliver(cloud_subs, topic, cloud, pose);
+  }
+  int publishRange(const std::string& topic, const RangeData& range, const SensorPose& pose = {})
+  {
+    return deliver(range_subs, topic, range, pose);
+  }
 
   std::optional<Transform2D> lookupTransform(const std::string& target, const std::string& source,
                                              std::string* error) override
@@ -88,6 +124,17 @@ public:
     std::string topic;
     SpeedLimitsCallback cb;
   };
+  template <class Reading>
+  struct SensorSub
+  {
+    std::string topic;
+    std::string sensor_frame;
+    SensorCallback<Reading> cb;
+  };
+  std::vector<SensorSub<LaserScanData>> scan_subs;
+  std::vector<SensorSub<PointCloud2Data>> cloud_subs;
+  std::vector<SensorSub<RangeData>> range_subs;
+
   struct Report
   {
     Severity severity;

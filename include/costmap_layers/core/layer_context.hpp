@@ -11,6 +11,7 @@
 
 #include "costmap_layers/core/grid_data.hpp"
 #include "costmap_layers/core/param_value.hpp"
+#include "costmap_layers/core/sensor_data.hpp"
 #include "costmap_layers/core/transform2d.hpp"
 
 namespace costmap_layers
@@ -23,6 +24,8 @@ enum class GridKind { Map, Mask };
 using GridCallback = std::function<void(const std::shared_ptr<const OccupancyGridData>&)>;
 using GridUpdateCallback = std::function<void(const std::shared_ptr<const OccupancyGridUpdateData>&)>;
 using SpeedLimitsCallback = std::function<void(const std::shared_ptr<const SpeedLimitsData>&)>;
+template <class Reading>
+using SensorCallback = std::function<void(const std::shared_ptr<const Reading>&, const SensorPose&)>;
 using MaxSpeedPublisher = std::function<void(double max_speed)>;
 
 class LayerContext
@@ -43,6 +46,21 @@ public:
   /// Partial map updates (map_msgs/OccupancyGridUpdate). Hosts without such a source ignore it.
   virtual void subscribeGridUpdates(const std::string& topic, GridUpdateCallback cb) { (void)topic, (void)cb; }
   virtual void subscribeSpeedLimits(const std::string& topic, SpeedLimitsCallback cb) = 0;
+  /// Sensor readings, delivered only once the host has the transform from the reading's frame into the
+  /// global frame at the reading's stamp (it waits a bounded time for tf, then drops the reading with a
+  /// throttled warning naming the frames). `sensor_frame`, when not empty, overrides the frame whose
+  /// origin is the sensor origin. Hosts without sensors ignore these.
+  virtual void subscribeLaserScan(const std::string& topic, const std::string& sensor_frame,
+                                  SensorCallback<LaserScanData> cb)
+  {
+    (void)topic, (void)sensor_frame, (void)cb;
+  }
+  virtual void subscribePointCloud2(const std::string& topic, const std::string& sensor_frame,
+                                    SensorCallback<PointCloud2Data> cb)
+  {
+    (void)topic, (void)sensor_frame, (void)cb;
+  }
+  virtual void subscribeRange(const std::string& topic, SensorCallback<RangeData> cb) { (void)topic, (void)cb; }
   /// A latched publisher of the current speed limit [m/s] on topic.
   virtual MaxSpeedPublisher advertiseMaxSpeed(const std::string& topic) = 0;
   /// Registers a run-time on/off switch for this layer (a ~<name>/toggle service in the node).
