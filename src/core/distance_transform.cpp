@@ -427,9 +427,19 @@ __attribute__((target("sse4.1"))) void mergeRowSse41(const MergeRow& r, const Me
       if (oo == cap) break;
     }
     if (_mm_movemask_epi8(_mm_cmpeq_epi8(near, far)) == 0xFFFF) continue;
+    // Two accumulators: the maxima of odd and even offsets form two shorter dependency chains.
     __m128i c = _mm_shuffle_epi8(load(k.lut), load(g));
-    for (int dx = 1; dx <= cap; ++dx)
-      c = _mm_max_epu8(c, _mm_shuffle_epi8(load(k.lut + kLutRow * dx), _mm_min_epu8(load(g - dx), load(g + dx))));
+    __m128i c1 = _mm_setzero_si128();
+    int dx = 1;
+    for (; dx < cap; dx += 2)
+    {
+      c1 = _mm_max_epu8(c1, _mm_shuffle_epi8(load(k.lut + kLutRow * dx), _mm_min_epu8(load(g - dx), load(g + dx))));
+      const int e = dx + 1;
+      c = _mm_max_epu8(c, _mm_shuffle_epi8(load(k.lut + kLutRow * e), _mm_min_epu8(load(g - e), load(g + e))));
+    }
+    if (dx == cap)
+      c1 = _mm_max_epu8(c1, _mm_shuffle_epi8(load(k.lut + kLutRow * dx), _mm_min_epu8(load(g - dx), load(g + dx))));
+    c = _mm_max_epu8(c, c1);
     uint8_t tmp[V];
     const bool whole = x + V <= r.n;
     uint8_t* dst = whole ? r.out + x : tmp;
@@ -463,9 +473,19 @@ __attribute__((target("avx2"))) void mergeRowAvx2(const MergeRow& r, const Merge
       if (oo == cap) break;
     }
     if (_mm256_movemask_epi8(_mm256_cmpeq_epi8(near, far)) == -1) continue;
+    // Two accumulators: the maxima of odd and even offsets form two shorter dependency chains.
     __m256i c = _mm256_shuffle_epi8(lut[0], load256(g));
-    for (int dx = 1; dx <= cap; ++dx)
-      c = _mm256_max_epu8(c, _mm256_shuffle_epi8(lut[dx], _mm256_min_epu8(load256(g - dx), load256(g + dx))));
+    __m256i c1 = _mm256_setzero_si256();
+    int dx = 1;
+    for (; dx < cap; dx += 2)
+    {
+      c1 = _mm256_max_epu8(c1, _mm256_shuffle_epi8(lut[dx], _mm256_min_epu8(load256(g - dx), load256(g + dx))));
+      const int e = dx + 1;
+      c = _mm256_max_epu8(c, _mm256_shuffle_epi8(lut[e], _mm256_min_epu8(load256(g - e), load256(g + e))));
+    }
+    if (dx == cap)
+      c1 = _mm256_max_epu8(c1, _mm256_shuffle_epi8(lut[dx], _mm256_min_epu8(load256(g - dx), load256(g + dx))));
+    c = _mm256_max_epu8(c, c1);
     uint8_t tmp[V];
     const bool whole = x + V <= r.n;
     uint8_t* dst = whole ? r.out + x : tmp;
@@ -500,9 +520,19 @@ __attribute__((target("avx512f,avx512bw"))) void mergeRowAvx512(const MergeRow& 
       if (oo == cap) break;
     }
     if (_mm512_cmpneq_epu8_mask(near, far) == 0) continue;
+    // Two accumulators: the maxima of odd and even offsets form two shorter dependency chains.
     __m512i c = _mm512_shuffle_epi8(lut[0], load512(g));
-    for (int dx = 1; dx <= cap; ++dx)
-      c = _mm512_max_epu8(c, _mm512_shuffle_epi8(lut[dx], _mm512_min_epu8(load512(g - dx), load512(g + dx))));
+    __m512i c1 = _mm512_setzero_si512();
+    int dx = 1;
+    for (; dx < cap; dx += 2)
+    {
+      c1 = _mm512_max_epu8(c1, _mm512_shuffle_epi8(lut[dx], _mm512_min_epu8(load512(g - dx), load512(g + dx))));
+      const int e = dx + 1;
+      c = _mm512_max_epu8(c, _mm512_shuffle_epi8(lut[e], _mm512_min_epu8(load512(g - e), load512(g + e))));
+    }
+    if (dx == cap)
+      c1 = _mm512_max_epu8(c1, _mm512_shuffle_epi8(lut[dx], _mm512_min_epu8(load512(g - dx), load512(g + dx))));
+    c = _mm512_max_epu8(c, c1);
     const int left = r.n - x;
     const __mmask64 lanes = left >= V ? ~__mmask64{0} : ((__mmask64{1} << left) - 1);
     uint8_t* dst = r.out + x;
@@ -535,9 +565,18 @@ void mergeRowNeon(const MergeRow& r, const MergeConsts& k)
       if (oo == cap) break;
     }
     if (vminvq_u8(near) >= k.far) continue;
+    // Two accumulators: the maxima of odd and even offsets form two shorter dependency chains.
     uint8x16_t c = vqtbl1q_u8(lut[0], vld1q_u8(g));
-    for (int dx = 1; dx <= cap; ++dx)
-      c = vmaxq_u8(c, vqtbl1q_u8(lut[dx], vminq_u8(vld1q_u8(g - dx), vld1q_u8(g + dx))));
+    uint8x16_t c1 = vdupq_n_u8(0);
+    int dx = 1;
+    for (; dx < cap; dx += 2)
+    {
+      c1 = vmaxq_u8(c1, vqtbl1q_u8(lut[dx], vminq_u8(vld1q_u8(g - dx), vld1q_u8(g + dx))));
+      const int e = dx + 1;
+      c = vmaxq_u8(c, vqtbl1q_u8(lut[e], vminq_u8(vld1q_u8(g - e), vld1q_u8(g + e))));
+    }
+    if (dx == cap) c1 = vmaxq_u8(c1, vqtbl1q_u8(lut[dx], vminq_u8(vld1q_u8(g - dx), vld1q_u8(g + dx))));
+    c = vmaxq_u8(c, c1);
     uint8_t tmp[V];
     const bool whole = x + V <= r.n;
     uint8_t* dst = whole ? r.out + x : tmp;
@@ -568,10 +607,9 @@ struct MergeJob
   uint8_t* up;         // the upward running distance past the stripe, band width
 };
 
-/// The vertical pass, in stripes of rows, and the row pass per row. The vertical distance of a row is
-/// min(its own upward distance, the row before's + 1), both saturating at cap + 1; the upward
-/// distances of a stripe come from sweeping up from cap rows past it. RowPass is inlined into the
-/// caller's instruction set.
+/// The vertical pass, in stripes of rows, and the row pass per row (in decreasing y within a stripe:
+/// each grid row is read, as a source row, before it is written). Vertical distances saturate at
+/// cap + 1. RowPass is inlined into the caller's instruction set.
 template <class RowPass>
 COSTMAP_LAYERS_DT_INLINE void mergeDriver(const MergeJob& j, RowPass row_pass)
 {
@@ -607,51 +645,54 @@ COSTMAP_LAYERS_DT_INLINE void mergeDriver(const MergeJob& j, RowPass row_pass)
   for (int s0 = win.y0; s0 < win.y1; s0 += j.stripe)
   {
     const int s1 = std::min(win.y1, s0 + j.stripe);
-    // Upward: from cap rows past the stripe (the grid's end at most) to its first row.
-    uint8_t* __restrict up = j.up;
-    std::memset(up, far, static_cast<std::size_t>(cw));
-    const int top = std::min(ry1, s1 + cap);
-    for (int y = top - 1; y >= s1; --y)
-    {
-      const uint8_t* __restrict src = j.grid + y * j.stride + cx0;
-      for (int k = 0; k < cw; ++k)
-      {
-        uint8_t r = static_cast<uint8_t>(up[k] + 1);
-        r = r < far ? r : far;
-        up[k] = static_cast<uint8_t>(src[k] - lo) <= span ? uint8_t{0} : r;
-      }
-    }
-    const uint8_t* below = up;
-    for (int y = s1 - 1; y >= s0; --y)
-    {
-      const uint8_t* __restrict src = j.grid + y * j.stride + cx0;
-      uint8_t* __restrict dst = j.rows + static_cast<std::size_t>(y - s0) * j.row_stride + band_off;
-      const uint8_t* __restrict b = below;
-      for (int k = 0; k < cw; ++k)
-      {
-        uint8_t r = static_cast<uint8_t>(b[k] + 1);
-        r = r < far ? r : far;
-        dst[k] = static_cast<uint8_t>(src[k] - lo) <= span ? uint8_t{0} : r;
-      }
-      below = dst;
-    }
-    // Downward, then the row pass, one row at a time while it is in cache.
+    // Downward through the stripe, reading the grid forward (as the hardware prefetchers expect).
     const uint8_t* above = run;
     for (int y = s0; y < s1; ++y)
     {
-      uint8_t* __restrict gr = j.rows + static_cast<std::size_t>(y - s0) * j.row_stride;
-      uint8_t* __restrict dst = gr + band_off;
+      const uint8_t* __restrict src = j.grid + y * j.stride + cx0;
+      uint8_t* __restrict dst = j.rows + static_cast<std::size_t>(y - s0) * j.row_stride + band_off;
       const uint8_t* __restrict a = above;
       for (int k = 0; k < cw; ++k)
       {
         uint8_t r = static_cast<uint8_t>(a[k] + 1);
         r = r < far ? r : far;
-        dst[k] = dst[k] < r ? dst[k] : r;
+        dst[k] = static_cast<uint8_t>(src[k] - lo) <= span ? uint8_t{0} : r;
       }
       above = dst;
-      row_pass(MergeRow{gr + j.pad, j.grid + y * j.stride + win.x0, n}, j.consts);
     }
     std::memcpy(run, above, static_cast<std::size_t>(cw));
+    // The upward distance of the row after the stripe: the nearest source among the next cap rows,
+    // also read forward.
+    uint8_t* __restrict up = j.up;
+    std::memset(up, far, static_cast<std::size_t>(cw));
+    const int top = std::min(ry1, s1 + cap);
+    for (int y = s1; y < top; ++y)
+    {
+      const uint8_t* __restrict src = j.grid + y * j.stride + cx0;
+      const uint8_t d = static_cast<uint8_t>(y - s1);
+      for (int k = 0; k < cw; ++k)
+      {
+        const uint8_t v = static_cast<uint8_t>(src[k] - lo) <= span ? d : far;
+        up[k] = up[k] < v ? up[k] : v;
+      }
+    }
+    // Upward through the stripe, then the row pass, one row at a time while it is in cache. The
+    // vertical distance of a row is min(its downward distance, the next row's vertical distance + 1).
+    const uint8_t* below = up;
+    for (int y = s1 - 1; y >= s0; --y)
+    {
+      uint8_t* __restrict gr = j.rows + static_cast<std::size_t>(y - s0) * j.row_stride;
+      uint8_t* __restrict dst = gr + band_off;
+      const uint8_t* __restrict b = below;
+      for (int k = 0; k < cw; ++k)
+      {
+        uint8_t r = static_cast<uint8_t>(b[k] + 1);
+        r = r < far ? r : far;
+        dst[k] = dst[k] < r ? dst[k] : r;
+      }
+      below = dst;
+      row_pass(MergeRow{gr + j.pad, j.grid + y * j.stride + win.x0, n}, j.consts);
+    }
   }
 }
 
