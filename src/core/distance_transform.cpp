@@ -21,8 +21,10 @@
 #endif
 #if defined(__GNUC__) || defined(__clang__)
 #define COSTMAP_LAYERS_DT_INLINE inline __attribute__((always_inline))
+#define COSTMAP_LAYERS_DT_PREFETCH(p) __builtin_prefetch((p), 0, 2)
 #else
 #define COSTMAP_LAYERS_DT_INLINE inline
+#define COSTMAP_LAYERS_DT_PREFETCH(p) ((void)(p))
 #endif
 
 namespace costmap_layers
@@ -691,6 +693,14 @@ COSTMAP_LAYERS_DT_INLINE void mergeDriver(const MergeJob& j, RowPass row_pass)
         dst[k] = dst[k] < r ? dst[k] : r;
       }
       below = dst;
+      // Overlap the next stripe's memory reads with this stripe's work: one row per row, into the
+      // level-2 cache (the grid is read there next, and the lookahead above has read cap rows of it).
+      const int ahead = s1 + cap + (s1 - 1 - y);
+      if (ahead < ry1)
+      {
+        const uint8_t* next = j.grid + ahead * j.stride + cx0;
+        for (int k = 0; k < cw; k += 64) COSTMAP_LAYERS_DT_PREFETCH(next + k);
+      }
       row_pass(MergeRow{gr + j.pad, j.grid + y * j.stride + win.x0, n}, j.consts);
     }
   }
