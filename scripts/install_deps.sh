@@ -11,7 +11,8 @@ PKGS=(
   python3-colcon-package-selection rosbash python3-rostopic python3-rosnode python3-roslaunch
   libeigen3-dev libtf2-ros-dev libmap-msgs-dev python3-map-msgs ros-map-msgs libyaml-cpp-dev
   libpng-dev libbenchmark-dev libstd-srvs-dev ros-std-srvs python3-std-srvs python3-rospy
-  python3-tf2-ros python3-yaml
+  python3-tf2-ros python3-yaml libsensor-msgs-dev ros-sensor-msgs python3-sensor-msgs
+  libmessage-filters-dev
 )
 missing=()
 for p in "${PKGS[@]}"; do

@@ -42,6 +42,7 @@ CostmapConfig parseCostmapConfig(const ParamValue& ns)
   c.rolling_window = p.getBool("rolling_window", c.rolling_window);
   c.track_unknown_space = p.getBool("track_unknown_space", c.track_unknown_space);
   c.always_send_full_costmap = p.getBool("always_send_full_costmap", c.always_send_full_costmap);
+  c.reset_distance = p.getDouble("reset_distance", c.reset_distance, 0.0, 1e6);
   c.footprint = parseFootprintConfig(p);
   return c;
 }

@@ -47,6 +47,61 @@ costmap_layers::OccupancyGridUpdateData fromMsg(const map_msgs::OccupancyGridUpd
   return u;
 }
 
+costmap_layers::LaserScanData fromMsg(const sensor_msgs::LaserScan& msg)
+{
+  costmap_layers::LaserScanData d;
+  d.frame_id = msg.header.frame_id;
+  d.stamp_ns = msg.header.stamp.toNSec();
+  d.angle_min = msg.angle_min;
+  d.angle_max = msg.angle_max;
+  d.angle_increment = msg.angle_increment;
+  d.time_increment = msg.time_increment;
+  d.scan_time = msg.scan_time;
+  d.range_min = msg.range_min;
+  d.range_max = msg.range_max;
+  d.ranges = msg.ranges;
+  d.intensities = msg.intensities;
+  return d;
+}
+
+costmap_layers::PointCloud2Data fromMsg(const sensor_msgs::PointCloud2& msg)
+{
+  costmap_layers::PointCloud2Data d;
+  d.frame_id = msg.header.frame_id;
+  d.stamp_ns = msg.header.stamp.toNSec();
+  d.height = msg.height;
+  d.width = msg.width;
+  for (const auto& f : msg.fields) d.fields.push_back({f.name, f.offset, f.datatype, f.count});
+  d.is_bigendian = msg.is_bigendian;
+  d.point_step = msg.point_step;
+  d.row_step = msg.row_step;
+  d.data = msg.data;
+  d.is_dense = msg.is_dense;
+  return d;
+}
+
+costmap_layers::RangeData fromMsg(const sensor_msgs::Range& msg)
+{
+  costmap_layers::RangeData d;
+  d.frame_id = msg.header.frame_id;
+  d.stamp_ns = msg.header.stamp.toNSec();
+  d.radiation_type = msg.radiation_type;
+  d.field_of_view = msg.field_of_view;
+  d.min_range = msg.min_range;
+  d.max_range = msg.max_range;
+  d.range = msg.range;
+  return d;
+}
+
+costmap_layers::Transform3D fromMsg(const geometry_msgs::Transform& msg)
+{
+  const auto& q = msg.rotation;
+  const double n = std::sqrt(q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w);
+  const double s = n > 0.0 ? 1.0 / n : 1.0;
+  return costmap_layers::Transform3D::fromQuaternion(msg.translation.x, msg.translation.y, msg.translation.z,
+                                                     q.x * s, q.y * s, q.z * s, n > 0.0 ? q.w * s : 1.0);
+}
+
 void toOccupancyGrid(const costmap_layers::Costmap2D& costmap, const std::string& frame, const ros::Time& stamp,
                      nav_msgs::OccupancyGrid& msg)
 {

@@ -3,11 +3,13 @@
 #include <geometry_msgs/PolygonStamped.h>
 #include <map_msgs/OccupancyGridUpdate.h>
 #include <nav_msgs/OccupancyGrid.h>
+#include <std_srvs/Empty.h>
 
 #include <algorithm>
 #include <cmath>
 
 #include "costmap_layers/core/costmap_builder.hpp"
+#include "costmap_layers/core/costmap_clearing.hpp"
 #include "costmap_layers/core/layer.hpp"
 #include "costmap_layers/ros/conversions.hpp"
 
@@ -70,6 +72,22 @@ void CostmapNode::setUp()
       "costmap", 1, [this](const ros::SingleSubscriberPublisher&) { new_subscriber_ = true; }, {}, {}, true);
   update_pub_ = private_nh_.advertise<map_msgs::OccupancyGridUpdate>("costmap_updates", 1);
   footprint_pub_ = private_nh_.advertise<geometry_msgs::PolygonStamped>("footprint", 1);
+  clear_srv_ = private_nh_.advertiseService<std_srvs::Empty::Request, std_srvs::Empty::Response>(
+      "clear", [this](std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+        std::lock_guard<std::mutex> lock(update_mutex_);
+        const int n = costmap_layers::resetClearableLayers(*costmap_);
+        ROS_INFO("costmap: cleared %d clearable layer(s)", n);
+        return true;
+      });
+  clear_around_srv_ = private_nh_.advertiseService<std_srvs::Empty::Request, std_srvs::Empty::Response>(
+      "clear_around_robot", [this](std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+        std::lock_guard<std::mutex> lock(update_mutex_);
+        const int n =
+            costmap_layers::clearClearableLayersAround(*costmap_, last_x_, last_y_, config_.reset_distance);
+        ROS_INFO("costmap: cleared %d clearable layer(s) outside %.2f m around the robot", n,
+                 config_.reset_distance);
+        return true;
+      });
 }
 
 CostmapNode::~CostmapNode()
@@ -93,7 +111,10 @@ bool CostmapNode::updateOnce()
 {
   const auto pose = robotPose();
   if (!pose) return false;
+  std::lock_guard<std::mutex> lock(update_mutex_);
   costmap_->updateMap(pose->x, pose->y, pose->yaw);
+  last_x_ = pose->x;
+  last_y_ = pose->y;
 
   const CellWindow w = costmap_->getUpdatedBounds();
   if (!w.empty())

@@ -2,7 +2,9 @@
 
 #include <map_msgs/OccupancyGridUpdate.h>
 #include <nav_msgs/OccupancyGrid.h>
+#include <message_filters/subscriber.h>
 #include <std_srvs/SetBool.h>
+#include <tf2_ros/message_filter.h>
 #include <tf2/exceptions.h>
 
 #include <cmath>
@@ -92,6 +94,78 @@ void RosLayerContext::subscribeSpeedLimits(const std::string& topic, costmap_lay
           log->log(Severity::Error, owner + topic, owner + ": dropped speed limits on " + topic + ": " + e.what());
         }
       }));
+}
+
+namespace
+{
+/// A message filter and the subscriber it reads, destroyed in that order.
+template <class Msg>
+struct FilteredInput
+{
+  message_filters::Subscriber<Msg> subscriber;
+  tf2_ros::MessageFilter<Msg> filter;
+  FilteredInput(ros::NodeHandle& nh, const std::string& topic, tf2_ros::Buffer& tf, const std::string& target)
+    : subscriber(nh, topic, 5), filter(subscriber, tf, target, 50, nh)
+  {
+  }
+};
+}  // namespace
+
+template <class Msg, class Reading>
+void RosLayerContext::subscribeSensor(const std::string& topic, const std::string& sensor_frame,
+                                      costmap_layers::SensorCallback<Reading> cb)
+{
+  auto input = std::make_shared<FilteredInput<Msg>>(public_nh_, topic, tf_, global_frame_);
+  const std::string owner = private_nh_.getNamespace();
+  const std::string global = global_frame_;
+  tf2_ros::Buffer& tf = tf_;
+  auto log = log_;
+  input->filter.registerCallback([=, &tf](const typename Msg::ConstPtr& msg) {
+    try
+    {
+      costmap_layers::SensorPose pose;
+      const std::string& frame = msg->header.frame_id;
+      pose.to_global = fromMsg(tf.lookupTransform(global, frame, msg->header.stamp).transform);
+      const std::string origin_frame = sensor_frame.empty() ? frame : sensor_frame;
+      const auto origin = tf.lookupTransform(global, origin_frame, msg->header.stamp, ros::Duration(0.1));
+      pose.origin_x = origin.transform.translation.x;
+      pose.origin_y = origin.transform.translation.y;
+      pose.origin_z = origin.transform.translation.z;
+      cb(std::make_shared<const Reading>(fromMsg(*msg)), pose);
+    }
+    catch (const std::exception& e)
+    {
+      log->log(Severity::Warn, owner + topic + "/tf",
+               owner + ": dropped a reading on " + topic + " (frame " + msg->header.frame_id + "): " + e.what());
+    }
+  });
+  input->filter.registerFailureCallback(
+      [=](const typename Msg::ConstPtr& msg, tf2_ros::filter_failure_reasons::FilterFailureReason reason) {
+        const char* why = reason == tf2_ros::filter_failure_reasons::EmptyFrameID ? "it has no frame_id"
+                                                                                   : "no transform arrived in time";
+        log->log(Severity::Warn, owner + topic + "/tf",
+                 owner + ": dropped a reading on " + topic + ": cannot transform frame '" + msg->header.frame_id +
+                     "' into '" + global + "' (" + why + ")");
+      });
+  sensor_inputs_.push_back(input);
+}
+
+void RosLayerContext::subscribeLaserScan(const std::string& topic, const std::string& sensor_frame,
+                                         costmap_layers::SensorCallback<costmap_layers::LaserScanData> cb)
+{
+  subscribeSensor<sensor_msgs::LaserScan>(topic, sensor_frame, std::move(cb));
+}
+
+void RosLayerContext::subscribePointCloud2(const std::string& topic, const std::string& sensor_frame,
+                                           costmap_layers::SensorCallback<costmap_layers::PointCloud2Data> cb)
+{
+  subscribeSensor<sensor_msgs::PointCloud2>(topic, sensor_frame, std::move(cb));
+}
+
+void RosLayerContext::subscribeRange(const std::string& topic,
+                                     costmap_layers::SensorCallback<costmap_layers::RangeData> cb)
+{
+  subscribeSensor<sensor_msgs::Range>(topic, "", std::move(cb));
 }
 
 costmap_layers::MaxSpeedPublisher RosLayerContext::advertiseMaxSpeed(const std::string& topic)

@@ -2,7 +2,11 @@
 #pragma once
 
 #include <map_msgs/OccupancyGridUpdate.h>
+#include <geometry_msgs/TransformStamped.h>
 #include <nav_msgs/OccupancyGrid.h>
+#include <sensor_msgs/LaserScan.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <sensor_msgs/Range.h>
 #include <xmlrpcpp/XmlRpcValue.h>
 
 #include "costmap_layers/SpeedLimits.h"
@@ -10,6 +14,7 @@
 #include "costmap_layers/core/grid_data.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
 #include "costmap_layers/core/param_value.hpp"
+#include "costmap_layers/core/sensor_data.hpp"
 
 namespace costmap_layers_ros
 {
@@ -17,6 +22,11 @@ namespace costmap_layers_ros
 costmap_layers::OccupancyGridData fromMsg(const nav_msgs::OccupancyGrid& msg);
 costmap_layers::SpeedLimitsData fromMsg(const costmap_layers::SpeedLimits& msg);
 costmap_layers::OccupancyGridUpdateData fromMsg(const map_msgs::OccupancyGridUpdate& msg);
+/// Sensor messages: plain copies; the core validates them.
+costmap_layers::LaserScanData fromMsg(const sensor_msgs::LaserScan& msg);
+costmap_layers::PointCloud2Data fromMsg(const sensor_msgs::PointCloud2& msg);
+costmap_layers::RangeData fromMsg(const sensor_msgs::Range& msg);
+costmap_layers::Transform3D fromMsg(const geometry_msgs::Transform& msg);
 
 /// The whole costmap as an OccupancyGrid (costs translated as costmap_2d does).
 void toOccupancyGrid(const costmap_layers::Costmap2D& costmap, const std::string& frame, const ros::Time& stamp,

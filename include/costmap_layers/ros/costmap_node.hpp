@@ -7,6 +7,7 @@
 #include <tf2_ros/transform_listener.h>
 
 #include <atomic>
+#include <mutex>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -60,6 +61,10 @@ private:
   ros::Publisher costmap_pub_;
   ros::Publisher update_pub_;
   ros::Publisher footprint_pub_;
+  ros::ServiceServer clear_srv_;
+  ros::ServiceServer clear_around_srv_;
+  std::mutex update_mutex_;  ///< one update cycle or one clear request at a time
+  double last_x_ = 0, last_y_ = 0;  ///< the robot position of the last update [m]
   std::atomic<bool> new_subscriber_{false};
   bool published_once_ = false;
   costmap_layers::CellWindow pending_;  ///< changed since the last publish

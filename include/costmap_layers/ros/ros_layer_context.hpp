@@ -48,6 +48,12 @@ public:
   void subscribeGrid(const std::string& topic, costmap_layers::GridKind kind, costmap_layers::GridCallback cb) override;
   void subscribeGridUpdates(const std::string& topic, costmap_layers::GridUpdateCallback cb) override;
   void subscribeSpeedLimits(const std::string& topic, costmap_layers::SpeedLimitsCallback cb) override;
+  void subscribeLaserScan(const std::string& topic, const std::string& sensor_frame,
+                          costmap_layers::SensorCallback<costmap_layers::LaserScanData> cb) override;
+  void subscribePointCloud2(const std::string& topic, const std::string& sensor_frame,
+                            costmap_layers::SensorCallback<costmap_layers::PointCloud2Data> cb) override;
+  void subscribeRange(const std::string& topic,
+                      costmap_layers::SensorCallback<costmap_layers::RangeData> cb) override;
   costmap_layers::MaxSpeedPublisher advertiseMaxSpeed(const std::string& topic) override;
   void advertiseToggle(std::function<void(bool)> cb) override;
   std::optional<costmap_layers::Transform2D> lookupTransform(const std::string& target_frame,
@@ -57,6 +63,12 @@ public:
   void report(costmap_layers::Severity severity, const std::string& key, const std::string& message) override;
 
 private:
+  /// Subscribes through a tf2 message filter: a reading is delivered once its frame can be
+  /// transformed into the global frame at its stamp, or dropped with a throttled warning.
+  template <class Msg, class Reading>
+  void subscribeSensor(const std::string& topic, const std::string& sensor_frame,
+                       costmap_layers::SensorCallback<Reading> cb);
+
   ros::NodeHandle public_nh_;
   ros::NodeHandle private_nh_;
   costmap_layers::ParamValue params_;
@@ -67,5 +79,6 @@ private:
   std::vector<ros::Subscriber> subscribers_;
   std::vector<ros::Publisher> publishers_;
   std::vector<ros::ServiceServer> services_;
+  std::vector<std::shared_ptr<void>> sensor_inputs_;  ///< message filters with their subscribers
 };
 }  // namespace costmap_layers_ros
