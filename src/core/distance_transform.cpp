@@ -343,6 +343,7 @@ struct MergeConsts
 {
   const uint8_t* lut;
   const uint8_t* cost_sq;
+  uint8_t* sq_row;  ///< portable row pass: n + 2 * (cap + kMaxLanes) bytes of scratch
   int cap;
   uint8_t far;
   uint8_t special;
@@ -365,29 +366,31 @@ COSTMAP_LAYERS_DT_INLINE void mergeRowPortable(const MergeRow& r, const MergeCon
   const int cap = k.cap;
   const uint8_t far = k.far;
   const uint8_t far_sq = static_cast<uint8_t>(cap * cap + 1);
+  // Squared vertical distances (capped at cap^2 + 1) of every column a block reads.
+  uint8_t* __restrict sq = k.sq_row + cap;
+  const uint8_t* __restrict gg = r.g;
+  for (int i = -cap; i < r.n + cap + kBlock; ++i)
+  {
+    const uint8_t s = static_cast<uint8_t>(gg[i] * gg[i]);
+    sq[i] = s < far_sq ? s : far_sq;
+  }
   for (int x = 0; x < r.n; x += kBlock)
   {
     const uint8_t* __restrict g = r.g + x;
     uint8_t near = far;
     for (int i = -cap; i < kBlock + cap; ++i) near = g[i] < near ? g[i] : near;
     if (near >= far) continue;
+    const uint8_t* __restrict q = sq + x;
     uint8_t d[kBlock];
     uint8_t c[kBlock];
-    for (int i = 0; i < kBlock; ++i)
-    {
-      const uint8_t s = static_cast<uint8_t>(g[i] * g[i]);
-      d[i] = s < far_sq ? s : far_sq;
-    }
+    for (int i = 0; i < kBlock; ++i) d[i] = q[i];
     for (int dx = 1; dx <= cap; ++dx)
     {
       const uint8_t dx2 = static_cast<uint8_t>(dx * dx);
       for (int i = 0; i < kBlock; ++i)
       {
-        const uint8_t m = g[i - dx] < g[i + dx] ? g[i - dx] : g[i + dx];
-        uint8_t s = static_cast<uint8_t>(m * m);
-        s = s < far_sq ? s : far_sq;
-        s = static_cast<uint8_t>(s + dx2);
-        d[i] = d[i] < s ? d[i] : s;
+        const uint8_t m = static_cast<uint8_t>((q[i - dx] < q[i + dx] ? q[i - dx] : q[i + dx]) + dx2);
+        d[i] = d[i] < m ? d[i] : m;
       }
     }
     for (int i = 0; i < kBlock; ++i) c[i] = k.cost_sq[d[i]];
@@ -778,7 +781,8 @@ void cappedCostMerge8(uint8_t* grid, int width, int height, std::ptrdiff_t strid
   const int stripe = std::max(16, std::min(win.y1 - win.y0, (256 << 10) / row_stride));
   const std::size_t rows_size = static_cast<std::size_t>(stripe) * static_cast<std::size_t>(row_stride);
   if (scratch.merge_g.size() < rows_size) scratch.merge_g.resize(rows_size);
-  if (scratch.run.size() < static_cast<std::size_t>(2 * cw)) scratch.run.resize(static_cast<std::size_t>(2 * cw));
+  if (scratch.run.size() < static_cast<std::size_t>(2 * cw + row_stride))
+    scratch.run.resize(static_cast<std::size_t>(2 * cw + row_stride));
 
   MergeJob job;
   job.grid = grid;
@@ -787,7 +791,8 @@ void cappedCostMerge8(uint8_t* grid, int width, int height, std::ptrdiff_t strid
   job.stride = stride;
   job.source = source;
   job.win = win;
-  job.consts = MergeConsts{lut, cost_sq, cap, static_cast<uint8_t>(cap + 1), rule.special, rule.special_threshold};
+  job.consts = MergeConsts{lut,        cost_sq,     scratch.run.data() + 2 * cw, cap, static_cast<uint8_t>(cap + 1),
+                           rule.special, rule.special_threshold};
   job.rows = scratch.merge_g.data();
   job.row_stride = row_stride;
   job.pad = pad;

@@ -1,6 +1,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
+#include <functional>
+#include <stdexcept>
+#include <string>
 #include <cstdint>
 #include <random>
 #include <vector>
@@ -250,5 +254,153 @@ TEST(DistanceTransform, CapAboveLimitThrows)
                std::invalid_argument);
   EXPECT_THROW(cappedSquaredDistanceRows16(g.data(), 2, 2, 2, SourceRange{}, kMaxBandedCap16 + 1,
                                            DistanceWindow{0, 0, 2, 2}, scratch, [](int, const uint16_t*) {}),
+               std::invalid_argument);
+}
+
+namespace
+{
+/// A random non-increasing cost table of cap^2 + 1 entries.
+std::vector<uint8_t> randomCosts(std::mt19937& rng, int cap)
+{
+  std::vector<uint8_t> costs(static_cast<std::size_t>(cap * cap + 1));
+  int v = 200 + static_cast<int>(rng() % 56);
+  for (auto& c : costs)
+  {
+    c = static_cast<uint8_t>(v);
+    if (rng() % 3 == 0) v = std::max(0, v - static_cast<int>(rng() % 40));
+  }
+  return costs;
+}
+
+/// What cappedCostMerge8 must leave in the grid, from brute-force distances on the original grid.
+std::vector<uint8_t> mergeReference(const std::vector<uint8_t>& grid, int w, int h, SourceRange src, int cap,
+                                    DistanceWindow win, const std::vector<uint8_t>& costs, CostMergeRule rule)
+{
+  const auto d = bruteForce(grid, w, h, src);
+  std::vector<uint8_t> out = grid;
+  for (int y = std::max(0, win.y0); y < std::min(h, win.y1); ++y)
+    for (int x = std::max(0, win.x0); x < std::min(w, win.x1); ++x)
+    {
+      const std::size_t i = static_cast<std::size_t>(y) * w + x;
+      const uint8_t c = d[i] <= static_cast<uint32_t>(cap * cap) ? costs[d[i]] : uint8_t{0};
+      const uint8_t old = grid[i];
+      out[i] = old == rule.special ? (c >= rule.special_threshold ? c : old) : std::max(old, c);
+    }
+  return out;
+}
+
+class CostMergeTest : public ::testing::TestWithParam<std::string>
+{
+protected:
+  void SetUp() override { ASSERT_TRUE(setDistanceTransformKernel(GetParam().c_str())); }
+  void TearDown() override { setDistanceTransformKernel(nullptr); }
+};
+
+std::vector<std::string> kernelNames()
+{
+  std::vector<std::string> names;
+  for (const char* k : distanceTransformKernels()) names.emplace_back(k);
+  return names;
+}
+}  // namespace
+
+TEST(DistanceTransform, KernelChoice)
+{
+  const auto names = distanceTransformKernels();
+  ASSERT_FALSE(names.empty());
+  EXPECT_STREQ(names.front(), "portable");
+  for (const char* k : names)
+  {
+    ASSERT_TRUE(setDistanceTransformKernel(k));
+    EXPECT_STREQ(distanceTransformKernel(), k);
+  }
+  EXPECT_FALSE(setDistanceTransformKernel("no-such-kernel"));
+  EXPECT_STREQ(distanceTransformKernel(), names.back());  // unchanged
+  setDistanceTransformSimd(false);
+  EXPECT_STREQ(distanceTransformKernel(), "portable");
+  setDistanceTransformSimd(true);
+  EXPECT_STREQ(distanceTransformKernel(), names.back());  // the widest
+  ASSERT_TRUE(setDistanceTransformKernel(""));
+  EXPECT_STREQ(distanceTransformKernel(), names.back());
+}
+
+TEST_P(CostMergeTest, MatchesBruteForceOnWindows)
+{
+  std::mt19937 rng(static_cast<unsigned>(std::hash<std::string>()(GetParam()) % 1000));
+  DistanceTransformScratch scratch;
+  for (int trial = 0; trial < 120; ++trial)
+  {
+    const int w = 1 + static_cast<int>(rng() % 150), h = 1 + static_cast<int>(rng() % 60);
+    const auto grid = randomGrid(rng, w, h, (trial % 5) * 0.01 + 0.002);
+    const SourceRange src = trial % 3 ? SourceRange{254, 254} : SourceRange{254, 255};
+    DistanceWindow win;
+    win.x0 = static_cast<int>(rng() % static_cast<unsigned>(w));
+    win.y0 = static_cast<int>(rng() % static_cast<unsigned>(h));
+    win.x1 = win.x0 + 1 + static_cast<int>(rng() % static_cast<unsigned>(w - win.x0));
+    win.y1 = win.y0 + 1 + static_cast<int>(rng() % static_cast<unsigned>(h - win.y0));
+    if (trial % 4 == 0) win = DistanceWindow{0, 0, w, h};
+    if (trial % 7 == 0) win = DistanceWindow{-5, -3, w + 4, h + 9};  // clipped to the grid
+    const int cap = static_cast<int>(rng() % (kMaxBandedCap8 + 1));
+    const auto costs = randomCosts(rng, cap);
+    CostMergeRule rule;
+    rule.special = trial % 2 ? uint8_t{255} : static_cast<uint8_t>(rng() % 256);
+    rule.special_threshold = static_cast<uint8_t>(1 + rng() % 255);
+    const auto expected = mergeReference(grid, w, h, src, cap, win, costs, rule);
+    auto out = grid;
+    cappedCostMerge8(out.data(), w, h, w, src, cap, win, costs.data(), rule, scratch);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        ASSERT_EQ(out[static_cast<std::size_t>(y) * w + x], expected[static_cast<std::size_t>(y) * w + x])
+            << "trial " << trial << " cell " << x << "," << y << " cap " << cap << " grid " << w << "x" << h;
+  }
+}
+
+TEST_P(CostMergeTest, AgreesWithPortableOnLargeGridWithStride)
+{
+  std::mt19937 rng(5);
+  const int w = 1290, h = 333, stride = 1301;  // several stripes, a partial last block
+  std::vector<uint8_t> grid(static_cast<std::size_t>(stride) * h);
+  const auto cells = randomGrid(rng, stride, h, 0.003);
+  std::copy(cells.begin(), cells.end(), grid.begin());
+  const auto costs = randomCosts(rng, kMaxBandedCap8);
+  const DistanceWindow win{7, 3, 1283, 330};
+  const CostMergeRule rule{255, 253};
+  DistanceTransformScratch scratch;
+  auto mine = grid;
+  cappedCostMerge8(mine.data(), w, h, stride, SourceRange{254, 255}, kMaxBandedCap8, win, costs.data(), rule,
+                   scratch);
+  ASSERT_TRUE(setDistanceTransformKernel("portable"));
+  auto portable = grid;
+  cappedCostMerge8(portable.data(), w, h, stride, SourceRange{254, 255}, kMaxBandedCap8, win, costs.data(), rule,
+                   scratch);
+  EXPECT_EQ(mine, portable);
+  // Columns past the grid's width (inside the stride) are never touched.
+  for (int y = 0; y < h; ++y)
+    for (int x = w; x < stride; ++x)
+      ASSERT_EQ(mine[static_cast<std::size_t>(y) * stride + x], grid[static_cast<std::size_t>(y) * stride + x]);
+}
+
+INSTANTIATE_TEST_SUITE_P(Kernels, CostMergeTest, ::testing::ValuesIn(kernelNames()),
+                         [](const ::testing::TestParamInfo<std::string>& info) {
+                           std::string name = info.param;
+                           for (char& ch : name)
+                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+                           return name;
+                         });
+
+TEST(DistanceTransform, CostMergeRejectsBadArguments)
+{
+  DistanceTransformScratch scratch;
+  std::vector<uint8_t> g(4, 0);
+  const std::vector<uint8_t> rising = {10, 20};
+  EXPECT_THROW(cappedCostMerge8(g.data(), 2, 2, 2, SourceRange{}, 1, DistanceWindow{0, 0, 2, 2}, rising.data(),
+                                CostMergeRule{}, scratch),
+               std::invalid_argument);
+  const std::vector<uint8_t> costs(200, 5);
+  EXPECT_THROW(cappedCostMerge8(g.data(), 2, 2, 2, SourceRange{}, kMaxBandedCap8 + 1, DistanceWindow{0, 0, 2, 2},
+                                costs.data(), CostMergeRule{}, scratch),
+               std::invalid_argument);
+  EXPECT_THROW(cappedCostMerge8(g.data(), 2, 2, 2, SourceRange{}, 1, DistanceWindow{0, 0, 2, 2}, costs.data(),
+                                CostMergeRule{255, 0}, scratch),
                std::invalid_argument);
 }

@@ -1,11 +1,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <functional>
 #include <limits>
 #include <memory>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "costmap_layers/core/cost_values.hpp"
@@ -469,16 +471,31 @@ void randomFill(std::mt19937& rng, MarkLayer& marks, const RandomCase& c, double
 }
 }  // namespace
 
-class InflationReference : public ::testing::TestWithParam<bool>
+// Every kernel this machine runs ("portable" first), each against the naive reference.
+class InflationReference : public ::testing::TestWithParam<std::string>
 {
 protected:
-  void SetUp() override { setDistanceTransformSimd(GetParam()); }
-  void TearDown() override { setDistanceTransformSimd(true); }
+  void SetUp() override { ASSERT_TRUE(setDistanceTransformKernel(GetParam().c_str())); }
+  void TearDown() override { setDistanceTransformKernel(nullptr); }
+  unsigned seed(unsigned base) const
+  {
+    return base + static_cast<unsigned>(std::hash<std::string>()(GetParam()) % 1000);
+  }
 };
+
+namespace
+{
+std::vector<std::string> inflationKernels()
+{
+  std::vector<std::string> names;
+  for (const char* k : distanceTransformKernels()) names.emplace_back(k);
+  return names;
+}
+}  // namespace
 
 TEST_P(InflationReference, FullAndPartialUpdatesEqualNaiveRecomputation)
 {
-  std::mt19937 rng(GetParam() ? 1234 : 4321);
+  std::mt19937 rng(seed(1234));
   for (int i = 0; i < 40; ++i)
   {
     const RandomCase c = makeCase(rng, i);
@@ -519,7 +536,7 @@ TEST_P(InflationReference, FullAndPartialUpdatesEqualNaiveRecomputation)
 // moves, and the inflated master equals the naive inflation of what the layer below drew.
 TEST_P(InflationReference, RollingWindowEqualsNaive)
 {
-  std::mt19937 rng(GetParam() ? 99 : 98);
+  std::mt19937 rng(seed(99));
   std::uniform_real_distribution<double> u(-8.0, 8.0);
   std::vector<std::pair<double, double>> obstacles;
   for (int k = 0; k < 150; ++k) obstacles.emplace_back(u(rng), u(rng));
@@ -556,7 +573,10 @@ TEST_P(InflationReference, RollingWindowEqualsNaive)
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Kernels, InflationReference, ::testing::Values(true, false),
-                         [](const ::testing::TestParamInfo<bool>& info) {
-                           return info.param ? std::string("Dispatched") : std::string("Portable");
+INSTANTIATE_TEST_SUITE_P(Kernels, InflationReference, ::testing::ValuesIn(inflationKernels()),
+                         [](const ::testing::TestParamInfo<std::string>& info) {
+                           std::string name = info.param;
+                           for (char& ch : name)
+                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+                           return name;
                          });
