@@ -1,0 +1,405 @@
+#include "costmap_layers/core/obstacle_layer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "costmap_layers/core/cost_values.hpp"
+#include "costmap_layers/core/layered_costmap.hpp"
+#include "costmap_layers/core/param_reader.hpp"
+
+namespace costmap_layers
+{
+namespace
+{
+constexpr double kMax = std::numeric_limits<double>::max();
+
+/// The new name when set, else the old one, else the default.
+double rangeParam(const ParamReader& p, const std::string& name, const std::string& old_name, double def)
+{
+  if (!p.has(name) && p.has(old_name)) return p.getDouble(old_name, def, 0.0, kMax);
+  return p.getDouble(name, def, 0.0, kMax);
+}
+
+std::vector<std::string> sourceNames(const ParamReader& p)
+{
+  std::vector<std::string> names;
+  const ParamValue* v = p.raw("observation_sources");
+  if (v == nullptr) return names;
+  if (v->type() == ParamValue::Type::String)
+  {
+    std::istringstream in(v->asString());
+    std::string name;
+    while (in >> name) names.push_back(name);
+  }
+  else if (v->isList())
+  {
+    for (const auto& item : v->asList())
+    {
+      if (item.type() != ParamValue::Type::String) p.fail("observation_sources", "must list source names");
+      names.push_back(item.asString());
+    }
+  }
+  else
+  {
+    p.fail("observation_sources", "must be a space-separated string of source names");
+  }
+  for (std::size_t i = 0; i < names.size(); ++i)
+  {
+    if (std::count(names.begin(), names.end(), names[i]) > 1)
+      p.fail("observation_sources", "names source '" + names[i] + "' twice");
+  }
+  return names;
+}
+}  // namespace
+
+ObservationSourceConfig parseObservationSourceConfig(const ParamReader& p, const std::string& name)
+{
+  ObservationSourceConfig c;
+  c.name = name;
+  c.topic = p.getString("topic", name);
+  if (c.topic.empty()) p.fail("topic", "must not be empty");
+  c.sensor_frame = p.getString("sensor_frame", c.sensor_frame);
+  c.observation_persistence = p.getDouble("observation_persistence", c.observation_persistence, 0.0, kMax);
+  c.expected_update_rate = p.getDouble("expected_update_rate", c.expected_update_rate, 0.0, kMax);
+  c.data_type = p.getChoice("data_type", "PointCloud2", {"LaserScan", "PointCloud2"}) == "LaserScan"
+                    ? SensorDataType::LaserScan
+                    : SensorDataType::PointCloud2;
+  c.min_obstacle_height = p.getDouble("min_obstacle_height", c.min_obstacle_height);
+  c.max_obstacle_height = p.getDouble("max_obstacle_height", c.max_obstacle_height);
+  if (c.max_obstacle_height < c.min_obstacle_height) p.fail("max_obstacle_height", "must be >= min_obstacle_height");
+  c.inf_is_valid = p.getBool("inf_is_valid", c.inf_is_valid);
+  c.marking = p.getBool("marking", c.marking);
+  c.clearing = p.getBool("clearing", c.clearing);
+  c.obstacle_min_range = p.getDouble("obstacle_min_range", c.obstacle_min_range, 0.0, kMax);
+  c.obstacle_max_range = rangeParam(p, "obstacle_max_range", "obstacle_range", c.obstacle_max_range);
+  if (c.obstacle_max_range < c.obstacle_min_range) p.fail("obstacle_max_range", "must be >= obstacle_min_range");
+  c.raytrace_min_range = p.getDouble("raytrace_min_range", c.raytrace_min_range, 0.0, kMax);
+  c.raytrace_max_range = rangeParam(p, "raytrace_max_range", "raytrace_range", c.raytrace_max_range);
+  if (c.raytrace_max_range < c.raytrace_min_range) p.fail("raytrace_max_range", "must be >= raytrace_min_range");
+  c.observation_keep_distance = p.getDouble("observation_keep_distance", c.observation_keep_distance, 0.0, kMax);
+  return c;
+}
+
+ObstacleConfig parseObstacleConfig(const ParamReader& p, bool default_track_unknown)
+{
+  ObstacleConfig c;
+  c.enabled = p.getBool("enabled", c.enabled);
+  c.footprint_clearing_enabled = p.getBool("footprint_clearing_enabled", c.footprint_clearing_enabled);
+  c.max_obstacle_height = p.getDouble("max_obstacle_height", c.max_obstacle_height);
+  c.combination_method = p.getInt("combination_method", c.combination_method, 0, 2);
+  c.track_unknown_space = p.getBool("track_unknown_space", default_track_unknown);
+  static const ParamValue empty = ParamValue::makeMap();
+  for (const auto& name : sourceNames(p))
+  {
+    const ParamValue* ns = p.raw(name);
+    if (ns != nullptr && !ns->isMap()) p.fail(name, "must be a namespace of source parameters");
+    c.sources.push_back(parseObservationSourceConfig(ParamReader(ns ? *ns : empty, p.owner() + "/" + name), name));
+  }
+  return c;
+}
+
+void ObstacleLayer::onInitialize()
+{
+  config_ = parseObstacleConfig(ParamReader(context_->params(), name_), layered_costmap_->isTrackingUnknown());
+  enabled_ = config_.enabled;
+  costmap_.setDefaultValue(config_.track_unknown_space ? NO_INFORMATION : FREE_SPACE);
+  matchSize();
+  const uint64_t now = context_->nowNs();
+  buffers_.clear();
+  for (std::size_t i = 0; i < config_.sources.size(); ++i)
+  {
+    const ObservationSourceConfig& s = config_.sources[i];
+    ObservationBufferConfig bc;
+    bc.observation_persistence = s.observation_persistence;
+    bc.expected_update_rate = s.expected_update_rate;
+    bc.observation_keep_distance = s.observation_keep_distance;
+    buffers_.push_back(std::make_unique<ObservationBuffer>(s.name, bc, now));
+  }
+  for (std::size_t i = 0; i < config_.sources.size(); ++i)
+  {
+    const ObservationSourceConfig& s = config_.sources[i];
+    if (s.data_type == SensorDataType::LaserScan)
+      context_->subscribeLaserScan(s.topic, s.sensor_frame,
+                                   [this, i](const std::shared_ptr<const LaserScanData>& scan, const SensorPose& pose) {
+                                     if (scan) addLaserScan(i, *scan, pose);
+                                   });
+    else
+      context_->subscribePointCloud2(
+          s.topic, s.sensor_frame, [this, i](const std::shared_ptr<const PointCloud2Data>& cloud, const SensorPose& pose) {
+            if (cloud) addPointCloud2(i, *cloud, pose);
+          });
+  }
+  if (config_.sources.empty())
+    context_->report(Severity::Warn, "no_sources", name_ + ": no observation_sources: the layer only clears the footprint");
+}
+
+void ObstacleLayer::matchSize()
+{
+  CostmapLayer::matchSize();
+}
+
+std::string ObstacleLayer::sourceLabel(std::size_t source) const
+{
+  const ObservationSourceConfig& s = config_.sources[source];
+  return name_ + ": observation source '" + s.name + "' (topic '" + s.topic + "')";
+}
+
+std::string ObstacleLayer::addLaserScan(std::size_t source, const LaserScanData& scan, const SensorPose& pose)
+{
+  if (source >= config_.sources.size()) return "no observation source " + std::to_string(source);
+  if (!active_) return {};
+  thread_local std::vector<Point3f> local, local_clear;
+  local.clear();
+  local_clear.clear();
+  const ParseResult r = laserScanToPoints(scan, config_.sources[source].inf_is_valid, local, local_clear);
+  if (!r.ok())
+  {
+    context_->report(Severity::Warn, "invalid/" + config_.sources[source].name,
+                     sourceLabel(source) + ": reading rejected: " + r.error);
+    return r.error;
+  }
+  bufferPoints(source, local, local_clear, scan.stamp_ns, pose);
+  return {};
+}
+
+std::string ObstacleLayer::addPointCloud2(std::size_t source, const PointCloud2Data& cloud, const SensorPose& pose)
+{
+  if (source >= config_.sources.size()) return "no observation source " + std::to_string(source);
+  if (!active_) return {};
+  thread_local std::vector<Point3f> local, local_clear;
+  local.clear();
+  local_clear.clear();
+  const ParseResult r = pointCloud2ToPoints(cloud, local);
+  if (!r.ok())
+  {
+    context_->report(Severity::Warn, "invalid/" + config_.sources[source].name,
+                     sourceLabel(source) + ": reading rejected: " + r.error);
+    return r.error;
+  }
+  bufferPoints(source, local, local_clear, cloud.stamp_ns, pose);
+  return {};
+}
+
+void ObstacleLayer::bufferPoints(std::size_t source, const std::vector<Point3f>& local,
+                                 const std::vector<Point3f>& local_clear, uint64_t stamp_ns, const SensorPose& pose)
+{
+  const ObservationSourceConfig& s = config_.sources[source];
+  const uint64_t now = context_->nowNs();
+  auto obs = std::make_shared<Observation>();
+  obs->origin_x = pose.origin_x;
+  obs->origin_y = pose.origin_y;
+  obs->origin_z = pose.origin_z;
+  obs->stamp_ns = stamp_ns != 0 ? stamp_ns : now;
+  obs->obstacle_min_range = s.obstacle_min_range;
+  obs->obstacle_max_range = s.obstacle_max_range;
+  obs->raytrace_min_range = s.raytrace_min_range;
+  obs->raytrace_max_range = s.raytrace_max_range;
+  const Transform3D& T = pose.to_global;
+  const double zmin = s.min_obstacle_height, zmax = s.max_obstacle_height;
+  auto project = [&](const std::vector<Point3f>& in, std::vector<Point3f>& out) {
+    out.reserve(in.size());
+    for (const Point3f& p : in)
+    {
+      double gx, gy, gz;
+      T.apply(p.x, p.y, p.z, gx, gy, gz);
+      if (!(gz >= zmin && gz <= zmax)) continue;  // also drops NaN from a broken transform
+      if (!std::isfinite(gx) || !std::isfinite(gy)) continue;
+      out.push_back({static_cast<float>(gx), static_cast<float>(gy), static_cast<float>(gz)});
+    }
+  };
+  project(local, obs->points);
+  project(local_clear, obs->clear_only);
+  buffers_[source]->add(std::move(obs), now);
+}
+
+void ObstacleLayer::addStaticObservation(const Observation& observation, bool marking, bool clearing)
+{
+  auto obs = std::make_shared<const Observation>(observation);
+  std::lock_guard<std::mutex> lock(static_mutex_);
+  if (marking) static_marking_.push_back(obs);
+  if (clearing) static_clearing_.push_back(obs);
+}
+
+void ObstacleLayer::clearStaticObservations(bool marking, bool clearing)
+{
+  std::lock_guard<std::mutex> lock(static_mutex_);
+  if (marking) static_marking_.clear();
+  if (clearing) static_clearing_.clear();
+}
+
+void ObstacleLayer::moveOrigin(double new_origin_x, double new_origin_y)
+{
+  costmap_.updateOrigin(new_origin_x, new_origin_y);
+}
+
+void ObstacleLayer::updateBounds(double robot_x, double robot_y, double robot_yaw, double* min_x, double* min_y,
+                                 double* max_x, double* max_y)
+{
+  if (layered_costmap_->isRolling())
+    moveOrigin(robot_x - costmap_.getSizeInMetersX() / 2, robot_y - costmap_.getSizeInMetersY() / 2);
+  useExtraBounds(min_x, min_y, max_x, max_y);
+
+  const uint64_t now = context_->nowNs();
+  bool current = true;
+  marking_.clear();
+  clearing_.clear();
+  for (std::size_t i = 0; i < buffers_.size(); ++i)
+  {
+    ObservationBuffer& b = *buffers_[i];
+    if (!b.isCurrent(now))
+    {
+      current = false;
+      char text[128];
+      std::snprintf(text, sizeof(text), " has not been updated for %.2f s, expected every %.2f s",
+                    b.secondsSinceUpdate(now), b.config().expected_update_rate);
+      context_->report(Severity::Warn, "late/" + config_.sources[i].name, sourceLabel(i) + text);
+    }
+    scratch_.clear();
+    b.getObservations(scratch_, now, robot_x, robot_y);
+    if (config_.sources[i].marking) marking_.insert(marking_.end(), scratch_.begin(), scratch_.end());
+    if (config_.sources[i].clearing) clearing_.insert(clearing_.end(), scratch_.begin(), scratch_.end());
+  }
+  {
+    std::lock_guard<std::mutex> lock(static_mutex_);
+    marking_.insert(marking_.end(), static_marking_.begin(), static_marking_.end());
+    clearing_.insert(clearing_.end(), static_clearing_.begin(), static_clearing_.end());
+  }
+  current_ = current;
+
+  for (const auto& obs : clearing_) raytraceFreespace(*obs, min_x, min_y, max_x, max_y);
+  for (const auto& obs : marking_) markObservation(*obs, min_x, min_y, max_x, max_y);
+  // Drop the references now: an observation must not outlive its buffer's persistence by a cycle.
+  marking_.clear();
+  clearing_.clear();
+  scratch_.clear();
+
+  transformed_footprint_.clear();
+  if (config_.footprint_clearing_enabled)
+  {
+    transformed_footprint_ = transformFootprint(robot_x, robot_y, robot_yaw, getFootprint());
+    for (const auto& v : transformed_footprint_) touch(v.x(), v.y(), min_x, min_y, max_x, max_y);
+  }
+}
+
+bool ObstacleLayer::clipRay2D(double ox, double oy, double wx, double wy, double max_range, double& t) const
+{
+  const double x0 = costmap_.getOriginX(), y0 = costmap_.getOriginY();
+  const double x1 = x0 + costmap_.getSizeInMetersX(), y1 = y0 + costmap_.getSizeInMetersY();
+  if (!(ox >= x0 && ox < x1 && oy >= y0 && oy < y1)) return false;
+  const double a = wx - ox, b = wy - oy;
+  t = 1.0;
+  const double d2 = a * a + b * b;
+  if (d2 > max_range * max_range) t = max_range / std::sqrt(d2);
+  // Cut at the grid's border (the origin is inside, so each divisor below is non-zero when used).
+  if (ox + t * a < x0) t = (x0 - ox) / a;
+  if (ox + t * a > x1) t = (x1 - ox) / a;
+  if (oy + t * b < y0) t = (y0 - oy) / b;
+  if (oy + t * b > y1) t = (y1 - oy) / b;
+  t = std::max(0.0, std::min(1.0, t));
+  return true;
+}
+
+void ObstacleLayer::raytraceFreespace(const Observation& obs, double* min_x, double* min_y, double* max_x,
+                                      double* max_y)
+{
+  const double ox = obs.origin_x, oy = obs.origin_y;
+  unsigned int x0, y0;
+  if (!costmap_.worldToMap(ox, oy, x0, y0))
+  {
+    context_->report(Severity::Warn, "origin_outside",
+                     name_ + ": a sensor origin is outside the costmap, its rays clear nothing");
+    return;
+  }
+  touch(ox, oy, min_x, min_y, max_x, max_y);
+  const unsigned int min_cells = costmap_.cellDistance(obs.raytrace_min_range);
+  uint8_t* grid = costmap_.data();
+  auto clear = [grid](unsigned int index) { grid[index] = FREE_SPACE; };
+  double ex_min = ox, ey_min = oy, ex_max = ox, ey_max = oy;
+  auto ray = [&](const Point3f& p) {
+    double t;
+    if (!clipRay2D(ox, oy, p.x, p.y, obs.raytrace_max_range, t)) return;
+    const double ex = ox + t * (p.x - ox), ey = oy + t * (p.y - oy);
+    int cx, cy;
+    costmap_.worldToMapEnforceBounds(ex, ey, cx, cy);
+    costmap_.raytraceLine(clear, x0, y0, static_cast<unsigned>(cx), static_cast<unsigned>(cy), 0xFFFFFFFFu, min_cells);
+    ex_min = std::min(ex_min, ex);
+    ey_min = std::min(ey_min, ey);
+    ex_max = std::max(ex_max, ex);
+    ey_max = std::max(ey_max, ey);
+  };
+  for (const Point3f& p : obs.points) ray(p);
+  for (const Point3f& p : obs.clear_only) ray(p);
+  touch(ex_min, ey_min, min_x, min_y, max_x, max_y);
+  touch(ex_max, ey_max, min_x, min_y, max_x, max_y);
+}
+
+void ObstacleLayer::markObservation(const Observation& obs, double* min_x, double* min_y, double* max_x,
+                                    double* max_y)
+{
+  const double max2 = obs.obstacle_max_range * obs.obstacle_max_range;
+  const double min2 = obs.obstacle_min_range * obs.obstacle_min_range;
+  uint8_t* grid = costmap_.data();
+  double px_min = kMax, py_min = kMax, px_max = -kMax, py_max = -kMax;
+  for (const Point3f& p : obs.points)
+  {
+    if (p.z > config_.max_obstacle_height) continue;
+    const double dx = p.x - obs.origin_x, dy = p.y - obs.origin_y, dz = p.z - obs.origin_z;
+    const double d2 = dx * dx + dy * dy + dz * dz;
+    if (d2 > max2 || d2 < min2) continue;
+    unsigned int mx, my;
+    if (!costmap_.worldToMap(p.x, p.y, mx, my)) continue;
+    grid[costmap_.getIndex(mx, my)] = LETHAL_OBSTACLE;
+    px_min = std::min<double>(px_min, p.x);
+    py_min = std::min<double>(py_min, p.y);
+    px_max = std::max<double>(px_max, p.x);
+    py_max = std::max<double>(py_max, p.y);
+  }
+  if (px_min <= px_max)
+  {
+    touch(px_min, py_min, min_x, min_y, max_x, max_y);
+    touch(px_max, py_max, min_x, min_y, max_x, max_y);
+  }
+}
+
+void ObstacleLayer::updateCosts(Costmap2D& master_grid, int min_i, int min_j, int max_i, int max_j)
+{
+  if (!enabled_) return;
+  if (config_.footprint_clearing_enabled && transformed_footprint_.size() >= 3)
+    costmap_.setConvexPolygonCost(transformed_footprint_, FREE_SPACE);
+  switch (config_.combination_method)
+  {
+    case 0:
+      updateWithOverwrite(master_grid, min_i, min_j, max_i, max_j);
+      break;
+    case 2:
+      updateWithMaxWithoutUnknownOverwrite(master_grid, min_i, min_j, max_i, max_j);
+      break;
+    default:
+      updateWithMax(master_grid, min_i, min_j, max_i, max_j);
+      break;
+  }
+}
+
+void ObstacleLayer::reset()
+{
+  costmap_.resetMaps();
+  for (auto& b : buffers_) b->clear();
+  clearStaticObservations(true, true);
+  const uint64_t now = context_ ? context_->nowNs() : 0;
+  for (auto& b : buffers_) b->resetLastUpdated(now);
+  current_ = true;
+}
+
+void ObstacleLayer::activate()
+{
+  active_ = true;
+  const uint64_t now = context_->nowNs();
+  for (auto& b : buffers_) b->resetLastUpdated(now);
+}
+
+void ObstacleLayer::deactivate() { active_ = false; }
+}  // namespace costmap_layers
