@@ -1,7 +1,11 @@
+// The per-cell passes are plain byte loops meant for the vectoriser, which GCC runs at -O2 only for
+// trivially profitable loops: ask for it here, as the distance transform does.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC optimize("tree-vectorize", "vect-cost-model=dynamic")
+#endif
 #include "costmap_layers/core/lanes_filter.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -22,45 +26,61 @@ constexpr int kMaxBandedLanesCap = 48;
 /// computed per cell.
 constexpr uint64_t kMaxLutEntries = uint64_t{1} << 22;
 
-/// Per mask byte: the cost of everything but forbidden cells (0 for lanes, -1 and invalid values,
-/// the soft cost for 1..99; 254 for 100, overridden by the distance cost), and whether it is invalid.
-struct ValueTables
+/// The keepout cost of a mask value, round(v * 254 / 100) for v in 1..100, else 0, in 16-bit integer
+/// arithmetic so that loops over it vectorise: for v >= 1, round-half-up of 2.54 v is (254 v + 50) / 100
+/// (at most 64820, within 16 bits).
+inline uint8_t softCost(int8_t v)
 {
-  std::array<uint8_t, 256> cost{};
-  std::array<uint8_t, 256> invalid{};
-  ValueTables()
-  {
-    for (int b = 0; b < 256; ++b)
-    {
-      const auto v = static_cast<int8_t>(b);
-      cost[static_cast<std::size_t>(b)] = keepoutCost(v);
-      invalid[static_cast<std::size_t>(b)] = (v < -1 || v > 100) ? 1 : 0;
-    }
-  }
-};
-
-const ValueTables& valueTables()
-{
-  static const ValueTables tables;
-  return tables;
+  const auto u = static_cast<uint8_t>(v);
+  const auto c = static_cast<uint8_t>(static_cast<uint16_t>(u * 254u + 50u) / 100u);
+  return static_cast<uint8_t>(u - 1u) < 100u ? c : uint8_t{0};
 }
 
-/// Writes one mask row's costs: forbidden cells from the distance table, others from the value table.
-/// @return the number of invalid values in the row
-template <class D>
-std::size_t writeRow(const int8_t* mask_row, const D* sq_dist, const uint8_t* lut, std::size_t lut_last,
-                     uint8_t* out, std::size_t n)
+/// Counts values outside -1..100 (invalid in an OccupancyGrid) and, when lanes is not null, writes 1 for
+/// lane cells and 0 for others into it. Counted in blocks with 32-bit counters so that it vectorises.
+std::size_t scanMask(const int8_t* m, std::size_t n, uint8_t* lanes)
 {
-  const ValueTables& t = valueTables();
+  constexpr std::size_t kBlock = 1 << 16;
   std::size_t invalid = 0;
-  for (std::size_t x = 0; x < n; ++x)
+  for (std::size_t o = 0; o < n; o += kBlock)
   {
-    const auto b = static_cast<uint8_t>(mask_row[x]);
-    invalid += t.invalid[b];
-    const std::size_t d2 = std::min<std::size_t>(sq_dist[x], lut_last);
-    out[x] = mask_row[x] == kForbidden ? lut[d2] : t.cost[b];
+    const std::size_t e = std::min(n, o + kBlock);
+    uint32_t count = 0;
+    if (lanes)
+      for (std::size_t k = o; k < e; ++k)
+      {
+        const auto u = static_cast<uint8_t>(m[k]);
+        lanes[k] = u == static_cast<uint8_t>(kLane) ? 1 : 0;
+        count += static_cast<uint8_t>(u + 1u) > 101u ? 1u : 0u;
+      }
+    else
+      for (std::size_t k = o; k < e; ++k) count += static_cast<uint8_t>(static_cast<uint8_t>(m[k]) + 1u) > 101u ? 1u : 0u;
+    invalid += count;
   }
   return invalid;
+}
+
+/// Writes one mask row's costs: forbidden cells from the distance table, others their soft cost.
+template <class D>
+void writeRow(const int8_t* mask_row, const D* sq_dist, const uint8_t* lut, std::size_t lut_last, uint8_t* out,
+              std::size_t n)
+{
+  for (std::size_t x = 0; x < n; ++x)
+  {
+    const int8_t v = mask_row[x];
+    out[x] = v == kForbidden ? lut[std::min<std::size_t>(sq_dist[x], lut_last)] : softCost(v);
+  }
+}
+
+/// Final pass of the cost-merge engine: out holds 254 - cost for forbidden cells (0 beyond the band).
+void finishCosts(const int8_t* m, uint8_t* out, std::size_t n)
+{
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    const int8_t v = m[k];
+    const auto forbidden = static_cast<uint8_t>(LETHAL_OBSTACLE - out[k]);
+    out[k] = v == kForbidden ? forbidden : softCost(v);
+  }
 }
 }  // namespace
 
@@ -119,17 +139,12 @@ std::size_t LanesFilter::computeCosts(const OccupancyGridData& mask, std::vector
   const uint64_t q = lanesLethalSquaredDistance(config_, mask.resolution);
   const bool any_lane = std::memchr(bytes, static_cast<uint8_t>(kLane), n) != nullptr;
 
-  std::size_t invalid = 0;
   if (!any_lane || q <= 1)
   {
-    // No distance below the lethal one: forbidden cells are all lethal (the value table says 254).
-    const uint8_t lethal = LETHAL_OBSTACLE;
-    for (int y = 0; y < h; ++y)
-    {
-      const std::size_t o = static_cast<std::size_t>(y) * w;
-      invalid += writeRow(m + o, bytes + o, &lethal, 0, costs.data() + o, static_cast<std::size_t>(w));
-    }
-    return invalid;
+    // No distance below the lethal one: every forbidden cell is lethal (254 - 0).
+    std::memset(costs.data(), 0, n);
+    finishCosts(m, costs.data(), n);
+    return scanMask(m, n, nullptr);
   }
 
   // Every squared distance below q must come out exactly: a band of radius cap with cap^2 >= q - 1.
@@ -144,27 +159,31 @@ std::size_t LanesFilter::computeCosts(const OccupancyGridData& mask, std::vector
                         : lanesForbiddenCost(config_, std::sqrt(static_cast<double>(d2)) * mask.resolution,
                                              mask.resolution);
   };
-  const SourceRange lanes{static_cast<uint8_t>(kLane), static_cast<uint8_t>(kLane)};
   const DistanceWindow all{0, 0, w, h};
   std::vector<uint8_t> lut;
   if (cap <= static_cast<uint64_t>(kMaxBandedCap8))
   {
-    buildLut(lut, 256);
-    cappedSquaredDistanceRows8(bytes, w, h, w, lanes, static_cast<int>(cap), all, scratch_,
-                               [&](int y, const uint8_t* d2) {
-                                 const std::size_t o = static_cast<std::size_t>(y) * w;
-                                 invalid += writeRow(m + o, d2, lut.data(), 255, costs.data() + o,
-                                                     static_cast<std::size_t>(w));
-                               });
+    // The banded cost-domain engine wants a non-increasing table, merged with max into the grid: give
+    // it 254 - cost (non-increasing since the cost never falls with distance; 0 beyond the band, where
+    // everything is lethal) over a grid marking lane cells 1 and others 0, then turn it back.
+    buildLut(lut, static_cast<std::size_t>(cap * cap) + 1);
+    for (auto& c : lut) c = static_cast<uint8_t>(LETHAL_OBSTACLE - c);
+    lut[0] = lut.size() > 1 ? lut[1] : 0;  // the lane cells themselves: never used
+    const std::size_t invalid = scanMask(m, n, costs.data());
+    cappedCostMerge8(costs.data(), w, h, w, SourceRange{1, 1}, static_cast<int>(cap), all, lut.data(),
+                     CostMergeRule{255, 255}, scratch_);
+    finishCosts(m, costs.data(), n);
     return invalid;
   }
+  const std::size_t invalid = scanMask(m, n, nullptr);
+  const SourceRange lanes{static_cast<uint8_t>(kLane), static_cast<uint8_t>(kLane)};
   if (cap <= static_cast<uint64_t>(kMaxBandedLanesCap))
   {
     buildLut(lut, 65536);
     cappedSquaredDistanceRows16(bytes, w, h, w, lanes, static_cast<int>(cap), all, scratch_,
                                 [&](int y, const uint16_t* d2) {
                                   const std::size_t o = static_cast<std::size_t>(y) * w;
-                                  invalid += writeRow(m + o, d2, lut.data(), 65535, costs.data() + o,
+                                  writeRow(m + o, d2, lut.data(), 65535, costs.data() + o,
                                                       static_cast<std::size_t>(w));
                                 });
     return invalid;
@@ -180,18 +199,15 @@ std::size_t LanesFilter::computeCosts(const OccupancyGridData& mask, std::vector
     for (int y = 0; y < h; ++y)
     {
       const std::size_t o = static_cast<std::size_t>(y) * w;
-      invalid += writeRow(m + o, sq_dist_.data() + o, lut.data(), static_cast<std::size_t>(q), costs.data() + o,
+      writeRow(m + o, sq_dist_.data() + o, lut.data(), static_cast<std::size_t>(q), costs.data() + o,
                           static_cast<std::size_t>(w));
     }
     return invalid;
   }
-  const ValueTables& t = valueTables();
   for (std::size_t k = 0; k < n; ++k)
   {
-    const auto b = bytes[k];
-    invalid += t.invalid[b];
     if (m[k] != kForbidden)
-      costs[k] = t.cost[b];
+      costs[k] = softCost(m[k]);
     else if (sq_dist_[k] == kFarSquaredDistance)
       costs[k] = LETHAL_OBSTACLE;
     else
