@@ -279,15 +279,14 @@ int currentKernel()
   return forced == kAuto ? bestKernel() : forced;
 }
 
+#ifdef COSTMAP_LAYERS_DT_AVX2_DISPATCH
+/// The banded row engines have an AVX2 clone only.
 bool useAvx2()
 {
-#ifdef COSTMAP_LAYERS_DT_AVX2_DISPATCH
   const int k = currentKernel();
   return k == kAvx2 || k == kAvx512;
-#else
-  return false;
-#endif
 }
+#endif
 
 template <class T>
 void runBanded(const uint8_t* grid, int width, int height, std::ptrdiff_t stride, SourceRange source, int cap,
