@@ -1,0 +1,91 @@
+// voxel_grid's bit-packed columns: one uint32 per 2-D cell, up to 16 voxels high. For level z, bit
+// (16 + z) is "marked" and bit z is "known-or-marked":
+//   marked = both bits set, unknown = only bit z set, free = neither.
+// So markedCount = popcount(col >> 16) and unknownCount = popcount((col >> 16) ^ (col & 0xFFFF)).
+// Unlike voxel_grid, only the z levels in use start unknown (costmap_2d starts all 16 and adds
+// 16 - z_voxels to unknown_threshold instead, which gives the same answers).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+namespace costmap_layers
+{
+enum class VoxelStatus { Free, Unknown, Marked };
+
+class VoxelGrid
+{
+public:
+  static constexpr unsigned int kMaxLevels = 16;
+
+  /// Reallocates to size_x * size_y columns of size_z levels (1..16, else std::invalid_argument),
+  /// every voxel unknown.
+  void resize(unsigned int size_x, unsigned int size_y, unsigned int size_z);
+  /// Every voxel unknown.
+  void reset();
+  /// Keeps the columns the window shifted by (dx, dy) cells shares with the old one (column (x, y) of
+  /// the new grid is column (x + dx, y + dy) of the old); the others become unknown.
+  void shift(int dx, int dy);
+
+  unsigned int sizeX() const { return size_x_; }
+  unsigned int sizeY() const { return size_y_; }
+  unsigned int sizeZ() const { return size_z_; }
+  uint32_t column(unsigned int x, unsigned int y) const { return data_[y * size_x_ + x]; }
+  uint32_t* data() { return data_.data(); }
+  const uint32_t* data() const { return data_.data(); }
+  /// The column value of an all-unknown column.
+  uint32_t unknownColumn() const { return unknown_column_; }
+
+  static unsigned int markedCount(uint32_t col) { return popcount(col >> 16); }
+  static unsigned int unknownCount(uint32_t col) { return popcount((col >> 16) ^ (col & 0xFFFFu)); }
+
+  /// Out-of-grid voxels read as Unknown.
+  VoxelStatus getVoxel(unsigned int x, unsigned int y, unsigned int z) const;
+  /// Marked when more than mark_threshold voxels are marked, else Unknown when more than
+  /// unknown_threshold are unknown, else Free (voxel_grid's getVoxelColumn).
+  VoxelStatus getColumn(unsigned int x, unsigned int y, unsigned int unknown_threshold,
+                        unsigned int mark_threshold) const;
+  /// Marks a voxel (ignored outside the grid). @return true when the column then has more than
+  /// mark_threshold marked voxels.
+  bool markVoxel(unsigned int x, unsigned int y, unsigned int z, unsigned int mark_threshold);
+  void clearVoxel(unsigned int x, unsigned int y, unsigned int z);
+
+  /// Walks the voxels of the segment between two points given in voxel units (x / resolution, ...),
+  /// both inside the grid, from the first; the voxel holding the end point is not visited. Calls
+  /// at(column_index, z) for each; nothing is allocated. Steps of at most one voxel per axis.
+  template <class ActionType>
+  void walkLine(ActionType&& at, double x0, double y0, double z0, double x1, double y1, double z1) const;
+
+private:
+  static unsigned int popcount(uint32_t v) { return static_cast<unsigned int>(__builtin_popcount(v)); }
+
+  unsigned int size_x_ = 0, size_y_ = 0, size_z_ = 0;
+  uint32_t unknown_column_ = 0;
+  std::vector<uint32_t> data_;
+};
+
+template <class ActionType>
+void VoxelGrid::walkLine(ActionType&& at, double x0, double y0, double z0, double x1, double y1, double z1) const
+{
+  const double dx = x1 - x0, dy = y1 - y0, dz = z1 - z0;
+  const double longest = std::max(std::fabs(dx), std::max(std::fabs(dy), std::fabs(dz)));
+  if (!(longest > 0.0) || !(longest < 1e7)) return;  // also NaN
+  const unsigned int steps = static_cast<unsigned int>(std::ceil(longest));
+  const double sx = dx / steps, sy = dy / steps, sz = dz / steps;
+  const int ex = static_cast<int>(std::floor(x1)), ey = static_cast<int>(std::floor(y1)),
+            ez = static_cast<int>(std::floor(z1));
+  double x = x0, y = y0, z = z0;
+  for (unsigned int i = 0; i < steps; ++i, x += sx, y += sy, z += sz)
+  {
+    const int ix = static_cast<int>(std::floor(x)), iy = static_cast<int>(std::floor(y)),
+              iz = static_cast<int>(std::floor(z));
+    if (ix == ex && iy == ey && iz == ez) return;
+    if (ix < 0 || iy < 0 || iz < 0 || ix >= static_cast<int>(size_x_) || iy >= static_cast<int>(size_y_) ||
+        iz >= static_cast<int>(size_z_))
+      return;
+    at(static_cast<unsigned int>(iy) * size_x_ + static_cast<unsigned int>(ix), static_cast<unsigned int>(iz));
+  }
+}
+}  // namespace costmap_layers
