@@ -1,0 +1,244 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+
+#include "costmap_layers/core/cost_values.hpp"
+#include "costmap_layers/core/layered_costmap.hpp"
+#include "costmap_layers/core/param_reader.hpp"
+#include "costmap_layers/core/range_sensor_layer.hpp"
+#include "fake_context.hpp"
+#include "sensor_test_helpers.hpp"
+
+using namespace costmap_layers;
+using namespace costmap_layers_test;
+
+namespace
+{
+RangeData sonar(float range, float min_range = 1.0f, float max_range = 7.0f)
+{
+  RangeData r;
+  r.frame_id = "base_link";
+  r.radiation_type = RangeData::ULTRASOUND;
+  r.field_of_view = 0.174533f;  // 10 degrees
+  r.min_range = min_range;
+  r.max_range = max_range;
+  r.range = range;
+  return r;
+}
+
+struct Rig
+{
+  explicit Rig(ParamValue params, bool rolling = false, bool track_unknown = false) : lc("map", rolling, track_unknown)
+  {
+    lc.resizeMap(10, 10, 1.0, 0.0, 0.0);
+    ctx = std::make_shared<FakeContext>(std::move(params));
+    layer = std::make_shared<RangeSensorLayer>();
+    layer->initialize(&lc, "range", ctx);
+    lc.addPlugin(layer);
+  }
+  void range(const RangeData& r, double x, double y, double yaw = 0.0)
+  {
+    ASSERT_EQ(ctx->publishRange("/range/topic", r, poseAt(x, y, 0.0, yaw)), 1);
+  }
+  void update(double x = 0, double y = 0) { lc.updateMap(x, y, 0); }
+  uint8_t at(unsigned x, unsigned y) const { return lc.getCostmap().getCost(x, y); }
+
+  LayeredCostmap lc;
+  std::shared_ptr<FakeContext> ctx;
+  std::shared_ptr<RangeSensorLayer> layer;
+};
+
+ParamValue nav2Params(bool clear_on_max = true)
+{
+  return paramMap({{"topics", ParamValue::makeList({S("/range/topic")})},
+                   {"phi", D(1.2)},
+                   {"clear_on_max_reading", B(clear_on_max)}});
+}
+}  // namespace
+
+TEST(RangeSensorConfig, DefaultsAndErrors)
+{
+  const RangeSensorConfig c = parseRangeSensorConfig(ParamReader(ParamValue::makeMap(), "r"));
+  EXPECT_TRUE(c.enabled);
+  EXPECT_TRUE(c.topics.empty());
+  EXPECT_DOUBLE_EQ(c.phi, 1.2);
+  EXPECT_DOUBLE_EQ(c.inflate_cone, 1.0);
+  EXPECT_DOUBLE_EQ(c.no_readings_timeout, 0.0);
+  EXPECT_DOUBLE_EQ(c.clear_threshold, 0.2);
+  EXPECT_DOUBLE_EQ(c.mark_threshold, 0.8);
+  EXPECT_FALSE(c.clear_on_max_reading);
+  EXPECT_EQ(c.input_sensor_type, RangeInputType::All);
+  EXPECT_EQ(parseRangeSensorConfig(ParamReader(paramMap({{"topics", S("/a /b")}}), "r")).topics.size(), 2u);
+  EXPECT_EQ(parseRangeSensorConfig(ParamReader(paramMap({{"input_sensor_type", S("FIXED")}}), "r")).input_sensor_type,
+            RangeInputType::Fixed);
+  auto bad = [](const char* k, ParamValue v) {
+    EXPECT_THROW(parseRangeSensorConfig(ParamReader(paramMap({{k, v}}), "r")), std::invalid_argument) << k;
+  };
+  bad("topics", I(1));
+  bad("topics", ParamValue::makeList({S("")}));
+  bad("phi", D(0.0));
+  bad("inflate_cone", D(1.5));
+  bad("no_readings_timeout", D(-1.0));
+  bad("clear_threshold", D(0.9));  // above mark_threshold 0.8
+  bad("mark_threshold", D(1.1));
+  bad("input_sensor_type", S("SONAR"));
+  bad("clear_on_max_reading", S("true"));
+}
+
+TEST(RangeSensorModel, Pieces)
+{
+  using namespace range_model;
+  EXPECT_DOUBLE_EQ(gamma(0.0, 0.1), 1.0);
+  EXPECT_DOUBLE_EQ(gamma(0.1, 0.1), 0.0);
+  EXPECT_DOUBLE_EQ(gamma(0.2, 0.1), 0.0);
+  EXPECT_NEAR(gamma(0.05, 0.1), 0.75, 1e-12);
+  EXPECT_DOUBLE_EQ(delta(1.2, 1.2), 0.5);
+  EXPECT_GT(delta(0.1, 1.2), 0.9);
+  // Ahead of the reading: below 0.5 (free), at it: above 0.5 (occupied), behind: 0.5.
+  EXPECT_LT(sensorModel(3.0, 1.0, 0.0, 0.1, 1.2, 0.1), 0.5);
+  EXPECT_GT(sensorModel(3.0, 3.0, 0.0, 0.1, 1.2, 0.1), 0.5);
+  EXPECT_DOUBLE_EQ(sensorModel(3.0, 4.0, 0.0, 0.1, 1.2, 0.1), 0.5);
+  EXPECT_EQ(toCost(0.5), 127);
+  EXPECT_EQ(toCost(1.0), 254);
+  EXPECT_DOUBLE_EQ(toProbability(254), 1.0);
+}
+
+// Nav2's testClearingAtMaxRange.
+TEST(RangeSensorLayer, MarksAtTheReadingAndClearsOnMaxReading)
+{
+  Rig rig(nav2Params(true));
+  ASSERT_EQ(rig.ctx->range_subs.size(), 1u);
+  EXPECT_EQ(rig.ctx->range_subs[0].topic, "/range/topic");
+  rig.range(sonar(2.0f), 2.0, 5.0);
+  rig.update();
+  EXPECT_EQ(rig.at(4, 5), 254);
+  rig.range(sonar(7.0f), 2.0, 5.0);
+  rig.update();
+  EXPECT_EQ(rig.at(4, 5), 0);
+}
+
+TEST(RangeSensorLayer, MaxReadingWithoutClearOnMaxDoesNotClear)
+{
+  Rig rig(nav2Params(false));
+  rig.range(sonar(2.0f), 2.0, 5.0);
+  rig.update();
+  ASSERT_EQ(rig.at(4, 5), 254);
+  rig.range(sonar(7.0f), 2.0, 5.0);  // a normal reading at 7 m, not a clearing one
+  rig.update();
+  EXPECT_EQ(rig.at(9, 5), 254);  // the new target cell
+  EXPECT_EQ(rig.at(4, 5), 254);  // outside the 10-degree cone's model weight: unchanged
+}
+
+// Nav2's testProbabilisticModelForward and testProbabilisticModelDownward.
+TEST(RangeSensorLayer, ProbabilisticModelForwardAndDownward)
+{
+  {
+    Rig rig(nav2Params(true));
+    for (double x : {2.0, 4.0, 6.0})
+    {
+      rig.range(sonar(3.0f, 1.0f, 10.0f), x, 5.0);
+      rig.update();
+    }
+    EXPECT_EQ(rig.at(5, 5), 254);
+    EXPECT_EQ(rig.at(6, 5), 0);
+    EXPECT_EQ(rig.at(7, 5), 254);
+    EXPECT_EQ(rig.at(8, 5), 0);
+    EXPECT_EQ(rig.at(9, 5), 254);
+  }
+  {
+    Rig rig(nav2Params(true));
+    for (double y : {3.0, 5.0, 7.0})
+    {
+      rig.range(sonar(1.0f, 1.0f, 10.0f), 2.0, y);
+      rig.update();
+    }
+    EXPECT_EQ(rig.at(3, 3), 254);
+    EXPECT_EQ(rig.at(3, 4), 0);
+    EXPECT_EQ(rig.at(3, 5), 254);
+    EXPECT_EQ(rig.at(3, 6), 0);
+    EXPECT_EQ(rig.at(3, 7), 254);
+  }
+}
+
+TEST(RangeSensorLayer, FacingOtherDirections)
+{
+  Rig rig(nav2Params(true));
+  rig.range(sonar(3.0f), 5.0, 5.0, M_PI / 2);  // facing +y: target (5, 8)
+  rig.update();
+  EXPECT_EQ(rig.at(5, 8), 254);
+  EXPECT_EQ(rig.at(8, 5), 0);  // untouched, p = 0.5: neither mark nor clear over the free master
+  EXPECT_EQ(rig.layer->costmap().getCost(8, 5), 127);
+}
+
+TEST(RangeSensorLayer, FixedRangersUseInfinities)
+{
+  ParamValue p = nav2Params(true);
+  p.set("input_sensor_type", S("FIXED"));
+  Rig rig(p);
+  RangeData r = sonar(-std::numeric_limits<float>::infinity(), 2.0f, 2.0f);
+  rig.range(r, 2.0, 5.0);
+  rig.update();
+  EXPECT_EQ(rig.at(4, 5), 254);  // detected at min_range
+  r.range = 1.5f;                 // not +-inf: rejected
+  EXPECT_FALSE(rig.layer->addRange(r, poseAt(2, 5, 0)).empty());
+  EXPECT_EQ(rig.ctx->countReports("fixed-distance"), 1);
+  r.range = std::numeric_limits<float>::infinity();  // nothing in view: clears
+  rig.range(r, 2.0, 5.0);
+  rig.update();
+  EXPECT_EQ(rig.at(4, 5), 0);
+}
+
+TEST(RangeSensorLayer, MalformedReadingsAreRejected)
+{
+  Rig rig(nav2Params(true));
+  RangeData r = sonar(2.0f);
+  r.field_of_view = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_FALSE(rig.layer->addRange(r, poseAt(2, 5, 0)).empty());
+  r = sonar(std::numeric_limits<float>::quiet_NaN());
+  EXPECT_FALSE(rig.layer->addRange(r, poseAt(2, 5, 0)).empty());
+  r = sonar(2.0f, 3.0f, 1.0f);  // max below min
+  EXPECT_FALSE(rig.layer->addRange(r, poseAt(2, 5, 0)).empty());
+  r = sonar(0.5f);  // below min_range: ignored, not an error
+  EXPECT_TRUE(rig.layer->addRange(r, poseAt(2, 5, 0)).empty());
+  r = sonar(3.0e38f, 1.0f, 3.4e38f);  // absurd but well-formed: ignored when applied
+  EXPECT_TRUE(rig.layer->addRange(r, poseAt(2, 5, 0)).empty());
+  EXPECT_EQ(rig.layer->pending(), 1u);
+  rig.update();
+  EXPECT_EQ(rig.ctx->countReports("too far"), 1);
+  EXPECT_EQ(rig.ctx->countReports("rejected"), 3);
+  for (unsigned k = 0; k < 100; ++k) EXPECT_EQ(rig.layer->costmap().getCost(k), 127) << k;
+}
+
+TEST(RangeSensorLayer, NoReadingsTimeout)
+{
+  ParamValue p = nav2Params(true);
+  p.set("no_readings_timeout", D(1.0));
+  Rig rig(p);
+  rig.ctx->now_ns = 500'000'000;
+  rig.update();
+  EXPECT_TRUE(rig.layer->isCurrent());
+  rig.ctx->now_ns = 1'500'000'000;
+  rig.update();
+  EXPECT_FALSE(rig.layer->isCurrent());
+  EXPECT_EQ(rig.ctx->countReports("no range readings for 1.50 s"), 1);
+  rig.range(sonar(2.0f), 2.0, 5.0);
+  rig.update();
+  EXPECT_TRUE(rig.layer->isCurrent());
+}
+
+TEST(RangeSensorLayer, ResetAndRollingWindow)
+{
+  Rig rig(nav2Params(true), true);
+  rig.range(sonar(2.0f), 2.0, 5.0);
+  rig.update(5.0, 5.0);  // origin (0, 0)
+  ASSERT_EQ(rig.at(4, 5), 254);
+  rig.update(6.0, 5.0);  // origin (1, 0): the obstacle moves one cell left in the grid
+  EXPECT_EQ(rig.layer->costmap().getCost(3, 5), 233);
+  EXPECT_EQ(rig.layer->costmap().getCost(9, 5), 127);  // new cells start at p = 0.5
+  rig.layer->reset();
+  EXPECT_EQ(rig.layer->costmap().getCost(3, 5), 127);
+  EXPECT_TRUE(rig.layer->isClearable());
+}
