@@ -775,11 +775,13 @@ void cappedCostMerge8(uint8_t* grid, int width, int height, std::ptrdiff_t strid
   const int n = win.x1 - win.x0;
   const int cw = std::min(width, win.x1 + cap) - std::max(0, win.x0 - cap);
   const int pad = cap + kMaxLanes;
-  const int row_stride = n + 2 * pad;
+  // Rows start on a cache line and window column 0 too: the row pass's aligned offsets then split
+  // fewer loads across lines.
+  const int row_stride = (n + 2 * pad + kMaxLanes - 1) / kMaxLanes * kMaxLanes;
   // A stripe of about 256 KiB: it stays in the level-2 cache between the two vertical sweeps.
   const int stripe = std::max(16, std::min(win.y1 - win.y0, (256 << 10) / row_stride));
   const std::size_t rows_size = static_cast<std::size_t>(stripe) * static_cast<std::size_t>(row_stride);
-  if (scratch.merge_g.size() < rows_size) scratch.merge_g.resize(rows_size);
+  if (scratch.merge_g.size() < rows_size + kMaxLanes) scratch.merge_g.resize(rows_size + kMaxLanes);
   if (scratch.run.size() < static_cast<std::size_t>(2 * cw + row_stride))
     scratch.run.resize(static_cast<std::size_t>(2 * cw + row_stride));
 
@@ -792,7 +794,8 @@ void cappedCostMerge8(uint8_t* grid, int width, int height, std::ptrdiff_t strid
   job.win = win;
   job.consts = MergeConsts{lut,        cost_sq,     scratch.run.data() + 2 * cw, cap, static_cast<uint8_t>(cap + 1),
                            rule.special, rule.special_threshold};
-  job.rows = scratch.merge_g.data();
+  const std::size_t misalign = reinterpret_cast<std::uintptr_t>(scratch.merge_g.data() + pad) % kMaxLanes;
+  job.rows = scratch.merge_g.data() + (misalign == 0 ? 0 : kMaxLanes - misalign);
   job.row_stride = row_stride;
   job.pad = pad;
   job.stripe = stripe;
