@@ -1,0 +1,114 @@
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <memory>
+#include <thread>
+#include <vector>
+
+#include "costmap_layers/core/observation_buffer.hpp"
+
+using namespace costmap_layers;
+
+namespace
+{
+constexpr uint64_t kSec = 1'000'000'000ull;
+
+std::shared_ptr<const Observation> obs(uint64_t stamp, double ox = 0.0, double oy = 0.0)
+{
+  auto o = std::make_shared<Observation>();
+  o->stamp_ns = stamp;
+  o->origin_x = ox;
+  o->origin_y = oy;
+  o->points = {{1.0f, 0.0f, 0.0f}};
+  return o;
+}
+
+std::size_t fetch(ObservationBuffer& b, uint64_t now, double rx = 0.0, double ry = 0.0)
+{
+  std::vector<std::shared_ptr<const Observation>> out;
+  b.getObservations(out, now, rx, ry);
+  return out.size();
+}
+}  // namespace
+
+TEST(ObservationBuffer, ZeroPersistenceKeepsOnlyTheNewest)
+{
+  ObservationBuffer b("scan", {}, 0);
+  b.add(obs(1 * kSec), 1 * kSec);
+  auto newest = obs(2 * kSec);
+  b.add(newest, 2 * kSec);
+  std::vector<std::shared_ptr<const Observation>> out;
+  b.getObservations(out, 100 * kSec, 0, 0);
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0], newest);
+  EXPECT_EQ(fetch(b, 1000 * kSec), 1u);  // the newest stays however old
+}
+
+TEST(ObservationBuffer, PersistenceDropsOldObservations)
+{
+  ObservationBufferConfig c;
+  c.observation_persistence = 1.0;
+  ObservationBuffer b("cloud", c, 0);
+  b.add(obs(10 * kSec), 10 * kSec);
+  b.add(obs(10 * kSec + kSec / 2), 10 * kSec + kSec / 2);
+  EXPECT_EQ(fetch(b, 11 * kSec), 2u);            // ages 1.0 and 0.5: both kept
+  EXPECT_EQ(fetch(b, 11 * kSec + kSec / 4), 1u);  // 1.25 s old: dropped
+  EXPECT_EQ(fetch(b, 12 * kSec), 0u);
+  b.add(obs(20 * kSec), 15 * kSec);  // stamped in the future: fresh
+  EXPECT_EQ(fetch(b, 15 * kSec), 1u);
+}
+
+TEST(ObservationBuffer, KeepDistanceDropsFarObservations)
+{
+  ObservationBufferConfig c;
+  c.observation_persistence = 10.0;
+  c.observation_keep_distance = 2.0;
+  ObservationBuffer b("cloud", c, 0);
+  b.add(obs(kSec, 0.0, 0.0), kSec);
+  b.add(obs(kSec, 3.0, 0.0), kSec);
+  EXPECT_EQ(fetch(b, kSec, 1.0, 0.0), 2u);
+  EXPECT_EQ(fetch(b, kSec, 4.5, 0.0), 1u);  // 4.5 m from the first
+  EXPECT_EQ(b.size(), 1u);
+  EXPECT_EQ(fetch(b, kSec, 4.5, 3.0), 0u);  // 3.35 m from the second
+}
+
+TEST(ObservationBuffer, ExpectedUpdateRateIsAPeriod)
+{
+  ObservationBufferConfig c;
+  c.expected_update_rate = 0.5;
+  ObservationBuffer b("scan", c, 2 * kSec);
+  EXPECT_TRUE(b.isCurrent(2 * kSec + kSec / 2));
+  EXPECT_FALSE(b.isCurrent(2 * kSec + kSec / 2 + 1));  // never updated since creation
+  b.add(obs(3 * kSec), 3 * kSec);
+  EXPECT_TRUE(b.isCurrent(3 * kSec + kSec / 4));
+  EXPECT_NEAR(b.secondsSinceUpdate(4 * kSec), 1.0, 1e-9);
+  EXPECT_FALSE(b.isCurrent(4 * kSec));
+  b.resetLastUpdated(4 * kSec);
+  EXPECT_TRUE(b.isCurrent(4 * kSec));
+  ObservationBuffer unchecked("x", {}, 0);
+  EXPECT_TRUE(unchecked.isCurrent(1000 * kSec));
+}
+
+TEST(ObservationBuffer, ConcurrentAddAndGet)
+{
+  ObservationBufferConfig c;
+  c.observation_persistence = 0.001;
+  ObservationBuffer b("cloud", c, 0);
+  std::atomic<bool> stop{false};
+  std::atomic<uint64_t> now{kSec};
+  std::thread producer([&] {
+    while (!stop) b.add(obs(now.load()), now.load());
+  });
+  std::size_t seen = 0;
+  for (int i = 0; i < 2000; ++i)
+  {
+    now += kSec / 10000;
+    seen += fetch(b, now.load());
+  }
+  stop = true;
+  producer.join();
+  EXPECT_GT(seen, 0u);
+  EXPECT_EQ(fetch(b, now.load() + kSec), 0u);  // all older than the 1 ms persistence by then
+  b.clear();
+  EXPECT_EQ(b.size(), 0u);
+}
