@@ -99,6 +99,7 @@ TEST(ObservationBuffer, ConcurrentAddAndGet)
   std::thread producer([&] {
     while (!stop) b.add(obs(now.load()), now.load());
   });
+  while (b.size() == 0) std::this_thread::yield();
   std::size_t seen = 0;
   for (int i = 0; i < 2000; ++i)
   {
