@@ -73,7 +73,9 @@ void VoxelLayer::raytraceFreespace(const Observation& obs, double* min_x, double
   const unsigned int unknown_t = static_cast<unsigned int>(voxel_config_.unknown_threshold);
   auto clear = [cols, grid, mark_t, unknown_t](unsigned int index, unsigned int z) {
     uint32_t& col = cols[index];
-    col &= ~(((1u << 16) | 1u) << z);
+    const uint32_t bits = ((1u << 16) | 1u) << z;
+    if ((col & bits) == 0) return;  // already free: the column's counts did not change
+    col &= ~bits;
     if (VoxelGrid::markedCount(col) <= mark_t)
       grid[index] = VoxelGrid::unknownCount(col) > unknown_t ? NO_INFORMATION : FREE_SPACE;
   };

@@ -54,12 +54,20 @@ public:
 
   /// Walks the voxels of the segment between two points given in voxel units (x / resolution, ...),
   /// both inside the grid, from the first; the voxel holding the end point is not visited. Calls
-  /// at(column_index, z) for each; nothing is allocated. Steps of at most one voxel per axis.
+  /// at(column_index, z) once per voxel; nothing is allocated. Steps of at most one voxel per axis.
   template <class ActionType>
   void walkLine(ActionType&& at, double x0, double y0, double z0, double x1, double y1, double z1) const;
 
 private:
-  static unsigned int popcount(uint32_t v) { return static_cast<unsigned int>(__builtin_popcount(v)); }
+  /// Bit count without relying on a popcnt instruction (the build targets baseline x86-64, where
+  /// __builtin_popcount is a library call).
+  static unsigned int popcount(uint32_t v)
+  {
+    v = v - ((v >> 1) & 0x55555555u);
+    v = (v & 0x33333333u) + ((v >> 2) & 0x33333333u);
+    v = (v + (v >> 4)) & 0x0F0F0F0Fu;
+    return (v * 0x01010101u) >> 24;
+  }
 
   unsigned int size_x_ = 0, size_y_ = 0, size_z_ = 0;
   uint32_t unknown_column_ = 0;
@@ -69,23 +77,31 @@ private:
 template <class ActionType>
 void VoxelGrid::walkLine(ActionType&& at, double x0, double y0, double z0, double x1, double y1, double z1) const
 {
+  // Both ends are inside the grid (non-negative voxel units below 2^20), so 32.32 fixed point walks
+  // the segment exactly enough and truncation is floor.
   const double dx = x1 - x0, dy = y1 - y0, dz = z1 - z0;
   const double longest = std::max(std::fabs(dx), std::max(std::fabs(dy), std::fabs(dz)));
-  if (!(longest > 0.0) || !(longest < 1e7)) return;  // also NaN
+  if (!(longest > 0.0) || !(longest < 1e6)) return;  // also NaN
+  if (!(x0 >= 0.0 && y0 >= 0.0 && z0 >= 0.0 && x0 < size_x_ && y0 < size_y_ && z0 < size_z_)) return;
   const unsigned int steps = static_cast<unsigned int>(std::ceil(longest));
-  const double sx = dx / steps, sy = dy / steps, sz = dz / steps;
-  const int ex = static_cast<int>(std::floor(x1)), ey = static_cast<int>(std::floor(y1)),
-            ez = static_cast<int>(std::floor(z1));
-  double x = x0, y = y0, z = z0;
-  for (unsigned int i = 0; i < steps; ++i, x += sx, y += sy, z += sz)
+  constexpr double kOne = 4294967296.0;  // 2^32
+  int64_t fx = static_cast<int64_t>(x0 * kOne), fy = static_cast<int64_t>(y0 * kOne), fz = static_cast<int64_t>(z0 * kOne);
+  const int64_t sx = static_cast<int64_t>(dx / steps * kOne), sy = static_cast<int64_t>(dy / steps * kOne),
+                sz = static_cast<int64_t>(dz / steps * kOne);
+  const int64_t ex = static_cast<int64_t>(std::floor(x1)), ey = static_cast<int64_t>(std::floor(y1)),
+                ez = static_cast<int64_t>(std::floor(z1));
+  int64_t px = -1, py = -1, pz = -1;
+  for (unsigned int i = 0; i < steps; ++i, fx += sx, fy += sy, fz += sz)
   {
-    const int ix = static_cast<int>(std::floor(x)), iy = static_cast<int>(std::floor(y)),
-              iz = static_cast<int>(std::floor(z));
+    // Arithmetic shift: a hair below zero becomes -1 and ends the walk below.
+    const int64_t ix = fx >> 32, iy = fy >> 32, iz = fz >> 32;
+    if (ix == px && iy == py && iz == pz) continue;  // still in the voxel just visited
     if (ix == ex && iy == ey && iz == ez) return;
-    if (ix < 0 || iy < 0 || iz < 0 || ix >= static_cast<int>(size_x_) || iy >= static_cast<int>(size_y_) ||
-        iz >= static_cast<int>(size_z_))
+    if (ix < 0 || iy < 0 || iz < 0 || ix >= static_cast<int64_t>(size_x_) || iy >= static_cast<int64_t>(size_y_) ||
+        iz >= static_cast<int64_t>(size_z_))
       return;
     at(static_cast<unsigned int>(iy) * size_x_ + static_cast<unsigned int>(ix), static_cast<unsigned int>(iz));
+    px = ix, py = iy, pz = iz;
   }
 }
 }  // namespace costmap_layers
