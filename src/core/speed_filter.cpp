@@ -171,6 +171,11 @@ void SpeedFilter::processPose(const OccupancyGridData& mask, const Transform2D& 
     speed = last_published_ ? *last_published_ : config_.default_max_speed;
   else if (v)
     speed = limitForValue(*v, active_limits_.get());
+  publishIfChanged(speed);
+}
+
+void SpeedFilter::publishIfChanged(double speed)
+{
   if (last_published_ && *last_published_ == speed) return;
   last_published_ = speed;
   if (publish_) publish_(speed);

@@ -4,9 +4,19 @@
 #include "costmap_layers/core/gradient_layer.hpp"
 #include "costmap_layers/core/inflation_layer.hpp"
 #include "costmap_layers/core/keepout_filter.hpp"
+#include "costmap_layers/core/lanes_filter.hpp"
+#include "costmap_layers/core/obstacle_layer.hpp"
+#include "costmap_layers/core/range_sensor_layer.hpp"
+#include "costmap_layers/core/speed_filter.hpp"
 #include "costmap_layers/core/static_layer.hpp"
+#include "costmap_layers/core/voxel_layer.hpp"
 
 PLUGINLIB_EXPORT_CLASS(costmap_layers::GradientLayer, costmap_layers::Layer)
 PLUGINLIB_EXPORT_CLASS(costmap_layers::KeepoutFilter, costmap_layers::Layer)
 PLUGINLIB_EXPORT_CLASS(costmap_layers::StaticLayer, costmap_layers::Layer)
 PLUGINLIB_EXPORT_CLASS(costmap_layers::InflationLayer, costmap_layers::Layer)
+PLUGINLIB_EXPORT_CLASS(costmap_layers::SpeedFilter, costmap_layers::Layer)
+PLUGINLIB_EXPORT_CLASS(costmap_layers::LanesFilter, costmap_layers::Layer)
+PLUGINLIB_EXPORT_CLASS(costmap_layers::ObstacleLayer, costmap_layers::Layer)
+PLUGINLIB_EXPORT_CLASS(costmap_layers::VoxelLayer, costmap_layers::Layer)
+PLUGINLIB_EXPORT_CLASS(costmap_layers::RangeSensorLayer, costmap_layers::Layer)

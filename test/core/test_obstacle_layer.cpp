@@ -499,13 +499,20 @@ TEST(ObstacleLayer, StaticObservationsPersist)
 TEST(ObstacleLayer, ReadingsFromAnotherThread)
 {
   Rig rig(obstacleParams(), false, true);
-  std::atomic<bool> stop{false};
+  // The producer delivers a fixed number of readings while the updates run; the updates go on until
+  // it is done, so both sides really overlap whatever the scheduler does.
+  std::atomic<bool> done{false};
   std::thread producer([&] {
     const PointCloud2Data c = makeCloud({{3.0, 3.0, 0.0}, {6.0, 2.0, 0.0}, {2.0, 8.0, 0.0}});  // sensor frame
-    while (!stop) rig.ctx->publishCloud("cloud", c, poseAt(0.5, 0.5, 0.5));
+    for (int k = 0; k < 300; ++k) rig.ctx->publishCloud("cloud", c, poseAt(0.5, 0.5, 0.5));
+    done = true;
   });
-  for (int i = 0; i < 200; ++i) rig.update();
-  stop = true;
+  int updates = 0;
+  while (!done || updates < 50)
+  {
+    rig.update();
+    ++updates;
+  }
   producer.join();
   rig.update();
   EXPECT_EQ(rig.master().getCost(3, 3), LETHAL_OBSTACLE);

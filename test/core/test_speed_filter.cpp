@@ -190,13 +190,16 @@ TEST(SpeedFilter, SubscribesAdvertisesAndWritesNothing)
   EXPECT_EQ(n.ctx->max_speed_topic, "/max_speed");
 }
 
-TEST(SpeedFilter, NothingPublishedWithoutMask)
+TEST(SpeedFilter, WithoutMaskTheDefaultIsInForce)
 {
+  // No mask yet: the robot is in no area, so the default is published once, then nothing new.
   Rig r;
   r.ctx->publishSpeedLimits(allLimits());
-  EXPECT_EQ(r.at(1.5, 1.5), 0u);
-  EXPECT_TRUE(r.ctx->published_speeds.empty());
-  EXPECT_FALSE(r.filter->lastPublished().has_value());
+  EXPECT_EQ(r.at(1.5, 1.5), 1u);
+  EXPECT_DOUBLE_EQ(r.last(), kDefault);
+  EXPECT_EQ(r.at(2.5, 1.5), 0u);
+  ASSERT_TRUE(r.filter->lastPublished().has_value());
+  EXPECT_DOUBLE_EQ(*r.filter->lastPublished(), kDefault);
 }
 
 // ---------------------------------------------------------------- area_id mode
@@ -506,13 +509,17 @@ TEST(SpeedFilter, InvalidMaskValuesGiveTheDefaultWarnedOnce)
   EXPECT_EQ(r.ctx->countReports("value -7"), 1);
 }
 
-TEST(SpeedFilter, DisabledFilterPublishesNothing)
+TEST(SpeedFilter, SwitchedOffRestoresTheDefaultAndOnAgainTheZone)
 {
   Rig r;
   r.ctx->publishGrid(GridKind::Mask, makeMask());
   r.ctx->publishSpeedLimits(allLimits());
-  r.ctx->toggle(false);
-  EXPECT_EQ(r.atArea(5), 0u);
+  EXPECT_EQ(r.atArea(5), 1u);
+  EXPECT_DOUBLE_EQ(r.last(), limitOf(5));
+  r.ctx->toggle(false);  // no zone limits the robot any more
+  EXPECT_EQ(r.atArea(5), 1u);
+  EXPECT_DOUBLE_EQ(r.last(), kDefault);
+  EXPECT_EQ(r.atArea(6), 0u);  // and nothing more while off
   r.ctx->toggle(true);
   EXPECT_EQ(r.atArea(5), 1u);
   EXPECT_DOUBLE_EQ(r.last(), limitOf(5));

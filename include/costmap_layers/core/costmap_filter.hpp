@@ -101,6 +101,9 @@ protected:
   {
     (void)mask, (void)to_mask, (void)robot_x, (void)robot_y, (void)robot_yaw;
   }
+  /// Called every cycle instead of processPose() while the filter is switched off or has no mask yet
+  /// (not when only the transform is missing): SpeedFilter restores its default there.
+  virtual void processInactive() {}
   /// Default topic of the mask, overridable per filter type.
   virtual std::string defaultMaskTopic() const { return "/map_filter"; }
   /// The mask value at a world point (global frame), or nullopt when outside the mask.

@@ -113,8 +113,11 @@ protected:
   }
   void processPose(const OccupancyGridData& mask, const Transform2D& to_mask, double robot_x, double robot_y,
                    double robot_yaw) override;
+  /// Switched off or without a mask: no zone limits the robot, so default_max_speed is in force.
+  void processInactive() override { publishIfChanged(config_.default_max_speed); }
 
 private:
+  void publishIfChanged(double speed);
   /// The limit [m/s] for a mask value in 0..100 (not -1), warning as documented.
   double limitForValue(int8_t v, const SpeedLimitTable* table);
   void warnValueOnce(int8_t v, const std::string& message);
