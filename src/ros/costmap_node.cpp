@@ -138,7 +138,8 @@ bool CostmapNode::updateOnce()
   }
   footprint_pub_.publish(fp);
 
-  if (config_.publish_frequency > 0.0 && costmap_->isInitialized() &&
+  // Publish once a cycle ran, even if no layer had anything to draw yet: the grid is valid then.
+  if (config_.publish_frequency > 0.0 &&
       (ros::WallTime::now() - last_publish_).toSec() >= 1.0 / config_.publish_frequency)
   {
     const auto& grid = costmap_->getCostmap();

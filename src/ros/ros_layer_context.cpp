@@ -102,10 +102,12 @@ namespace
 template <class Msg>
 struct FilteredInput
 {
+  // Readings waiting for tf: once this many newer ones wait too, the oldest is dropped (and reported).
+  static constexpr uint32_t kQueue = 10;
   message_filters::Subscriber<Msg> subscriber;
   tf2_ros::MessageFilter<Msg> filter;
   FilteredInput(ros::NodeHandle& nh, const std::string& topic, tf2_ros::Buffer& tf, const std::string& target)
-    : subscriber(nh, topic, 5), filter(subscriber, tf, target, 50, nh)
+    : subscriber(nh, topic, 5), filter(subscriber, tf, target, kQueue, nh)
   {
   }
 };

@@ -36,7 +36,8 @@ class GridWatcher:
             self.data = list(msg.data)
             self.width = msg.info.width
             self.height = msg.info.height
-            self.resolution = msg.info.resolution
+            # info.resolution is a float32: 0.1 arrives as 0.10000000149, which would put 5.0 m in cell 49.
+            self.resolution = round(msg.info.resolution, 6)
             self.cond.notify_all()
 
     def _on_update(self, msg):

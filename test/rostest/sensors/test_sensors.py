@@ -1,0 +1,184 @@
+#!/usr/bin/env python3
+"""The sensor layers through real topics: LaserScan, PointCloud2 and Range publishers and a robot in
+tf. Marks appear and clear; a reading in a frame tf does not know is dropped (the node keeps running
+and says which frame); a source that stops makes the costmap not current, and the node says which."""
+import math
+import os
+import struct
+import sys
+import threading
+import unittest
+
+import rospy
+import rostest
+import tf2_ros
+from geometry_msgs.msg import TransformStamped
+from rosgraph_msgs.msg import Log
+from sensor_msgs.msg import LaserScan, PointCloud2, PointField, Range
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from grid_watch import GridWatcher  # noqa: E402
+
+
+def static_tf(parent, child, x, y, z):
+    t = TransformStamped()
+    t.header.stamp = rospy.Time.now()
+    t.header.frame_id = parent
+    t.child_frame_id = child
+    t.transform.translation.x, t.transform.translation.y, t.transform.translation.z = x, y, z
+    t.transform.rotation.w = 1.0
+    return t
+
+
+def scan(ranges, stamp):
+    s = LaserScan()
+    s.header.frame_id = "laser"
+    s.header.stamp = stamp
+    s.angle_min = -0.2
+    s.angle_increment = 0.4 / (len(ranges) - 1)
+    s.angle_max = s.angle_min + s.angle_increment * (len(ranges) - 1)
+    s.range_min = 0.05
+    s.range_max = 6.0
+    s.ranges = ranges
+    return s
+
+
+def cloud(points, frame, stamp):
+    c = PointCloud2()
+    c.header.frame_id = frame
+    c.header.stamp = stamp
+    c.height, c.width = 1, len(points)
+    c.fields = [PointField("x", 0, PointField.FLOAT32, 1), PointField("y", 4, PointField.FLOAT32, 1),
+                PointField("z", 8, PointField.FLOAT32, 1)]
+    c.is_bigendian = False
+    c.point_step = 12
+    c.row_step = 12 * len(points)
+    c.data = b"".join(struct.pack("<fff", *p) for p in points)
+    c.is_dense = True
+    return c
+
+
+def sonar(rng, stamp):
+    r = Range()
+    r.header.frame_id = "sonar"
+    r.header.stamp = stamp
+    r.radiation_type = Range.ULTRASOUND
+    r.field_of_view = 0.1
+    r.min_range = 0.05
+    r.max_range = 3.0
+    r.range = rng
+    return r
+
+
+class SensorsTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node("test_sensors")
+        cls.grid = GridWatcher("/costmap_node")
+        cls.logs = []
+        cls.log_lock = threading.Lock()
+
+        def on_log(msg):
+            with cls.log_lock:
+                cls.logs.append((msg.name, msg.level, msg.msg))
+
+        rospy.Subscriber("/rosout", Log, on_log)
+        cls.statics = tf2_ros.StaticTransformBroadcaster()
+        cls.statics.sendTransform([static_tf("base_link", "laser", 0.0, 0.0, 0.3),
+                                   static_tf("base_link", "camera", 0.0, 0.0, 0.5),
+                                   static_tf("base_link", "sonar", 0.0, 0.0, 0.2)])
+        cls.scan_pub = rospy.Publisher("/scan", LaserScan, queue_size=5)
+        cls.cloud_pub = rospy.Publisher("/cloud", PointCloud2, queue_size=5)
+        cls.sonar_pub = rospy.Publisher("/sonar", Range, queue_size=5)
+        cls.tf_buffer = tf2_ros.Buffer()
+        tf2_ros.TransformListener(cls.tf_buffer)
+        cls.tf_buffer.lookup_transform("map", "laser", rospy.Time(0), rospy.Duration(20.0))
+        assert cls.grid.wait_until(lambda g: True, 30.0), "no costmap published"
+
+    def publish_for(self, pub, make, seconds, rate=10.0):
+        """Publishes make(stamp) at rate for a while (stamps from now, so tf has them)."""
+        r = rospy.Rate(rate)
+        end = rospy.Time.now() + rospy.Duration(seconds)
+        while rospy.Time.now() < end and not rospy.is_shutdown():
+            pub.publish(make(rospy.Time.now() - rospy.Duration(0.05)))
+            r.sleep()
+
+    def lethal(self):
+        """The lethal cells [m] of the published grid, for failure messages."""
+        d = self.grid.snapshot() or []
+        w = self.grid.width
+        return [(round((i % w) * 0.1, 1), round((i // w) * 0.1, 1)) for i, v in enumerate(d) if v == 100]
+
+    def said(self, needle):
+        with self.log_lock:
+            return [m for m in self.logs if needle in m[2]]
+
+    def test_1_laser_marks_and_clears(self):
+        # Robot at (2, 5) facing +x, laser 0.3 m up: beams hitting 1.5 m ahead mark around (3.5, 5.0).
+        self.publish_for(self.scan_pub, lambda st: scan([1.5] * 5, st), 1.0)
+        self.assertTrue(self.grid.wait_until(lambda g: g.at(3.55, 5.0) == 100, 10.0), "the scan did not mark; lethal: %s" % self.lethal())
+        self.assertEqual(self.grid.at(2.8, 5.0), 0)  # the ray before the hit is free
+        # The obstacle moves away: longer readings along the same beams clear the old cells.
+        self.publish_for(self.scan_pub, lambda st: scan([3.0] * 5, st), 1.0)
+        self.assertTrue(self.grid.wait_until(lambda g: g.at(3.55, 5.0) == 0 and g.at(5.05, 5.0) == 100, 10.0),
+                        "the old mark was not cleared or the new one not marked")
+
+    def test_2_cloud_marks_within_heights_and_clears(self):
+        # Camera 0.5 m up at (2, 5): a point 2 m ahead, 1 m left, at z -0.2 (0.3 m above the floor) marks;
+        # one at z -0.45 (0.05 m, below min_obstacle_height 0.1) does not.
+        self.publish_for(self.cloud_pub, lambda st: cloud([(2.0, 1.0, -0.2), (2.0, -1.0, -0.45)], "camera", st), 1.0)
+        self.assertTrue(self.grid.wait_until(lambda g: g.at(4.05, 6.05) == 100, 10.0), "the cloud did not mark")
+        self.assertEqual(self.grid.at(4.05, 4.05), 0)
+        # A point farther along the same ray clears the first one.
+        self.publish_for(self.cloud_pub, lambda st: cloud([(3.0, 1.5, -0.2)], "camera", st), 1.0)
+        self.assertTrue(self.grid.wait_until(lambda g: g.at(4.05, 6.05) == 0 and g.at(5.05, 6.55) == 100, 10.0),
+                        "the cloud's old mark was not cleared")
+
+    def test_3_sonar_marks_and_clears_on_max(self):
+        # Facing +x at (2, 5): a 2 m echo marks (4, 5); a max-range reading clears it (clear_on_max_reading).
+        self.publish_for(self.sonar_pub, lambda st: sonar(2.0, st), 1.5)
+        self.assertTrue(self.grid.wait_until(lambda g: g.at(4.0, 5.0) == 100, 10.0), "the sonar did not mark (4, 5); lethal: %s" % self.lethal())
+        self.publish_for(self.sonar_pub, lambda st: sonar(3.0, st), 1.5)
+        self.assertTrue(self.grid.wait_until(lambda g: g.at(4.0, 5.0) == 0, 10.0),
+                        "the max-range reading did not clear (4, 5)")
+
+    def test_4_unknown_frame_is_dropped(self):
+        before = self.grid.snapshot()
+        # The node waits for tf a little (a bounded queue of readings), then drops them and says so.
+        self.publish_for(self.cloud_pub, lambda st: cloud([(1.0, 0.0, 0.3)], "nowhere", st), 3.0)
+        deadline = rospy.Time.now() + rospy.Duration(10.0)
+        while not self.said("'nowhere'") and rospy.Time.now() < deadline:
+            rospy.sleep(0.2)
+        self.assertTrue(self.said("'nowhere'"), "no warning named the unknown frame")
+        self.assertIn("map", self.said("'nowhere'")[0][2])
+        # Nothing was marked from it, and the node still runs: a good reading is still taken.
+        self.assertEqual(self.grid.snapshot().count(100), before.count(100))
+        self.publish_for(self.scan_pub, lambda st: scan([1.0] * 5, st), 1.0)
+        self.assertTrue(self.grid.wait_until(lambda g: g.at(3.05, 5.0) == 100, 10.0), "the node stopped taking readings")
+
+    def test_5_late_source_is_reported(self):
+        # The laser expects a reading every 1.0 s: after it stops, the layer is not current and says so.
+        self.publish_for(self.scan_pub, lambda st: scan([1.0] * 5, st), 0.5)
+        deadline = rospy.Time.now() + rospy.Duration(15.0)
+        while not self.said("scan") and rospy.Time.now() < deadline:
+            rospy.sleep(0.2)
+        late = [m for m in self.said("'scan'") if "has not been updated" in m[2]]
+        self.assertTrue(late, "no warning named the late source; got: %s" % self.said(""))
+        self.assertEqual(late[0][1], Log.WARN)
+
+    def test_6_marks_stay_in_place_while_the_robot_moves(self):
+        self.publish_for(self.scan_pub, lambda st: scan([1.0] * 5, st), 1.0)
+        self.assertTrue(self.grid.wait_until(lambda g: g.at(3.05, 5.0) == 100, 10.0))
+        rospy.set_param("/fake_robot/start", True)
+        deadline = rospy.Time.now() + rospy.Duration(20.0)
+        while not rospy.get_param("/fake_robot/done", False) and rospy.Time.now() < deadline:
+            rospy.sleep(0.1)
+        self.assertTrue(rospy.get_param("/fake_robot/done", False))
+        rospy.sleep(0.5)
+        # From (2.5, 5) the same obstacle is 0.5 m ahead: the mark is where it was in the map.
+        self.publish_for(self.scan_pub, lambda st: scan([0.5] * 5, st), 1.0)
+        self.assertTrue(self.grid.wait_until(lambda g: g.at(3.05, 5.0) == 100, 10.0))
+
+
+if __name__ == "__main__":
+    rostest.rosrun("costmap_layers", "sensors", SensorsTest)
