@@ -8,6 +8,17 @@
 
 namespace costmap_layers
 {
+namespace
+{
+/// The master keeps what a layer drew until an update window covers it: ask for the whole grid.
+void redrawAll(CostmapLayer& layer)
+{
+  const Costmap2D& grid = layer.costmap();
+  layer.addExtraBounds(grid.getOriginX(), grid.getOriginY(), grid.getOriginX() + grid.getSizeInMetersX(),
+                       grid.getOriginY() + grid.getSizeInMetersY());
+}
+}  // namespace
+
 int resetClearableLayers(LayeredCostmap& costmap)
 {
   int n = 0;
@@ -15,6 +26,7 @@ int resetClearableLayers(LayeredCostmap& costmap)
   {
     if (!layer->isClearable()) continue;
     layer->reset();
+    if (auto* grid_layer = dynamic_cast<CostmapLayer*>(layer.get())) redrawAll(*grid_layer);
     ++n;
   }
   return n;
@@ -44,8 +56,7 @@ int clearClearableLayersAround(LayeredCostmap& costmap, double x, double y, doub
     grid.resetMap(0, static_cast<unsigned>(ky1) + 1, sx, sy);
     grid.resetMap(0, static_cast<unsigned>(ky0), static_cast<unsigned>(kx0), static_cast<unsigned>(ky1) + 1);
     grid.resetMap(static_cast<unsigned>(kx1) + 1, static_cast<unsigned>(ky0), sx, static_cast<unsigned>(ky1) + 1);
-    grid_layer->addExtraBounds(grid.getOriginX(), grid.getOriginY(), grid.getOriginX() + grid.getSizeInMetersX(),
-                               grid.getOriginY() + grid.getSizeInMetersY());
+    redrawAll(*grid_layer);
   }
   return n;
 }

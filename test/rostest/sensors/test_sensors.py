@@ -179,6 +179,24 @@ class SensorsTest(unittest.TestCase):
         self.publish_for(self.scan_pub, lambda st: scan([0.5] * 5, st), 1.0)
         self.assertTrue(self.grid.wait_until(lambda g: g.at(3.05, 5.0) == 100, 10.0))
 
+    def test_7_clear_services(self):
+        from std_srvs.srv import Empty
+        # The robot is at (2.5, 5). A camera point 3.5 m ahead marks (6.0, 5.0); a later cloud sees only a
+        # point elsewhere, so that mark stays in the grid without being in any buffer; the laser marks
+        # 1 m ahead, inside the square ~clear_around_robot keeps (reset_distance 3 m).
+        self.publish_for(self.cloud_pub, lambda st: cloud([(3.5, 0.0, -0.2)], "camera", st), 1.0)
+        self.publish_for(self.cloud_pub, lambda st: cloud([(0.8, 0.6, -0.2)], "camera", st), 1.0)
+        self.publish_for(self.scan_pub, lambda st: scan([1.0] * 5, st), 1.0)
+        self.assertTrue(self.grid.wait_until(lambda g: g.at(3.55, 5.0) == 100 and g.at(6.05, 5.0) == 100, 10.0),
+                        "lethal: %s" % self.lethal())
+        rospy.wait_for_service("/costmap_node/clear_around_robot", 10.0)
+        rospy.ServiceProxy("/costmap_node/clear_around_robot", Empty)()
+        self.assertTrue(self.grid.wait_until(lambda g: g.at(6.05, 5.0) == 0, 10.0), "lethal: %s" % self.lethal())
+        self.assertEqual(self.grid.at(3.55, 5.0), 100)
+        rospy.ServiceProxy("/costmap_node/clear", Empty)()
+        # Everything the sensor layers held is gone until new readings come.
+        self.assertTrue(self.grid.wait_until(lambda g: g.data.count(100) == 0, 10.0),
+                        "lethal after ~clear: %s" % self.lethal())
 
 if __name__ == "__main__":
     rostest.rosrun("costmap_layers", "sensors", SensorsTest)
