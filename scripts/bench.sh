@@ -7,7 +7,7 @@ build_package
 OUT="${BENCH_OUTPUT:-$ROOT/log/bench}"
 mkdir -p "$OUT"
 for exe in "$ROOT"/build/costmap_layers/devel/lib/costmap_layers/bench_*; do
-  [ -x "$exe" ] || continue
+  [ -x "$exe" ] && [ "${exe%.py}" = "$exe" ] || continue
   name=$(basename "$exe")
   echo "== $name"
   "$exe" --benchmark_repetitions="${BENCH_REPETITIONS:-5}" --benchmark_report_aggregates_only=true \

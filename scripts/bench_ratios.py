@@ -3,6 +3,8 @@
 import json
 import sys
 
+TO_NS = {"ns": 1.0, "us": 1e3, "ms": 1e6, "s": 1e9}
+
 
 def main(path):
     with open(path) as f:
@@ -12,15 +14,22 @@ def main(path):
         if b.get("aggregate_name", "median") != "median":
             continue
         name = b.get("run_name", b["name"]).replace("_median", "")
-        medians[name] = b["real_time"]
-    base = [v for k, v in medians.items() if "Memcpy" in k]
-    if not base:
-        print("(no memcpy baseline in this run)")
-        return
-    unit = data["benchmarks"][0].get("time_unit", "ms")
-    print(f"{'benchmark':48s} {'median':>12s} {'x memcpy':>9s}")
-    for name, t in medians.items():
-        print(f"{name:48s} {t:10.3f}{unit:>2s} {t / base[0]:9.2f}")
+        medians[name] = (b["real_time"] * TO_NS[b.get("time_unit", "ns")], b.get("label", ""))
+    # A memcpy of the same size when the run has one per size (".../200"), else the run's only memcpy.
+    memcpys = {k: t for k, (t, _) in medians.items() if "Memcpy" in k}
+
+    def baseline(name):
+        arg = name.split("/", 1)[1] if "/" in name else None
+        for k, t in memcpys.items():
+            if arg is not None and k.endswith("/" + arg):
+                return t
+        return next(iter(memcpys.values()), None)
+
+    print(f"{'benchmark':44s} {'median':>12s} {'x memcpy':>9s}")
+    for name, (t, label) in medians.items():
+        base = baseline(name)
+        ratio = f"{t / base:9.2f}" if base else "      n/a"
+        print(f"{name:44s} {t / 1e6:10.3f}ms {ratio}  {label}")
 
 
 if __name__ == "__main__":
