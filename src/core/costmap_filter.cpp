@@ -1,5 +1,6 @@
 #include "costmap_layers/core/costmap_filter.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -77,6 +78,50 @@ void MaskMapping::build(const Costmap2D& master, const CellWindow& window, const
   {
     const double g = std::floor(p0y_ + j * dvy_);
     rows_[static_cast<std::size_t>(j - window.y0)] = (g >= 0 && g < mask_h) ? static_cast<int32_t>(g) : -1;
+  }
+
+  // The on-mask columns: one run, since the column map is linear (checked, not assumed).
+  const int n = static_cast<int>(cols_.size());
+  cols_lo_ = 0;
+  while (cols_lo_ < n && cols_[static_cast<std::size_t>(cols_lo_)] < 0) ++cols_lo_;
+  cols_hi_ = n;
+  while (cols_hi_ > cols_lo_ && cols_[static_cast<std::size_t>(cols_hi_ - 1)] < 0) --cols_hi_;
+  cols_contiguous_ = std::all_of(cols_.begin() + cols_lo_, cols_.begin() + cols_hi_, [](int32_t c) { return c >= 0; });
+
+  // The byte-gather plan: blocks of 16 (else 8) window columns whose mask columns all fall within 16
+  // consecutive mask bytes, so that one load and one byte shuffle fill a block. The last block overlaps
+  // the one before when the run is not a multiple of the width. Mask columns nearer than 16 to the end
+  // of the row are read from mask_w - 16 on, so that no load passes the end of the row.
+  chunk_width_ = 0;
+  chunks_.clear();
+  chunk_shuffle_.clear();
+  if (!cols_contiguous_ || mask_w < 16) return;
+  for (const int width : {16, 8})
+  {
+    if (cols_hi_ - cols_lo_ < width) continue;
+    bool fits = true;
+    for (int pos = cols_lo_; pos < cols_hi_; pos += width)
+    {
+      const int p = std::min(pos, cols_hi_ - width);
+      const auto first = cols_.begin() + p;
+      const auto [lo_it, hi_it] = std::minmax_element(first, first + width);
+      if (*hi_it - *lo_it > 15)
+      {
+        fits = false;
+        break;
+      }
+      const int32_t src = std::min(*lo_it, mask_w - 16);
+      chunks_.push_back(ShuffleChunk{p, src});
+      for (int k = 0; k < 16; ++k)
+        chunk_shuffle_.push_back(k < width ? static_cast<uint8_t>(first[k] - src) : uint8_t{0x80});
+    }
+    if (fits)
+    {
+      chunk_width_ = width;
+      return;
+    }
+    chunks_.clear();
+    chunk_shuffle_.clear();
   }
 }
 

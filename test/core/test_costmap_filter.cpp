@@ -132,6 +132,26 @@ void expectRowsMatchNaive(const MaskMapping& m, const Costmap2D& master, const C
   expectMatchesNaive(copy, w, mask, to_mask);
 }
 
+/// As expectRowsMatchNaive, with the mask values as bytes (the block-shuffle gather), twice over the
+/// same scratch (which starts with stale values).
+void expectByteRowsMatchNaive(const MaskMapping& m, const Costmap2D& master, const CellWindow& w,
+                              const OccupancyGridData& mask, const Transform2D& to_mask)
+{
+  const std::vector<uint8_t> source(mask.data.begin(), mask.data.end());
+  std::vector<uint8_t> scratch(3, 77);
+  for (int pass = 0; pass < 2; ++pass)
+  {
+    Costmap2D copy = master;
+    copy.fillWindow(0, 0, copy.getSizeInCellsX(), copy.getSizeInCellsY(), kSentinel);
+    m.forEachRow(copy, source.data(), mask.width, mask.height, kSentinel, scratch,
+                 [](uint8_t* cells, const uint8_t* values, std::size_t n) {
+                   for (std::size_t k = 0; k < n; ++k) cells[k] = values[k];
+                 });
+    SCOPED_TRACE("forEachRow, bytes, pass " + std::to_string(pass));
+    expectMatchesNaive(copy, w, mask, to_mask);
+  }
+}
+
 struct Rig
 {
   LayeredCostmap lc{"map", false, false};
@@ -477,6 +497,7 @@ TEST(MaskMappingTest, OffsetPath)
   EXPECT_TRUE(m.axisAligned());
   EXPECT_TRUE(m.isOffset());
   expectRowsMatchNaive(m, master, w, mask, Transform2D{});
+  expectByteRowsMatchNaive(m, master, w, mask, Transform2D{});
   m.forEach(master, mask, [](uint8_t& cell, int8_t v) { cell = static_cast<uint8_t>(v); });
   const int on = expectMatchesNaive(master, w, mask, Transform2D{});
   EXPECT_GT(on, 0);
@@ -496,6 +517,7 @@ TEST(MaskMappingTest, OffsetPathWithTranslationAndNegativeOffset)
   m.build(master, w, mask, t);
   EXPECT_TRUE(m.isOffset());
   expectRowsMatchNaive(m, master, w, mask, t);
+  expectByteRowsMatchNaive(m, master, w, mask, t);
   m.forEach(master, mask, [](uint8_t& cell, int8_t v) { cell = static_cast<uint8_t>(v); });
   EXPECT_GT(expectMatchesNaive(master, w, mask, t), 0);
 }
@@ -510,6 +532,7 @@ TEST(MaskMappingTest, AxisAlignedDifferentResolution)
   EXPECT_TRUE(m.axisAligned());
   EXPECT_FALSE(m.isOffset());
   expectRowsMatchNaive(m, master, w, mask, Transform2D{});
+  expectByteRowsMatchNaive(m, master, w, mask, Transform2D{});
   m.forEach(master, mask, [](uint8_t& cell, int8_t v) { cell = static_cast<uint8_t>(v); });
   const int on = expectMatchesNaive(master, w, mask, Transform2D{});
   EXPECT_GT(on, 0);
@@ -524,8 +547,56 @@ TEST(MaskMappingTest, AxisAlignedDifferentResolution)
   EXPECT_TRUE(m2.axisAligned());
   EXPECT_FALSE(m2.isOffset());
   expectRowsMatchNaive(m2, coarse, CellWindow{0, 0, 8, 8}, fine, t);
+  expectByteRowsMatchNaive(m2, coarse, CellWindow{0, 0, 8, 8}, fine, t);
   m2.forEach(coarse, fine, [](uint8_t& cell, int8_t v) { cell = static_cast<uint8_t>(v); });
   EXPECT_GT(expectMatchesNaive(coarse, CellWindow{0, 0, 8, 8}, fine, t), 0);
+}
+
+TEST(MaskMappingTest, AxisAlignedByteGatherBlocks)
+{
+  struct Case
+  {
+    const char* what;
+    double mask_res;
+    uint32_t mask_w, mask_h;
+    double ox, oy;
+    Transform2D t;
+    CellWindow w;
+    int block;  ///< expected byteGatherBlock()
+  };
+  // Master: 120 x 40 cells of 0.05 m at (-1, -0.5). Offsets keep cell centres clear of mask cell edges.
+  const std::vector<Case> cases = {
+      // Coarser mask, off the master on both sides (neutral margins, last block overlapping, and blocks
+      // near the mask's right end loading from mask_w - 16).
+      {"coarser, both margins", 0.07, 60, 20, -0.613, -0.287, Transform2D{}, CellWindow{0, 0, 120, 40}, 16},
+      {"coarser, inside", 0.07, 200, 40, -2.013, -1.027, Transform2D{}, CellWindow{3, 2, 117, 39}, 16},
+      {"much coarser", 0.33, 30, 10, -1.213, -0.587, Transform2D{}, CellWindow{0, 0, 120, 40}, 16},
+      // Finer mask: 16 columns span more than 16 mask bytes, 8 do not.
+      {"finer", 0.03, 150, 50, -0.507, -0.413, Transform2D{}, CellWindow{0, 0, 120, 40}, 8},
+      // Far finer: no block fits, cell by cell.
+      {"far finer", 0.0113, 300, 200, -0.90371, -0.44137, Transform2D{}, CellWindow{0, 0, 120, 40}, 0},
+      // Mask narrower than one load: cell by cell.
+      {"narrow mask", 0.07, 12, 30, -0.213, -0.387, Transform2D{}, CellWindow{0, 0, 120, 40}, 0},
+      // Flipped (yaw pi): mask columns fall as master columns rise.
+      {"flipped", 0.07, 100, 40, -4.513, -1.627, Transform2D{0.0, 0.0, M_PI}, CellWindow{0, 0, 120, 40}, 16},
+      // A run of on-mask columns shorter than 16: one block of 8.
+      {"short run", 0.07, 20, 20, 0.0031, -0.287, Transform2D{}, CellWindow{0, 0, 31, 40}, 8},
+  };
+  for (const auto& c : cases)
+  {
+    SCOPED_TRACE(c.what);
+    Costmap2D master(120, 40, 0.05, -1.0, -0.5, kSentinel);
+    const auto mask = makeMask(c.mask_w, c.mask_h, c.mask_res, c.ox, c.oy);
+    MaskMapping m;
+    m.build(master, c.w, mask, c.t);
+    ASSERT_TRUE(m.axisAligned());
+    ASSERT_FALSE(m.isOffset());
+    EXPECT_EQ(m.byteGatherBlock(), c.block);
+    expectByteRowsMatchNaive(m, master, c.w, mask, c.t);
+    expectRowsMatchNaive(m, master, c.w, mask, c.t);
+    m.forEach(master, mask, [](uint8_t& cell, int8_t v) { cell = static_cast<uint8_t>(v); });
+    EXPECT_GT(expectMatchesNaive(master, c.w, mask, c.t), 0);
+  }
 }
 
 TEST(MaskMappingTest, RotatedMaskOrigin)
@@ -538,6 +609,7 @@ TEST(MaskMappingTest, RotatedMaskOrigin)
   EXPECT_FALSE(m.axisAligned());
   EXPECT_FALSE(m.isOffset());
   expectRowsMatchNaive(m, master, w, mask, Transform2D{});
+  expectByteRowsMatchNaive(m, master, w, mask, Transform2D{});
   m.forEach(master, mask, [](uint8_t& cell, int8_t v) { cell = static_cast<uint8_t>(v); });
   const int on = expectMatchesNaive(master, w, mask, Transform2D{});
   EXPECT_GT(on, 20);
@@ -554,6 +626,7 @@ TEST(MaskMappingTest, RotatedTransformAndMask)
   m.build(master, w, mask, t);
   EXPECT_FALSE(m.axisAligned());
   expectRowsMatchNaive(m, master, w, mask, t);
+  expectByteRowsMatchNaive(m, master, w, mask, t);
   m.forEach(master, mask, [](uint8_t& cell, int8_t v) { cell = static_cast<uint8_t>(v); });
   const int on = expectMatchesNaive(master, w, mask, t);
   EXPECT_GT(on, 20);

@@ -10,7 +10,13 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
+
+#if (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)
+#include <tmmintrin.h>
+#define COSTMAP_LAYERS_MASK_SHUFFLE_SSSE3 1
+#endif
 
 #include "costmap_layers/core/costmap_2d.hpp"
 #include "costmap_layers/core/layer.hpp"
@@ -51,14 +57,37 @@ public:
   bool axisAligned() const { return axis_aligned_; }
   /// True when, in addition, one master cell is one mask cell (an offset).
   bool isOffset() const { return offset_; }
+  /// Window columns per block of forEachRow's byte gather (16 or 8; one byte shuffle per block), or 0
+  /// when byte masks are gathered cell by cell (offset, rotated, or no block fits the resolution ratio).
+  int byteGatherBlock() const { return offset_ || !axis_aligned_ ? 0 : chunk_width_; }
 
 private:
+  /// One block of the byte gather: chunk_width_ window columns starting at window column `pos` take
+  /// bytes src + shuffle[0..chunk_width_) of the mask row (shuffle indices 0..15, so one 16-byte load).
+  struct ShuffleChunk
+  {
+    int32_t pos;
+    int32_t src;
+  };
+  /// Whether this CPU runs the byte-shuffle gather (checked once).
+  static bool byteShuffleAvailable();
+  /// Gathers the on-mask columns of one window row from a byte mask row through the shuffle plan.
+  void shuffleRow(const uint8_t* mask_row, uint8_t* out) const;
+
   CellWindow window_;
   bool axis_aligned_ = true;
   bool offset_ = false;
   int offset_x_ = 0, offset_y_ = 0;  ///< mask cell = master cell + offset, when isOffset()
   std::vector<int32_t> cols_;        ///< mask column per window column, -1 outside
   std::vector<int32_t> rows_;        ///< mask row per window row, -1 outside
+  // Axis-aligned, not an offset: the window columns on the mask are [cols_lo_, cols_hi_) (one run, as
+  // the map is linear) when cols_contiguous_; the byte gather then runs through a shuffle plan built
+  // once per update (chunk_width_ 16 or 8 columns per chunk, 0 when no plan fits the mapping).
+  int cols_lo_ = 0, cols_hi_ = 0;
+  bool cols_contiguous_ = false;
+  int chunk_width_ = 0;
+  std::vector<ShuffleChunk> chunks_;
+  std::vector<uint8_t> chunk_shuffle_;  ///< 16 indices per chunk (0x80 past chunk_width_)
   // General case: mask-grid coordinates [cells] of master cell (i, j) = p0 + i * du + j * dv.
   double p0x_ = 0, p0y_ = 0, dux_ = 0, duy_ = 0, dvx_ = 0, dvy_ = 0;
 };
@@ -141,6 +170,15 @@ void MaskMapping::forEachRow(Costmap2D& master, const T* source, uint32_t source
   const int mask_h = static_cast<int>(source_height);
   const std::size_t n = static_cast<std::size_t>(window_.xn - window_.x0);
   if (!offset_) scratch.resize(n);
+  // Axis-aligned gather: the columns off the mask hold `neutral` in every row, written once here.
+  bool use_shuffle = false;
+  if (!offset_ && axis_aligned_ && cols_contiguous_)
+  {
+    std::fill(scratch.begin(), scratch.begin() + cols_lo_, neutral);
+    std::fill(scratch.begin() + cols_hi_, scratch.end(), neutral);
+    if constexpr (std::is_integral_v<T> && sizeof(T) == 1)
+      use_shuffle = chunk_width_ > 0 && byteShuffleAvailable();
+  }
   int cached_row = -1;
   for (int j = window_.y0; j < window_.yn; ++j)
   {
@@ -161,7 +199,19 @@ void MaskMapping::forEachRow(Costmap2D& master, const T* source, uint32_t source
       if (my != cached_row)
       {
         const T* mrow = source + static_cast<std::size_t>(my) * mask_w;
-        for (std::size_t k = 0; k < n; ++k) scratch[k] = cols_[k] >= 0 ? mrow[cols_[k]] : neutral;
+        if (use_shuffle)
+        {
+          if constexpr (std::is_integral_v<T> && sizeof(T) == 1)
+            shuffleRow(reinterpret_cast<const uint8_t*>(mrow), reinterpret_cast<uint8_t*>(scratch.data()));
+        }
+        else if (cols_contiguous_)
+        {
+          const int32_t* cols = cols_.data();
+          T* out = scratch.data();
+          for (int k = cols_lo_; k < cols_hi_; ++k) out[k] = mrow[cols[k]];
+        }
+        else
+          for (std::size_t k = 0; k < n; ++k) scratch[k] = cols_[k] >= 0 ? mrow[cols_[k]] : neutral;
         cached_row = my;
       }
       fn(row + window_.x0, scratch.data(), n);
@@ -179,6 +229,41 @@ void MaskMapping::forEachRow(Costmap2D& master, const T* source, uint32_t source
     }
   }
 }
+
+inline bool MaskMapping::byteShuffleAvailable()
+{
+#ifdef COSTMAP_LAYERS_MASK_SHUFFLE_SSSE3
+  static const bool available = __builtin_cpu_supports("ssse3");
+  return available;
+#else
+  return false;
+#endif
+}
+
+#ifdef COSTMAP_LAYERS_MASK_SHUFFLE_SSSE3
+__attribute__((target("ssse3"))) inline void MaskMapping::shuffleRow(const uint8_t* mask_row, uint8_t* out) const
+{
+  const ShuffleChunk* c = chunks_.data();
+  const uint8_t* shuffle = chunk_shuffle_.data();
+  const std::size_t count = chunks_.size();
+  if (chunk_width_ == 16)
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(mask_row + c[k].src));
+      const __m128i s = _mm_loadu_si128(reinterpret_cast<const __m128i*>(shuffle + 16 * k));
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(out + c[k].pos), _mm_shuffle_epi8(v, s));
+    }
+  else
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(mask_row + c[k].src));
+      const __m128i s = _mm_loadu_si128(reinterpret_cast<const __m128i*>(shuffle + 16 * k));
+      _mm_storel_epi64(reinterpret_cast<__m128i*>(out + c[k].pos), _mm_shuffle_epi8(v, s));
+    }
+}
+#else
+inline void MaskMapping::shuffleRow(const uint8_t*, uint8_t*) const {}
+#endif
 
 template <class Fn>
 void MaskMapping::forEach(Costmap2D& master, const OccupancyGridData& mask, Fn&& fn) const
