@@ -1,0 +1,39 @@
+#include "costmap_layers/core/speed_limiter.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace costmap_layers
+{
+Twist limitTwist(const Twist& in, double limit)
+{
+  const double speed = std::hypot(in.lx, in.ly);
+  if (!(limit > 0.0) || speed <= limit) return in;
+  const double f = limit / speed;
+  return Twist{in.lx * f, in.ly * f, in.lz * f, in.ax * f, in.ay * f, in.az * f};
+}
+
+std::optional<std::string> checkTwist(const Twist& t)
+{
+  const double v[6] = {t.lx, t.ly, t.lz, t.ax, t.ay, t.az};
+  const char* names[6] = {"linear.x", "linear.y", "linear.z", "angular.x", "angular.y", "angular.z"};
+  for (int k = 0; k < 6; ++k)
+  {
+    if (!std::isfinite(v[k]))
+    {
+      std::ostringstream s;
+      s << names[k] << " is not finite (" << v[k] << ")";
+      return s.str();
+    }
+  }
+  return std::nullopt;
+}
+
+std::optional<std::string> checkMaxSpeed(double max_speed)
+{
+  if (std::isfinite(max_speed) && max_speed >= 0.0) return std::nullopt;
+  std::ostringstream s;
+  s << "max_speed must be finite and >= 0 (got " << max_speed << ")";
+  return s.str();
+}
+}  // namespace costmap_layers

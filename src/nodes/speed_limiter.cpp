@@ -1,0 +1,81 @@
+// rosrun costmap_layers speed_limiter cmd_vel_in:=/move_base/cmd_vel cmd_vel:=/base/cmd_vel
+// Sits between a planner and the base: every command on cmd_vel_in is republished on cmd_vel, scaled
+// as a whole so that its linear speed stays within the latest /max_speed (0 = no limit; nothing is
+// limited until a limit is known). When commands stop for ~command_timeout s, it publishes one zero
+// command (~publish_zero_when_stale, default true) or simply falls silent.
+#include <geometry_msgs/Twist.h>
+#include <ros/ros.h>
+
+#include <mutex>
+
+#include "costmap_layers/MaxSpeed.h"
+#include "costmap_layers/core/speed_limiter.hpp"
+
+namespace
+{
+costmap_layers::Twist fromMsg(const geometry_msgs::Twist& m)
+{
+  return {m.linear.x, m.linear.y, m.linear.z, m.angular.x, m.angular.y, m.angular.z};
+}
+
+geometry_msgs::Twist toMsg(const costmap_layers::Twist& t)
+{
+  geometry_msgs::Twist m;
+  m.linear.x = t.lx, m.linear.y = t.ly, m.linear.z = t.lz;
+  m.angular.x = t.ax, m.angular.y = t.ay, m.angular.z = t.az;
+  return m;
+}
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  ros::init(argc, argv, "speed_limiter");
+  ros::NodeHandle nh, pnh("~");
+  costmap_layers::SpeedLimiterConfig cfg;
+  cfg.command_timeout = pnh.param("command_timeout", cfg.command_timeout);
+  cfg.publish_zero_when_stale = pnh.param("publish_zero_when_stale", cfg.publish_zero_when_stale);
+  const std::string max_speed_topic = pnh.param<std::string>("max_speed_topic", "/max_speed");
+  if (!(cfg.command_timeout > 0.0))
+  {
+    ROS_FATAL("speed_limiter: parameter ~command_timeout must be > 0 (got %f)", cfg.command_timeout);
+    return 1;
+  }
+
+  std::mutex mutex;
+  double limit = 0.0;  // no limit until one is known
+  ros::Time last_command;
+  bool stale = true;
+  ros::Publisher out = nh.advertise<geometry_msgs::Twist>("cmd_vel", 10);
+  auto limits = nh.subscribe<costmap_layers::MaxSpeed>(max_speed_topic, 1, [&](const costmap_layers::MaxSpeed::ConstPtr& m) {
+    std::lock_guard<std::mutex> lock(mutex);
+    if (const auto err = costmap_layers::checkMaxSpeed(m->max_speed))
+    {
+      ROS_ERROR_THROTTLE(5.0, "speed_limiter: dropped a MaxSpeed on %s: %s; keeping %.3f m/s", max_speed_topic.c_str(),
+                         err->c_str(), limit);
+      return;
+    }
+    limit = m->max_speed;
+  });
+  auto commands = nh.subscribe<geometry_msgs::Twist>("cmd_vel_in", 10, [&](const geometry_msgs::Twist::ConstPtr& m) {
+    const costmap_layers::Twist in = fromMsg(*m);
+    if (const auto err = costmap_layers::checkTwist(in))
+    {
+      ROS_ERROR_THROTTLE(5.0, "speed_limiter: dropped a command on cmd_vel_in: %s", err->c_str());
+      return;
+    }
+    std::lock_guard<std::mutex> lock(mutex);
+    out.publish(toMsg(costmap_layers::limitTwist(in, limit)));
+    last_command = ros::Time::now();
+    stale = false;
+  });
+  auto watchdog = nh.createTimer(ros::Duration(0.05), [&](const ros::TimerEvent&) {
+    std::lock_guard<std::mutex> lock(mutex);
+    if (stale || (ros::Time::now() - last_command).toSec() <= cfg.command_timeout) return;
+    stale = true;
+    if (cfg.publish_zero_when_stale) out.publish(geometry_msgs::Twist());
+    ROS_WARN("speed_limiter: no command on cmd_vel_in for %.2f s: %s", cfg.command_timeout,
+             cfg.publish_zero_when_stale ? "published a zero command" : "stopped publishing");
+  });
+  ros::spin();
+  return 0;
+}
