@@ -12,7 +12,7 @@ PKGS=(
   libeigen3-dev libtf2-ros-dev libmap-msgs-dev python3-map-msgs ros-map-msgs libyaml-cpp-dev
   libpng-dev libbenchmark-dev libstd-srvs-dev ros-std-srvs python3-std-srvs python3-rospy
   python3-tf2-ros python3-yaml libsensor-msgs-dev ros-sensor-msgs python3-sensor-msgs
-  libmessage-filters-dev
+  libmessage-filters-dev libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
 )
 missing=()
 for p in "${PKGS[@]}"; do

@@ -79,6 +79,13 @@ void InflationLayer::onFootprintChanged()
 
 void InflationLayer::reset() { need_reinflation_ = true; }
 
+void InflationLayer::reconfigure(const ParamValue& params) { setConfig(parseInflationConfig(ParamReader(params, name_))); }
+
+std::vector<ParamSpec> InflationLayer::tunableParameters(const ParamValue& params) const
+{
+  return recordParameters(params, name_, [](const ParamReader& r) { parseInflationConfig(r); });
+}
+
 void InflationLayer::rebuildTable()
 {
   cell_inflation_radius_ = 0;

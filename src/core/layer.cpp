@@ -15,6 +15,13 @@ void Layer::initialize(LayeredCostmap* parent, const std::string& name, std::sha
   initialized_ = true;
 }
 
+void Layer::reconfigure(const ParamValue& params) { enabled_ = ParamReader(params, name_).getBool("enabled", true); }
+
+std::vector<ParamSpec> Layer::tunableParameters(const ParamValue& params) const
+{
+  return recordParameters(params, name_, [](const ParamReader& r) { r.getBool("enabled", true); });
+}
+
 const std::vector<Eigen::Vector2d>& Layer::getFootprint() const
 {
   static const std::vector<Eigen::Vector2d> empty;

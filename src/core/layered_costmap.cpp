@@ -86,6 +86,14 @@ void LayeredCostmap::updateMap(double robot_x, double robot_y, double robot_yaw)
       }
     }
   }
+  if (full_update_)
+  {
+    full_update_ = false;
+    min_x = primary_.getOriginX();
+    min_y = primary_.getOriginY();
+    max_x = primary_.getOriginX() + primary_.getSizeInMetersX();
+    max_y = primary_.getOriginY() + primary_.getSizeInMetersY();
+  }
   if (!(min_x <= max_x) || !(min_y <= max_y)) return;  // nobody asked for anything
 
   int x0, y0, xn, yn;

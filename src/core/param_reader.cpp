@@ -15,20 +15,37 @@ void ParamReader::fail(const std::string& name, const std::string& what) const
   throw std::invalid_argument(msg.str());
 }
 
+void ParamReader::note(ParamSpec spec) const
+{
+  if (record_ != nullptr) record_->push_back(std::move(spec));
+}
+
 bool ParamReader::getBool(const std::string& name, bool def) const
 {
   const ParamValue* v = ns_.find(name);
-  if (v == nullptr) return def;
-  if (v->type() == ParamValue::Type::Bool) return v->asBool();
+  bool value = def;
+  if (v == nullptr)
+    value = def;
+  else if (v->type() == ParamValue::Type::Bool)
+    value = v->asBool();
   // rosparam stores 0/1 for some older configs: accept those two integers, nothing else.
-  if (v->type() == ParamValue::Type::Int && (v->asInt() == 0 || v->asInt() == 1)) return v->asInt() == 1;
-  fail(name, "must be a boolean");
+  else if (v->type() == ParamValue::Type::Int && (v->asInt() == 0 || v->asInt() == 1))
+    value = v->asInt() == 1;
+  else
+    fail(name, "must be a boolean");
+  note({name, ParamValue::Type::Bool, ParamValue::makeBool(def), ParamValue::makeBool(value), 0, 1, {}});
+  return value;
 }
 
 int ParamReader::getInt(const std::string& name, int def, int min, int max) const
 {
   const ParamValue* v = ns_.find(name);
-  if (v == nullptr) return def;
+  const auto noted = [&](int value) {
+    note({name, ParamValue::Type::Int, ParamValue::makeInt(def), ParamValue::makeInt(value), double(min), double(max),
+          {}});
+    return value;
+  };
+  if (v == nullptr) return noted(def);
   int64_t value = 0;
   if (v->type() == ParamValue::Type::Int)
     value = v->asInt();
@@ -39,13 +56,17 @@ int ParamReader::getInt(const std::string& name, int def, int min, int max) cons
     fail(name, "must be an integer");
   if (value < min || value > max)
     fail(name, "must be in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
-  return static_cast<int>(value);
+  return noted(static_cast<int>(value));
 }
 
 double ParamReader::getDouble(const std::string& name, double def, double min, double max) const
 {
   const ParamValue* v = ns_.find(name);
-  if (v == nullptr) return def;
+  const auto noted = [&](double value) {
+    note({name, ParamValue::Type::Double, ParamValue::makeDouble(def), ParamValue::makeDouble(value), min, max, {}});
+    return value;
+  };
+  if (v == nullptr) return noted(def);
   if (!v->isNumber()) fail(name, "must be a number");
   const double value = v->asDouble();
   if (!std::isfinite(value)) fail(name, "must be finite");
@@ -55,15 +76,16 @@ double ParamReader::getDouble(const std::string& name, double def, double min, d
     range << "must be in [" << min << ", " << max << "]";
     fail(name, range.str());
   }
-  return value;
+  return noted(value);
 }
 
 std::string ParamReader::getString(const std::string& name, const std::string& def) const
 {
   const ParamValue* v = ns_.find(name);
-  if (v == nullptr) return def;
-  if (v->type() != ParamValue::Type::String) fail(name, "must be a string");
-  return v->asString();
+  if (v != nullptr && v->type() != ParamValue::Type::String) fail(name, "must be a string");
+  const std::string value = v != nullptr ? v->asString() : def;
+  note({name, ParamValue::Type::String, ParamValue::makeString(def), ParamValue::makeString(value), 0, 0, {}});
+  return value;
 }
 
 std::string ParamReader::getChoice(const std::string& name, const std::string& def,
@@ -72,7 +94,11 @@ std::string ParamReader::getChoice(const std::string& name, const std::string& d
   const std::string value = getString(name, def);
   for (const auto& c : choices)
   {
-    if (c == value) return value;
+    if (c == value)
+    {
+      if (record_ != nullptr) record_->back().choices = choices;
+      return value;
+    }
   }
   std::string list;
   for (const auto& c : choices) list += (list.empty() ? "" : ", ") + c;

@@ -67,7 +67,7 @@ SpeedLimitTable buildSpeedLimitTable(const SpeedLimitsData& limits, const SpeedF
         issue(true, k, e.area_id, what + " dropped: in percent mode max_speed must be in (0, 100] [%]");
         continue;
       }
-      mps = config.default_max_speed * e.max_speed / 100.0;
+      mps = config.default_max_speed * (e.max_speed / 100.0);  // <= default_max_speed: cannot overflow
     }
     if (seen[e.area_id])
       issue(false, k, e.area_id,
@@ -90,19 +90,60 @@ void SpeedFilter::onInitializeFilter(const ParamReader& params)
 
 std::size_t SpeedFilter::setSpeedLimits(const SpeedLimitsData& limits)
 {
+  SpeedFilterConfig config;
+  {
+    std::lock_guard<std::mutex> lock(limits_mutex_);
+    config = config_;
+    last_features_ = std::make_shared<const SpeedLimitsData>(limits);
+  }
   std::vector<SpeedLimitIssue> issues;
-  auto table = std::make_shared<const SpeedLimitTable>(buildSpeedLimitTable(limits, config_, &issues));
+  auto table = std::make_shared<const SpeedLimitTable>(buildSpeedLimitTable(limits, config, &issues));
   std::size_t dropped = 0;
   for (const auto& i : issues)
   {
     dropped += i.error ? 1 : 0;
     context_->report(i.error ? Severity::Error : Severity::Warn,
                      (i.error ? "features_bad_" : "features_duplicate_") + std::to_string(i.area_id),
-                     name_ + ": " + config_.features_topic + ": " + i.message);
+                     name_ + ": " + config.features_topic + ": " + i.message);
   }
   std::lock_guard<std::mutex> lock(limits_mutex_);
   limits_ = std::move(table);
   return dropped;
+}
+
+namespace
+{
+bool runTimeTunable(const std::string& name) { return name != "features_topic" && name != "max_speed_topic" && name != "mask_mode"; }
+}  // namespace
+
+void SpeedFilter::reconfigure(const ParamValue& params)
+{
+  const ParamReader reader(params, name_);
+  const SpeedFilterConfig next = parseSpeedFilterConfig(reader);  // validates first
+  const bool enabled = reader.getBool("enabled", true);
+  if (next.features_topic != config_.features_topic || next.max_speed_topic != config_.max_speed_topic ||
+      next.mask_mode != config_.mask_mode)
+    throw std::invalid_argument(name_ + ": features_topic, max_speed_topic and mask_mode cannot change at run time");
+  std::shared_ptr<const SpeedLimitsData> features;
+  {
+    std::lock_guard<std::mutex> lock(limits_mutex_);
+    config_ = next;
+    features = last_features_;
+  }
+  if (features) setSpeedLimits(*features);  // percentages depend on default_max_speed
+  setFilterEnabled(enabled);
+}
+
+std::vector<ParamSpec> SpeedFilter::tunableParameters(const ParamValue& params) const
+{
+  std::vector<ParamSpec> all = recordParameters(params, name_, [](const ParamReader& r) {
+    r.getBool("enabled", true);
+    parseSpeedFilterConfig(r);
+  });
+  std::vector<ParamSpec> tunable;
+  for (auto& p : all)
+    if (runTimeTunable(p.name)) tunable.push_back(std::move(p));
+  return tunable;
 }
 
 void SpeedFilter::warnValueOnce(int8_t v, const std::string& message)

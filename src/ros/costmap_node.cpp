@@ -67,6 +67,19 @@ void CostmapNode::setUp()
   for (const auto* list : {&lists.plugins, &lists.filters})
     for (const auto& spec : *list) ROS_INFO("costmap: using plugin \"%s\" (%s)", spec.name.c_str(), spec.type.c_str());
   costmap_->setFootprint(config_.footprint.padded());
+  const LayerReconfigure::RunLocked run_locked = [this](const std::function<void()>& fn) {
+    std::lock_guard<std::mutex> lock(update_mutex_);
+    fn();
+    costmap_->requestFullUpdate();
+  };
+  for (const auto* list : {&lists.plugins, &lists.filters})
+    for (const auto& spec : *list)
+    {
+      const ParamValue* sub = params.find(spec.name);
+      reconfigure_.push_back(std::make_unique<LayerReconfigure>(ros::NodeHandle(private_nh_, spec.name),
+                                                                costmap_->findLayer(spec.name),
+                                                                sub != nullptr ? *sub : ParamValue::makeMap(), run_locked));
+    }
 
   costmap_pub_ = private_nh_.advertise<nav_msgs::OccupancyGrid>(
       "costmap", 1, [this](const ros::SingleSubscriberPublisher&) { new_subscriber_ = true; }, {}, {}, true);
@@ -93,6 +106,7 @@ void CostmapNode::setUp()
 CostmapNode::~CostmapNode()
 {
   // Layers first, while the plugin library that made them is still loaded.
+  reconfigure_.clear();
   costmap_.reset();
 }
 

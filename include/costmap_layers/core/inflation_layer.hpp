@@ -40,6 +40,8 @@ public:
   void matchSize() override;
   void onFootprintChanged() override;
   void reset() override;
+  void reconfigure(const ParamValue& params) override;
+  std::vector<ParamSpec> tunableParameters(const ParamValue& params) const override;
   bool isClearable() override { return false; }
 
   const InflationConfig& config() const { return config_; }

@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "costmap_layers/core/layer_context.hpp"
+#include "costmap_layers/core/param_reader.hpp"
 
 namespace costmap_layers
 {
@@ -48,6 +49,15 @@ public:
   virtual void deactivate() {}
   /// Whether a "clear costmaps" request should reset this layer.
   virtual bool isClearable() { return false; }
+
+  /// Run-time reconfiguration (dynamic_reconfigure in the node): `params` is the layer's whole
+  /// namespace with the changes applied. Validates everything first and throws std::invalid_argument
+  /// (keeping the current configuration) on a bad value. The host then redraws the whole map. The
+  /// default handles `enabled` only.
+  virtual void reconfigure(const ParamValue& params);
+  /// What reconfigure() accepts: each tunable parameter's type, range, default and current value
+  /// (as read from params), recorded from the same parse function that reads them.
+  virtual std::vector<ParamSpec> tunableParameters(const ParamValue& params) const;
 
   /// Whether the layer's inputs are up to date.
   bool isCurrent() const { return current_; }

@@ -53,6 +53,9 @@ public:
   const Costmap2D& getCostmap() const { return filters_.empty() ? primary_ : combined_; }
   Costmap2D& getCostmap() { return filters_.empty() ? primary_ : combined_; }
 
+  /// Makes the next updateMap() cover the whole grid (after a run-time parameter change, say).
+  void requestFullUpdate() { full_update_ = true; }
+
   /// The window the last updateMap() changed (empty before the first update).
   CellWindow getUpdatedBounds() const { return updated_; }
 
@@ -77,6 +80,7 @@ private:
   bool track_unknown_;
   bool size_locked_ = false;
   bool initialized_ = false;
+  bool full_update_ = false;
   Costmap2D primary_;
   Costmap2D combined_;
   std::vector<std::shared_ptr<Layer>> plugins_;

@@ -10,6 +10,19 @@
 
 namespace costmap_layers
 {
+/// What a parse function read: a parameter's name, type, limits, default and the value it used.
+/// Recorded by ParamReader, so a run-time description (dynamic_reconfigure) comes from the same
+/// single declaration as the parsing.
+struct ParamSpec
+{
+  std::string name;
+  ParamValue::Type type = ParamValue::Type::Null;  ///< Bool, Int, Double or String
+  ParamValue default_value;
+  ParamValue value;
+  double min = 0.0, max = 0.0;        ///< Int and Double only
+  std::vector<std::string> choices;  ///< String choices, when limited
+};
+
 class ParamReader
 {
 public:
@@ -37,8 +50,25 @@ public:
   /// Throws "owner: parameter 'name' <what> (value)".
   [[noreturn]] void fail(const std::string& name, const std::string& what) const;
 
+  /// From now on, every getter call appends what it read to *out (nullptr stops recording).
+  void recordInto(std::vector<ParamSpec>* out) { record_ = out; }
+
 private:
+  void note(ParamSpec spec) const;
+
   const ParamValue& ns_;
   std::string owner_;
+  std::vector<ParamSpec>* record_ = nullptr;
 };
+
+/// Runs parse(reader) on params with recording on and returns what it read.
+template <class Parse>
+std::vector<ParamSpec> recordParameters(const ParamValue& params, const std::string& owner, Parse&& parse)
+{
+  std::vector<ParamSpec> specs;
+  ParamReader reader(params, owner);
+  reader.recordInto(&specs);
+  parse(reader);
+  return specs;
+}
 }  // namespace costmap_layers

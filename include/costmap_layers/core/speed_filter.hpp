@@ -101,6 +101,11 @@ public:
   /// @return the number of dropped entries
   std::size_t setSpeedLimits(const SpeedLimitsData& limits);
 
+  /// Changes default_max_speed, speed_limit_in_percent, base, multiplier and enabled at run time (the
+  /// topics and mask_mode cannot change); the last features message is re-evaluated.
+  void reconfigure(const ParamValue& params) override;
+  std::vector<ParamSpec> tunableParameters(const ParamValue& params) const override;
+
   /// The value published last [m/s], nullopt before the first publication. Update thread only.
   std::optional<double> lastPublished() const { return last_published_; }
 
@@ -127,6 +132,7 @@ private:
 
   mutable std::mutex limits_mutex_;
   std::shared_ptr<const SpeedLimitTable> limits_;  ///< guarded by limits_mutex_
+  std::shared_ptr<const SpeedLimitsData> last_features_;  ///< guarded by limits_mutex_
 
   // Update thread only.
   std::shared_ptr<const SpeedLimitTable> active_limits_;

@@ -15,6 +15,7 @@
 #include "costmap_layers/core/costmap_config.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
 #include "costmap_layers/core/transform2d.hpp"
+#include "costmap_layers/ros/layer_reconfigure.hpp"
 #include "costmap_layers/ros/plugin_factory.hpp"
 #include "costmap_layers/ros/ros_layer_context.hpp"
 
@@ -61,6 +62,7 @@ private:
   ros::Publisher costmap_pub_;
   ros::Publisher update_pub_;
   ros::Publisher footprint_pub_;
+  std::vector<std::unique_ptr<LayerReconfigure>> reconfigure_;  ///< one dynamic_reconfigure server per layer
   ros::ServiceServer clear_srv_;
   ros::ServiceServer clear_around_srv_;
   std::mutex update_mutex_;  ///< one update cycle or one clear request at a time

@@ -1,0 +1,51 @@
+// dynamic_reconfigure for one layer, the ROS 1 way (rqt_reconfigure, dynparam, the Python client):
+// ~<layer>/parameter_descriptions, ~<layer>/parameter_updates and ~<layer>/set_parameters. The
+// description comes from the layer's own parse function (recorded by ParamReader), so names,
+// defaults and ranges are declared once, next to the parsing.
+#pragma once
+
+#include <dynamic_reconfigure/Config.h>
+#include <dynamic_reconfigure/ConfigDescription.h>
+#include <dynamic_reconfigure/Reconfigure.h>
+#include <ros/ros.h>
+
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <vector>
+
+#include "costmap_layers/core/layer.hpp"
+
+namespace costmap_layers_ros
+{
+class LayerReconfigure
+{
+public:
+  /// Runs a change: the host calls fn under its update lock, then redraws the whole map next cycle.
+  using RunLocked = std::function<void(const std::function<void()>& fn)>;
+
+  /// @param layer_nh  the layer's namespace (~<name>)
+  /// @param params    the layer's parameter namespace as loaded
+  LayerReconfigure(ros::NodeHandle layer_nh, std::shared_ptr<costmap_layers::Layer> layer,
+                   costmap_layers::ParamValue params, RunLocked run_locked);
+
+  /// The description the layer's tunable parameters make (exposed for tests).
+  static dynamic_reconfigure::ConfigDescription describe(const std::vector<costmap_layers::ParamSpec>& specs,
+                                                         const std::vector<costmap_layers::ParamSpec>& defaults);
+  /// The values of specs as a Config.
+  static dynamic_reconfigure::Config toConfig(const std::vector<costmap_layers::ParamSpec>& specs, bool use_defaults,
+                                              int which = 0);
+
+private:
+  bool onSet(dynamic_reconfigure::Reconfigure::Request& req, dynamic_reconfigure::Reconfigure::Response& res);
+
+  ros::NodeHandle nh_;
+  std::shared_ptr<costmap_layers::Layer> layer_;
+  costmap_layers::ParamValue params_;  ///< guarded by mutex_
+  RunLocked run_locked_;
+  std::mutex mutex_;
+  ros::Publisher descriptions_;
+  ros::Publisher updates_;
+  ros::ServiceServer service_;
+};
+}  // namespace costmap_layers_ros

@@ -1,0 +1,158 @@
+#include "costmap_layers/ros/layer_reconfigure.hpp"
+
+#include <dynamic_reconfigure/ConfigDescription.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace costmap_layers_ros
+{
+using costmap_layers::ParamSpec;
+using costmap_layers::ParamValue;
+
+namespace
+{
+const char* typeName(ParamValue::Type t)
+{
+  switch (t)
+  {
+    case ParamValue::Type::Bool: return "bool";
+    case ParamValue::Type::Int: return "int";
+    case ParamValue::Type::Double: return "double";
+    default: return "str";
+  }
+}
+
+double clampLimit(double v) { return std::max(-1e9, std::min(1e9, v)); }
+
+dynamic_reconfigure::GroupState defaultGroup()
+{
+  dynamic_reconfigure::GroupState g;
+  g.name = "Default";
+  g.state = true;
+  g.id = 0;
+  g.parent = 0;
+  return g;
+}
+}  // namespace
+
+LayerReconfigure::LayerReconfigure(ros::NodeHandle layer_nh, std::shared_ptr<costmap_layers::Layer> layer,
+                                   ParamValue params, RunLocked run_locked)
+  : nh_(std::move(layer_nh)), layer_(std::move(layer)), params_(std::move(params)), run_locked_(std::move(run_locked))
+{
+  descriptions_ = nh_.advertise<dynamic_reconfigure::ConfigDescription>("parameter_descriptions", 1, true);
+  updates_ = nh_.advertise<dynamic_reconfigure::Config>("parameter_updates", 1, true);
+  const auto current = layer_->tunableParameters(params_);
+  descriptions_.publish(describe(current, layer_->tunableParameters(ParamValue::makeMap())));
+  updates_.publish(toConfig(current, false));
+  service_ = nh_.advertiseService("set_parameters", &LayerReconfigure::onSet, this);
+}
+
+dynamic_reconfigure::Config LayerReconfigure::toConfig(const std::vector<ParamSpec>& specs, bool use_defaults,
+                                                       int which)
+{
+  dynamic_reconfigure::Config c;
+  for (const auto& s : specs)
+  {
+    const ParamValue& v = use_defaults ? s.default_value : s.value;
+    switch (s.type)
+    {
+      case ParamValue::Type::Bool:
+      {
+        dynamic_reconfigure::BoolParameter p;
+        p.name = s.name;
+        p.value = which < 0 ? false : (which > 0 ? true : v.asBool());
+        c.bools.push_back(p);
+        break;
+      }
+      case ParamValue::Type::Int:
+      {
+        dynamic_reconfigure::IntParameter p;
+        p.name = s.name;
+        p.value = which < 0 ? static_cast<int>(s.min) : (which > 0 ? static_cast<int>(s.max) : static_cast<int>(v.asInt()));
+        c.ints.push_back(p);
+        break;
+      }
+      case ParamValue::Type::Double:
+      {
+        dynamic_reconfigure::DoubleParameter p;
+        p.name = s.name;
+        p.value = which < 0 ? clampLimit(s.min) : (which > 0 ? clampLimit(s.max) : v.asDouble());
+        c.doubles.push_back(p);
+        break;
+      }
+      default:
+      {
+        dynamic_reconfigure::StrParameter p;
+        p.name = s.name;
+        p.value = which != 0 ? std::string() : v.asString();
+        c.strs.push_back(p);
+        break;
+      }
+    }
+  }
+  c.groups.push_back(defaultGroup());
+  return c;
+}
+
+dynamic_reconfigure::ConfigDescription LayerReconfigure::describe(const std::vector<ParamSpec>& specs,
+                                                                  const std::vector<ParamSpec>& defaults)
+{
+  dynamic_reconfigure::ConfigDescription d;
+  dynamic_reconfigure::Group g;
+  g.name = "Default";
+  g.type = "";
+  g.id = 0;
+  g.parent = 0;
+  for (const auto& s : specs)
+  {
+    dynamic_reconfigure::ParamDescription p;
+    p.name = s.name;
+    p.type = typeName(s.type);
+    p.level = 0;
+    p.description = s.choices.empty() ? s.name : s.name + " (one of: " + [&] {
+      std::string list;
+      for (const auto& c : s.choices) list += (list.empty() ? "" : ", ") + c;
+      return list;
+    }() + ")";
+    p.edit_method = "";
+    g.parameters.push_back(p);
+  }
+  d.groups.push_back(g);
+  d.max = toConfig(specs, false, 1);
+  d.min = toConfig(specs, false, -1);
+  d.dflt = toConfig(defaults, true);
+  return d;
+}
+
+bool LayerReconfigure::onSet(dynamic_reconfigure::Reconfigure::Request& req,
+                             dynamic_reconfigure::Reconfigure::Response& res)
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto specs = layer_->tunableParameters(params_);
+  ParamValue next = params_.isMap() ? params_ : ParamValue::makeMap();
+  auto known = [&specs](const std::string& name) {
+    return std::any_of(specs.begin(), specs.end(), [&name](const ParamSpec& s) { return s.name == name; });
+  };
+  std::string unknown;
+  for (const auto& p : req.config.bools) known(p.name) ? (void)next.set(p.name, ParamValue::makeBool(p.value)) : (void)(unknown += " " + p.name);
+  for (const auto& p : req.config.ints) known(p.name) ? (void)next.set(p.name, ParamValue::makeInt(p.value)) : (void)(unknown += " " + p.name);
+  for (const auto& p : req.config.doubles) known(p.name) ? (void)next.set(p.name, ParamValue::makeDouble(p.value)) : (void)(unknown += " " + p.name);
+  for (const auto& p : req.config.strs) known(p.name) ? (void)next.set(p.name, ParamValue::makeString(p.value)) : (void)(unknown += " " + p.name);
+  if (!unknown.empty())
+    ROS_ERROR("%s: ignored parameters that cannot change at run time:%s", layer_->getName().c_str(), unknown.c_str());
+  try
+  {
+    run_locked_([&] { layer_->reconfigure(next); });
+    params_ = next;
+    ROS_INFO("%s: reconfigured", layer_->getName().c_str());
+  }
+  catch (const std::exception& e)
+  {
+    ROS_ERROR("%s: reconfiguration refused, keeping the previous parameters: %s", layer_->getName().c_str(), e.what());
+  }
+  res.config = toConfig(layer_->tunableParameters(params_), false);
+  updates_.publish(res.config);
+  return true;
+}
+}  // namespace costmap_layers_ros

@@ -1,0 +1,57 @@
+#!/usr/bin/env python3
+"""dynamic_reconfigure on a running costmap_node: the inflation radius changed through the standard
+client changes the published costmap at the next update; a bad value is refused and changes
+nothing; switching the layer off removes its costs."""
+import os
+import sys
+import unittest
+
+import dynamic_reconfigure.client
+import rospy
+import rostest
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from grid_watch import GridWatcher  # noqa: E402
+
+# The left wall covers x 0..0.2 m: its innermost cells' centres are at x = 0.175 m. The cell centred
+# at x = 0.825 m lies 13 cells (0.65 m) from it: outside a 0.55 m radius (11 cells), inside a 1.0 m
+# one, where it costs (uchar)(252 * exp(-10 * (0.65 - inscribed))) > 0.
+NEAR = (0.6, 5.0)    # 0.425 m from the wall: inflated either way
+FAR = (0.83, 5.0)
+
+
+class ReconfigureTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node("test_reconfigure")
+        cls.grid = GridWatcher("/costmap_node")
+        assert cls.grid.wait_until(lambda g: g.at(*NEAR) > 0, 30.0), "no inflated costmap published"
+
+    def test_radius_change_bad_value_and_switch_off(self):
+        client = dynamic_reconfigure.client.Client("/costmap_node/inflation_layer", timeout=20)
+        config = client.get_configuration(timeout=10)
+        self.assertAlmostEqual(config["inflation_radius"], 0.55)
+        self.assertAlmostEqual(config["cost_scaling_factor"], 10.0)
+        self.assertEqual(self.grid.at(*FAR), 0)
+
+        result = client.update_configuration({"inflation_radius": 1.0})
+        self.assertAlmostEqual(result["inflation_radius"], 1.0)
+        self.assertTrue(self.grid.wait_until(lambda g: g.at(*FAR) > 0, 10.0), "the larger radius did not show")
+        cost_far = self.grid.at(*FAR)
+
+        # A negative radius is refused: the answer keeps 1.0 and the costmap stays as it is.
+        result = client.update_configuration({"inflation_radius": -2.0})
+        self.assertAlmostEqual(result["inflation_radius"], 1.0)
+        rospy.sleep(0.5)
+        self.assertEqual(self.grid.at(*FAR), cost_far)
+
+        result = client.update_configuration({"enabled": False})
+        self.assertFalse(result["enabled"])
+        self.assertTrue(self.grid.wait_until(lambda g: g.at(*NEAR) == 0 and g.at(*FAR) == 0, 10.0),
+                        "switching the inflation layer off did not remove its costs")
+        client.update_configuration({"enabled": True, "inflation_radius": 0.55})
+        self.assertTrue(self.grid.wait_until(lambda g: g.at(*NEAR) > 0 and g.at(*FAR) == 0, 10.0))
+
+
+if __name__ == "__main__":
+    rostest.rosrun("costmap_layers", "reconfigure", ReconfigureTest)
