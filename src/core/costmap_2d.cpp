@@ -1,6 +1,7 @@
 #include "costmap_layers/core/costmap_2d.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <limits>
 
@@ -104,11 +105,16 @@ bool Costmap2D::copyWindow(const Costmap2D& source, unsigned int sx0, unsigned i
 void Costmap2D::updateOrigin(double new_origin_x, double new_origin_y)
 {
   // Snap the new origin to the current cell lattice so that kept cells stay aligned.
-  const int cell_ox = static_cast<int>(std::floor((new_origin_x - origin_x_) / resolution_));
-  const int cell_oy = static_cast<int>(std::floor((new_origin_y - origin_y_) / resolution_));
+  const double shift_x = std::floor((new_origin_x - origin_x_) / resolution_);
+  const double shift_y = std::floor((new_origin_y - origin_y_) / resolution_);
+  // A non-finite pose moves nothing. A shift of a whole grid or more keeps no cell: it is clamped for
+  // the int arithmetic below (a far-away pose would overflow int), the origin takes the exact shift.
+  if (!std::isfinite(shift_x) || !std::isfinite(shift_y)) return;
+  const int cell_ox = clampCellShift(shift_x, size_x_);
+  const int cell_oy = clampCellShift(shift_y, size_y_);
   if (cell_ox == 0 && cell_oy == 0) return;
-  const double new_grid_ox = origin_x_ + cell_ox * resolution_;
-  const double new_grid_oy = origin_y_ + cell_oy * resolution_;
+  const double new_grid_ox = origin_x_ + shift_x * resolution_;
+  const double new_grid_oy = origin_y_ + shift_y * resolution_;
 
   const int size_x = static_cast<int>(size_x_);
   const int size_y = static_cast<int>(size_y_);

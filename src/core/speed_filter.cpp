@@ -97,7 +97,7 @@ std::size_t SpeedFilter::setSpeedLimits(const SpeedLimitsData& limits)
     last_features_ = std::make_shared<const SpeedLimitsData>(limits);
   }
   std::vector<SpeedLimitIssue> issues;
-  auto table = std::make_shared<const SpeedLimitTable>(buildSpeedLimitTable(limits, config, &issues));
+  auto table = std::make_shared<SpeedLimitTable>(buildSpeedLimitTable(limits, config, &issues));
   std::size_t dropped = 0;
   for (const auto& i : issues)
   {
@@ -107,6 +107,13 @@ std::size_t SpeedFilter::setSpeedLimits(const SpeedLimitsData& limits)
                      name_ + ": " + config.features_topic + ": " + i.message);
   }
   std::lock_guard<std::mutex> lock(limits_mutex_);
+  // A dropped entry keeps its area's last good limit (an area the message leaves out has none).
+  for (const auto& i : issues)
+  {
+    if (!i.error || i.area_id < 1 || i.area_id > SpeedLimitTable::kMaxAreaId || !limits_) continue;
+    auto& slot = table->limit_mps[i.area_id];
+    if (!slot) slot = limits_->limit_mps[i.area_id];
+  }
   limits_ = std::move(table);
   return dropped;
 }

@@ -44,8 +44,11 @@ void VoxelLayer::moveOrigin(double new_origin_x, double new_origin_y)
 {
   // The same whole-cell shift Costmap2D::updateOrigin applies to the 2-D grid.
   const double res = costmap_.getResolution();
-  const int dx = static_cast<int>(std::floor((new_origin_x - costmap_.getOriginX()) / res));
-  const int dy = static_cast<int>(std::floor((new_origin_y - costmap_.getOriginY()) / res));
+  const double shift_x = std::floor((new_origin_x - costmap_.getOriginX()) / res);
+  const double shift_y = std::floor((new_origin_y - costmap_.getOriginY()) / res);
+  if (!std::isfinite(shift_x) || !std::isfinite(shift_y)) return;  // as Costmap2D::updateOrigin
+  const int dx = Costmap2D::clampCellShift(shift_x, costmap_.getSizeInCellsX());
+  const int dy = Costmap2D::clampCellShift(shift_y, costmap_.getSizeInCellsY());
   costmap_.updateOrigin(new_origin_x, new_origin_y);
   voxels_.shift(dx, dy);
 }

@@ -3,6 +3,7 @@
 #include <png.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -83,6 +84,12 @@ public:
     img.height = static_cast<uint32_t>(height);
     img.channels = channels;
     const uint64_t count = width * height * static_cast<uint64_t>(channels);
+    // Every sample takes at least one byte of the file: a header promising more samples than the file
+    // holds is refused before the pixels are allocated (a 30-byte file must not allocate 30 GB).
+    const uint64_t min_bytes = ascii ? count : count * (maxval > 255 ? 2 : 1);
+    if (pos_ > b_.size() || b_.size() - pos_ < min_bytes)
+      fail(path_, "truncated pixel data: " + std::to_string(b_.size() - std::min(pos_, b_.size())) +
+                      " bytes left, " + std::to_string(count) + " samples expected");
     img.pixels.resize(count);
 
     if (ascii)
@@ -234,6 +241,18 @@ bool decodePngInto(PngSource& src, Image& img, std::vector<png_bytep>& rows)
     return false;
   }
 
+  // The pixel data is deflate-compressed, which expands at most 1032-fold: a header promising far more
+  // pixel bytes than the rest of the file can hold is refused before the pixels are allocated (half the
+  // unfiltered size is a safe lower bound of the inflated size, interlaced or not).
+  const uint64_t inflated_at_least = static_cast<uint64_t>(png_get_rowbytes(png, info)) * height / 2;
+  if (inflated_at_least > static_cast<uint64_t>(src.bytes->size() - src.pos) * 1032)
+  {
+    src.error = "truncated data: " + std::to_string(width) + "x" + std::to_string(height) +
+                " pixels cannot fit in the file's " + std::to_string(src.bytes->size()) + " bytes";
+    png_destroy_read_struct(&png, &info, nullptr);
+    return false;
+  }
+
   const int color_type = png_get_color_type(png, info);
   const int bit_depth = png_get_bit_depth(png, info);
   if (color_type == PNG_COLOR_TYPE_PALETTE) png_set_palette_to_rgb(png);
@@ -284,9 +303,8 @@ Image decodePng(const std::string& path, const std::vector<uint8_t>& bytes)
   return img;
 }
 
-Image readImage(const std::string& path)
+Image decodeImage(const std::string& path, const std::vector<uint8_t>& bytes)
 {
-  const std::vector<uint8_t> bytes = readBytes(path, "image file");
   static const uint8_t kPngMagic[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
   if (bytes.size() >= 8 && std::memcmp(bytes.data(), kPngMagic, 8) == 0) return decodePng(path, bytes);
   if (bytes.size() >= 2 && bytes[0] == 'P' && bytes[1] >= '1' && bytes[1] <= '7') return PnmReader(path, bytes).read();
@@ -439,10 +457,15 @@ MapMode parseMapMode(const std::string& name)
 MapFileInfo loadMapFileInfo(const std::string& yaml_path)
 {
   const std::vector<uint8_t> bytes = readBytes(yaml_path, "map YAML file");
+  return parseMapFileInfo(std::string(bytes.begin(), bytes.end()), yaml_path);
+}
+
+MapFileInfo parseMapFileInfo(const std::string& yaml_text, const std::string& yaml_path)
+{
   YAML::Node doc;
   try
   {
-    doc = YAML::Load(std::string(bytes.begin(), bytes.end()));
+    doc = YAML::Load(yaml_text);
   }
   catch (const YAML::Exception& e)
   {
@@ -512,7 +535,13 @@ MapFileInfo loadMapFileInfo(const std::string& yaml_path)
 OccupancyGridData loadMapImage(const std::string& image_path, const MapFileInfo& info)
 {
   validateInfo(image_path, info);
-  const Image img = readImage(image_path);
+  return decodeMapImage(readBytes(image_path, "image file"), info, image_path);
+}
+
+OccupancyGridData decodeMapImage(const std::vector<uint8_t>& bytes, const MapFileInfo& info, const std::string& what)
+{
+  validateInfo(what, info);
+  const Image img = decodeImage(what, bytes);
 
   OccupancyGridData grid;
   grid.frame_id = "map";

@@ -553,3 +553,90 @@ TEST_F(SharedMapsTest, TutorialsSpeedMaskRos1VersusNav2)
   }
 }
 }  // namespace
+
+// ---- Found by the fuzz target test/fuzz/fuzz_map_file.cpp (inputs in test/fuzz/regressions/map_file/)
+
+namespace
+{
+uint32_t crc32Of(const std::string& bytes)
+{
+  uint32_t c = 0xFFFFFFFFu;
+  for (unsigned char b : bytes)
+  {
+    c ^= b;
+    for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
+  }
+  return c ^ 0xFFFFFFFFu;
+}
+
+std::string pngChunk(const std::string& type, const std::string& data)
+{
+  auto be32 = [](uint32_t v) {
+    return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8),
+                       static_cast<char>(v)};
+  };
+  return be32(static_cast<uint32_t>(data.size())) + type + data + be32(crc32Of(type + data));
+}
+
+std::vector<uint8_t> bytesOf(const std::string& s) { return std::vector<uint8_t>(s.begin(), s.end()); }
+}  // namespace
+
+// A 30-byte PNM whose header says 25102 x 25102 colour pixels made the reader allocate 1.9 GB for the
+// pixels before it noticed that the data was missing (the fuzzer's out-of-memory). Now refused as
+// truncated before anything is allocated, in binary and ASCII form.
+TEST(MapFileFuzzRegressions, PnmHeaderPromisingAHugeImageIsRefusedBeforeAllocating)
+{
+  MapFileInfo info;
+  info.resolution = 0.05;
+  for (const char* text : {"P3 25102 25102 255 0 0 0\n", "P6 99999 99999 255\n\x01\x02\x03",
+                           "P5 100000 100000 65535\n\x01\x02"})
+  {
+    try
+    {
+      costmap_layers::io::decodeMapImage(bytesOf(text), info, "huge.pnm");
+      ADD_FAILURE() << "accepted " << text;
+    }
+    catch (const std::runtime_error& e)
+    {
+      EXPECT_NE(std::string(e.what()).find("truncated"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("huge.pnm"), std::string::npos) << e.what();
+    }
+  }
+}
+
+// The same for PNG: an IHDR of 100000 x 100000 RGBA pixels followed by a few bytes of data made the
+// decoder allocate 40 GB before libpng found the data missing.
+TEST(MapFileFuzzRegressions, PngHeaderPromisingAHugeImageIsRefusedBeforeAllocating)
+{
+  const std::string ihdr{0, 1, static_cast<char>(0x86), static_cast<char>(0xA0),  // width 100000
+                         0, 1, static_cast<char>(0x86), static_cast<char>(0xA0),  // height 100000
+                         8, 6, 0, 0, 0};                                           // 8-bit RGBA
+  const std::string png = std::string("\x89PNG\r\n\x1a\n", 8) + pngChunk("IHDR", ihdr) +
+                          pngChunk("IDAT", std::string("\x78\x9c\x03\x00\x00\x00\x00\x01", 8)) + pngChunk("IEND", "");
+  MapFileInfo info;
+  info.resolution = 0.05;
+  try
+  {
+    costmap_layers::io::decodeMapImage(bytesOf(png), info, "huge.png");
+    ADD_FAILURE() << "accepted";
+  }
+  catch (const std::runtime_error& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("truncated"), std::string::npos) << e.what();
+  }
+}
+
+// The in-memory entry points the fuzz target uses read exactly what the file functions read.
+TEST(MapFileFuzzRegressions, InMemoryDecodingMatchesTheFiles)
+{
+  const std::string yaml = "image: m.pgm\nresolution: 0.5\norigin: [1, 2, 0]\nnegate: 0\n"
+                           "occupied_thresh: 0.65\nfree_thresh: 0.196\nmode: scale\n";
+  const MapFileInfo info = costmap_layers::io::parseMapFileInfo(yaml, "/maps/m.yaml");
+  EXPECT_EQ(info.image_path, "/maps/m.pgm");
+  EXPECT_EQ(info.mode, MapMode::Scale);
+  const OccupancyGridData g = costmap_layers::io::decodeMapImage(bytesOf("P2 2 1 255 0 255\n"), info, "m.pgm");
+  ASSERT_EQ(g.data.size(), 2u);
+  EXPECT_EQ(g.data[0], 100);
+  EXPECT_EQ(g.data[1], 0);
+  EXPECT_DOUBLE_EQ(g.origin_y, 2.0);
+}

@@ -76,6 +76,13 @@ public:
 
   /// Reallocates the grid and fills it with the default value.
   void resizeMap(unsigned int size_x, unsigned int size_y, double resolution, double origin_x, double origin_y);
+  /// A whole-cell shift (finite) clamped to [-(size + 1), size + 1]: shifts beyond the grid keep no cell
+  /// either way, and the clamped value is safe in int arithmetic (updateOrigin, VoxelLayer).
+  static int clampCellShift(double shift, unsigned int size)
+  {
+    const double lim = static_cast<double>(size) + 1.0;
+    return static_cast<int>(shift < -lim ? -lim : (shift > lim ? lim : shift));
+  }
   /// Sets every cell to the default value.
   void resetMaps();
   /// Sets the window [x0, xn) x [y0, yn) to the default value (clamped to the grid).

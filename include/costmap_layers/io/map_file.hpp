@@ -63,8 +63,10 @@
 // data, unknown mode, absurd size, ...).
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "costmap_layers/core/grid_data.hpp"
 
@@ -99,6 +101,10 @@ struct MapFileInfo
 /// Reads and validates the YAML only (the image is not opened).
 MapFileInfo loadMapFileInfo(const std::string& yaml_path);
 
+/// loadMapFileInfo() on YAML text already in memory; `yaml_path` names it in errors and is the base of
+/// a relative image path.
+MapFileInfo parseMapFileInfo(const std::string& yaml_text, const std::string& yaml_path);
+
 /// Reads the YAML and its image. `mode_override` replaces the YAML's mode when given.
 /// The result has frame_id "map" and stamp_ns 0.
 OccupancyGridData loadMapFile(const std::string& yaml_path, std::optional<MapMode> mode_override = {});
@@ -106,5 +112,7 @@ OccupancyGridData loadMapFile(const std::string& yaml_path, std::optional<MapMod
 /// Reads `image_path` (info.image_path is ignored) and converts it with the thresholds, negate flag,
 /// mode, resolution and origin of `info` (validated first).
 OccupancyGridData loadMapImage(const std::string& image_path, const MapFileInfo& info);
+/// loadMapImage() on the image file's bytes already in memory; `what` names them in errors.
+OccupancyGridData decodeMapImage(const std::vector<uint8_t>& bytes, const MapFileInfo& info, const std::string& what);
 }  // namespace io
 }  // namespace costmap_layers
