@@ -1,0 +1,149 @@
+// Shared pieces of the fuzz targets: a FakeContext that also takes map-update subscriptions, an
+// invariant check that aborts (so libFuzzer records the input), and decoders for poses.
+#pragma once
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "costmap_layers/core/costmap_2d.hpp"
+#include "costmap_layers/core/footprint.hpp"
+#include "costmap_layers/core/layered_costmap.hpp"
+#include "fake_context.hpp"
+#include "fuzz_decoder.hpp"
+
+#define FUZZ_CHECK(cond, what)                                                                         \
+  do                                                                                                   \
+  {                                                                                                    \
+    if (!(cond))                                                                                       \
+    {                                                                                                  \
+      std::fprintf(stderr, "fuzz invariant failed at %s:%d: %s (%s)\n", __FILE__, __LINE__, #cond, what); \
+      std::abort();                                                                                    \
+    }                                                                                                  \
+  } while (0)
+
+namespace costmap_layers_fuzz
+{
+using namespace costmap_layers;
+
+/// FakeContext plus the OccupancyGridUpdate subscriptions StaticLayer makes.
+class FuzzContext : public costmap_layers_test::FakeContext
+{
+public:
+  using FakeContext::FakeContext;
+  void subscribeGridUpdates(const std::string& topic, GridUpdateCallback cb) override
+  {
+    (void)topic;
+    update_subs.push_back(std::move(cb));
+  }
+  void publishUpdate(const OccupancyGridUpdateData& u)
+  {
+    auto shared = std::make_shared<const OccupancyGridUpdateData>(u);
+    for (auto& cb : update_subs) cb(shared);
+  }
+  std::vector<GridUpdateCallback> update_subs;
+};
+
+/// A double from the input that tf or the robot's localisation could deliver: finite (non-finite
+/// values become 0), any magnitude.
+inline double finiteReal(FuzzDecoder& in)
+{
+  const double v = in.real();
+  return std::isfinite(v) ? v : 0.0;
+}
+
+/// A master grid the fuzzed inputs are drawn into: 1..64 cells a side, resolution (1..256)/64 m,
+/// origin within +-100 m (the costmap's own parameters are fuzzed by fuzz_params, not here).
+struct MasterGeometry
+{
+  unsigned w = 1, h = 1;
+  double res = 1.0, ox = 0.0, oy = 0.0;
+  static MasterGeometry decode(FuzzDecoder& in)
+  {
+    MasterGeometry g;
+    g.w = in.small(1, 64);
+    g.h = in.small(1, 64);
+    g.res = (1 + in.u8()) / 64.0;
+    g.ox = in.i16() / 256.0;
+    g.oy = in.i16() / 256.0;
+    return g;
+  }
+};
+
+/// A robot pose from the input: finite values, mostly near the grid.
+inline void decodePose(FuzzDecoder& in, double& x, double& y, double& yaw)
+{
+  x = finiteReal(in);
+  y = finiteReal(in);
+  yaw = finiteReal(in);
+}
+
+/// The master grid's geometry must never change except through resizeMap.
+inline void checkMasterUnchanged(const LayeredCostmap& lc, unsigned w, unsigned h, double res)
+{
+  const Costmap2D& m = lc.getCostmap();
+  FUZZ_CHECK(m.getSizeInCellsX() == w && m.getSizeInCellsY() == h, "master grid size changed");
+  FUZZ_CHECK(m.getResolution() == res, "master grid resolution changed");
+}
+}  // namespace costmap_layers_fuzz
+
+#include "costmap_layers/core/voxel_layer.hpp"
+
+namespace costmap_layers_fuzz
+{
+/// Where a sensor reading was taken: a normalised rotation and a translation from the input (what tf
+/// delivers: finite, unit quaternion).
+inline SensorPose decodeSensorPose(FuzzDecoder& in)
+{
+  const double tx = finiteReal(in), ty = finiteReal(in), tz = finiteReal(in);
+  double q[4] = {in.i16() / 32768.0, in.i16() / 32768.0, in.i16() / 32768.0, in.i16() / 32768.0};
+  const double n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+  if (n < 1e-6)
+    q[0] = q[1] = q[2] = 0, q[3] = 1;
+  else
+    for (double& v : q) v /= n;
+  SensorPose p;
+  p.to_global = Transform3D::fromQuaternion(tx, ty, tz, q[0], q[1], q[2], q[3]);
+  p.origin_x = tx, p.origin_y = ty, p.origin_z = tz;
+  return p;
+}
+
+/// Parameters of an ObstacleLayer / VoxelLayer with one source "src" of the given data type
+/// ("LaserScan" or "PointCloud2") on topic "sensor", from the input (valid ranges mostly; the
+/// parameters themselves are fuzz_params' business).
+inline ParamValue sensorLayerParams(FuzzDecoder& in, const char* data_type, bool voxel)
+{
+  ParamValue src = ParamValue::makeMap();
+  src.set("topic", ParamValue::makeString("sensor"));
+  src.set("data_type", ParamValue::makeString(data_type));
+  const uint8_t bits = in.u8();
+  src.set("marking", ParamValue::makeBool((bits & 1) == 0));
+  src.set("clearing", ParamValue::makeBool(bits & 2));
+  src.set("inf_is_valid", ParamValue::makeBool(bits & 4));
+  src.set("min_obstacle_height", ParamValue::makeDouble(in.i16() / 256.0));
+  src.set("max_obstacle_height", ParamValue::makeDouble(in.i16() / 256.0));
+  src.set("obstacle_max_range", ParamValue::makeDouble(in.u8() / 8.0));
+  src.set("raytrace_max_range", ParamValue::makeDouble(in.u8() / 8.0));
+  src.set("raytrace_min_range", ParamValue::makeDouble(in.u8() / 64.0));
+  src.set("obstacle_min_range", ParamValue::makeDouble(in.u8() / 64.0));
+  if (bits & 8) src.set("sensor_frame", ParamValue::makeString("sensor_mount"));
+  ParamValue p = ParamValue::makeMap();
+  p.set("observation_sources", ParamValue::makeString("src"));
+  p.set("src", src);
+  p.set("combination_method", ParamValue::makeInt(in.small(0, 2)));
+  p.set("footprint_clearing_enabled", ParamValue::makeBool(bits & 16));
+  p.set("max_obstacle_height", ParamValue::makeDouble(in.i16() / 256.0));
+  if (voxel)
+  {
+    p.set("origin_z", ParamValue::makeDouble(in.i16() / 256.0));
+    p.set("z_resolution", ParamValue::makeDouble((1 + in.u8()) / 64.0));
+    p.set("z_voxels", ParamValue::makeInt(in.small(1, 16)));
+    p.set("unknown_threshold", ParamValue::makeInt(in.small(0, 16)));
+    p.set("mark_threshold", ParamValue::makeInt(in.small(0, 16)));
+  }
+  return p;
+}
+}  // namespace costmap_layers_fuzz
