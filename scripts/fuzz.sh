@@ -28,8 +28,10 @@ for t in $TARGETS; do
   log="$BUILD/fuzz_$t.log"
   mkdir -p "$BUILD/corpus/$t" "$BUILD/artifacts/$t"
   # 1. The regressions, each run once.
+  shopt -s nullglob
   regressions=("$ROOT/test/fuzz/regressions/$t"/*)
-  if [ -e "${regressions[0]}" ]; then
+  shopt -u nullglob
+  if [ ${#regressions[@]} -gt 0 ]; then
     if ! "$exe" -artifact_prefix="$BUILD/artifacts/$t/" "${regressions[@]}" > "$log.regressions" 2>&1; then
       echo "fuzz.sh: $t: a regression input fails again:"; tail -n 40 "$log.regressions"; failed+=("$t"); continue
     fi
