@@ -7,8 +7,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
+#include <string>
+
+#if defined(__SSE2__) && (defined(__GNUC__) || defined(__clang__))
+#include <immintrin.h>
+#endif
 
 #include "costmap_layers/core/cost_values.hpp"
 #include "costmap_layers/core/param_reader.hpp"
@@ -36,9 +42,9 @@ inline uint8_t softCost(int8_t v)
   return static_cast<uint8_t>(u - 1u) < 100u ? c : uint8_t{0};
 }
 
-/// Counts values outside -1..100 (invalid in an OccupancyGrid) and, when lanes is not null, writes 1 for
-/// lane cells and 0 for others into it. Counted in blocks with 32-bit counters so that it vectorises.
-std::size_t scanMask(const int8_t* m, std::size_t n, uint8_t* lanes)
+/// Counts values outside -1..100 (invalid in an OccupancyGrid), in blocks with 32-bit counters so that
+/// it vectorises.
+std::size_t countInvalid(const int8_t* m, std::size_t n)
 {
   constexpr std::size_t kBlock = 1 << 16;
   std::size_t invalid = 0;
@@ -46,15 +52,7 @@ std::size_t scanMask(const int8_t* m, std::size_t n, uint8_t* lanes)
   {
     const std::size_t e = std::min(n, o + kBlock);
     uint32_t count = 0;
-    if (lanes)
-      for (std::size_t k = o; k < e; ++k)
-      {
-        const auto u = static_cast<uint8_t>(m[k]);
-        lanes[k] = u == static_cast<uint8_t>(kLane) ? 1 : 0;
-        count += static_cast<uint8_t>(u + 1u) > 101u ? 1u : 0u;
-      }
-    else
-      for (std::size_t k = o; k < e; ++k) count += static_cast<uint8_t>(static_cast<uint8_t>(m[k]) + 1u) > 101u ? 1u : 0u;
+    for (std::size_t k = o; k < e; ++k) count += static_cast<uint8_t>(static_cast<uint8_t>(m[k]) + 1u) > 101u ? 1u : 0u;
     invalid += count;
   }
   return invalid;
@@ -72,17 +70,169 @@ void writeRow(const int8_t* mask_row, const D* sq_dist, const uint8_t* lut, std:
   }
 }
 
-/// Final pass of the cost-merge engine: out holds 254 - cost for forbidden cells (0 beyond the band).
-void finishCosts(const int8_t* m, uint8_t* out, std::size_t n)
+/// The final costs of n mask cells: a forbidden cell takes 254 - c[k] (c: 254 minus its distance cost,
+/// 0 beyond the band), any other cell its soft cost. out may be c.
+/// @return the number of values outside -1..100.
+std::size_t finishCostsScalar(const uint8_t* u, const uint8_t* c, uint8_t* out, std::size_t n)
 {
+  std::size_t invalid = 0;
   for (std::size_t k = 0; k < n; ++k)
   {
-    const int8_t v = m[k];
-    const auto forbidden = static_cast<uint8_t>(LETHAL_OBSTACLE - out[k]);
-    out[k] = v == kForbidden ? forbidden : softCost(v);
+    const uint8_t v = u[k];
+    invalid += static_cast<uint8_t>(v + 1u) > 101u ? 1u : 0u;
+    out[k] = v == static_cast<uint8_t>(kForbidden) ? static_cast<uint8_t>(LETHAL_OBSTACLE - c[k])
+                                                  : softCost(static_cast<int8_t>(v));
   }
+  return invalid;
 }
+
+// The vector forms: a block of lane (0), forbidden (100) and unknown (-1) cells only, what lane masks
+// are made of, costs a compare and a subtraction; a block holding anything else also computes soft
+// costs, (254 v + 50) / 100 in 16-bit lanes (the division as a multiply-high by 5243 and a shift by
+// 16 + 3, exact for v in 1..99, the only values it is kept for), and counts the invalid values.
+#if defined(__SSE2__) && (defined(__GNUC__) || defined(__clang__))
+#define COSTMAP_LAYERS_LANES_SIMD 1
+template <bool kStream>
+std::size_t finishCostsSse2(const uint8_t* u, const uint8_t* c, uint8_t* out, std::size_t n)
+{
+  const __m128i zero = _mm_setzero_si128();
+  const __m128i forbidden = _mm_set1_epi8(static_cast<char>(kForbidden));
+  const __m128i unknown = _mm_set1_epi8(-1);
+  const __m128i lethal = _mm_set1_epi8(static_cast<char>(LETHAL_OBSTACLE));
+  std::size_t invalid = 0;
+  std::size_t k = 0;
+  if (kStream)  // the streaming stores want aligned addresses
+  {
+    k = std::min(n, static_cast<std::size_t>(-reinterpret_cast<std::uintptr_t>(out) % 16));
+    invalid = finishCostsScalar(u, c, out, k);
+  }
+  for (; k + 16 <= n; k += 16)
+  {
+    const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(u + k));
+    const __m128i d = _mm_loadu_si128(reinterpret_cast<const __m128i*>(c + k));
+    const __m128i is_forbidden = _mm_cmpeq_epi8(v, forbidden);
+    __m128i res = _mm_and_si128(is_forbidden, _mm_sub_epi8(lethal, d));
+    const __m128i plain =
+        _mm_or_si128(_mm_or_si128(_mm_cmpeq_epi8(v, zero), is_forbidden), _mm_cmpeq_epi8(v, unknown));
+    if (_mm_movemask_epi8(plain) != 0xFFFF)
+    {
+      // soft: v - 1 < 99; valid: v + 1 <= 101 (unsigned bytes)
+      const __m128i vm1 = _mm_sub_epi8(v, _mm_set1_epi8(1));
+      const __m128i soft = _mm_cmpeq_epi8(_mm_min_epu8(vm1, _mm_set1_epi8(98)), vm1);
+      const __m128i vp1 = _mm_add_epi8(v, _mm_set1_epi8(1));
+      const __m128i valid = _mm_cmpeq_epi8(_mm_max_epu8(vp1, _mm_set1_epi8(101)), _mm_set1_epi8(101));
+      invalid += static_cast<std::size_t>(__builtin_popcount(~_mm_movemask_epi8(valid) & 0xFFFF));
+      const __m128i k254 = _mm_set1_epi16(254), k50 = _mm_set1_epi16(50), kdiv = _mm_set1_epi16(5243);
+      __m128i lo = _mm_add_epi16(_mm_mullo_epi16(_mm_unpacklo_epi8(v, zero), k254), k50);
+      __m128i hi = _mm_add_epi16(_mm_mullo_epi16(_mm_unpackhi_epi8(v, zero), k254), k50);
+      lo = _mm_srli_epi16(_mm_mulhi_epu16(lo, kdiv), 3);
+      hi = _mm_srli_epi16(_mm_mulhi_epu16(hi, kdiv), 3);
+      res = _mm_or_si128(res, _mm_and_si128(soft, _mm_packus_epi16(lo, hi)));
+    }
+    if (kStream)
+      _mm_stream_si128(reinterpret_cast<__m128i*>(out + k), res);
+    else
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(out + k), res);
+  }
+  return invalid + finishCostsScalar(u + k, c + k, out + k, n - k);
+}
+
+template <bool kStream>
+__attribute__((target("avx2"))) std::size_t finishCostsAvx2(const uint8_t* u, const uint8_t* c, uint8_t* out,
+                                                             std::size_t n)
+{
+  const __m256i zero = _mm256_setzero_si256();
+  const __m256i forbidden = _mm256_set1_epi8(static_cast<char>(kForbidden));
+  const __m256i unknown = _mm256_set1_epi8(-1);
+  const __m256i lethal = _mm256_set1_epi8(static_cast<char>(LETHAL_OBSTACLE));
+  std::size_t invalid = 0;
+  std::size_t k = 0;
+  if (kStream)  // the streaming stores want aligned addresses
+  {
+    k = std::min(n, static_cast<std::size_t>(-reinterpret_cast<std::uintptr_t>(out) % 32));
+    invalid = finishCostsScalar(u, c, out, k);
+  }
+  for (; k + 32 <= n; k += 32)
+  {
+    const __m256i v = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(u + k));
+    const __m256i d = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(c + k));
+    const __m256i is_forbidden = _mm256_cmpeq_epi8(v, forbidden);
+    __m256i res = _mm256_and_si256(is_forbidden, _mm256_sub_epi8(lethal, d));
+    const __m256i plain =
+        _mm256_or_si256(_mm256_or_si256(_mm256_cmpeq_epi8(v, zero), is_forbidden), _mm256_cmpeq_epi8(v, unknown));
+    if (_mm256_movemask_epi8(plain) != -1)
+    {
+      const __m256i vm1 = _mm256_sub_epi8(v, _mm256_set1_epi8(1));
+      const __m256i soft = _mm256_cmpeq_epi8(_mm256_min_epu8(vm1, _mm256_set1_epi8(98)), vm1);
+      const __m256i vp1 = _mm256_add_epi8(v, _mm256_set1_epi8(1));
+      const __m256i valid = _mm256_cmpeq_epi8(_mm256_max_epu8(vp1, _mm256_set1_epi8(101)), _mm256_set1_epi8(101));
+      invalid += static_cast<std::size_t>(__builtin_popcount(~static_cast<unsigned>(_mm256_movemask_epi8(valid))));
+      const __m256i k254 = _mm256_set1_epi16(254), k50 = _mm256_set1_epi16(50), kdiv = _mm256_set1_epi16(5243);
+      __m256i lo = _mm256_add_epi16(_mm256_mullo_epi16(_mm256_unpacklo_epi8(v, zero), k254), k50);
+      __m256i hi = _mm256_add_epi16(_mm256_mullo_epi16(_mm256_unpackhi_epi8(v, zero), k254), k50);
+      lo = _mm256_srli_epi16(_mm256_mulhi_epu16(lo, kdiv), 3);
+      hi = _mm256_srli_epi16(_mm256_mulhi_epu16(hi, kdiv), 3);
+      res = _mm256_or_si256(res, _mm256_and_si256(soft, _mm256_packus_epi16(lo, hi)));
+    }
+    if (kStream)
+      _mm256_stream_si256(reinterpret_cast<__m256i*>(out + k), res);
+    else
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + k), res);
+  }
+  return invalid + finishCostsScalar(u + k, c + k, out + k, n - k);
+}
+#endif
+
+/// @param stream  write around the caches (for a grid much larger than them, written once): the caller
+///                then calls finishStreaming() before the costs are read
+std::size_t finishCosts(const int8_t* m, const uint8_t* c, uint8_t* out, std::size_t n, bool stream)
+{
+  const auto* u = reinterpret_cast<const uint8_t*>(m);
+#ifdef COSTMAP_LAYERS_LANES_SIMD
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  if (stream) return avx2 ? finishCostsAvx2<true>(u, c, out, n) : finishCostsSse2<true>(u, c, out, n);
+  return avx2 ? finishCostsAvx2<false>(u, c, out, n) : finishCostsSse2<false>(u, c, out, n);
+#else
+  (void)stream;
+  return finishCostsScalar(u, c, out, n);
+#endif
+}
+
+/// Orders the streaming stores of finishCosts() before what follows.
+void finishStreaming()
+{
+#ifdef COSTMAP_LAYERS_LANES_SIMD
+  _mm_sfence();
+#endif
+}
+
+/// Costs grids from this size on are written with streaming stores: they would only evict the mask and
+/// the engine's rows from the caches, and the next update reads them once.
+constexpr std::size_t kStreamCostsFrom = std::size_t{8} << 20;
 }  // namespace
+
+std::size_t lanesFinishCosts(const int8_t* mask, const uint8_t* c, uint8_t* out, std::size_t n, bool stream,
+                             const char* kernel)
+{
+  const std::string k = kernel != nullptr ? kernel : "";
+  std::size_t invalid = 0;
+  if (k.empty())
+    invalid = finishCosts(mask, c, out, n, stream);
+  else if (k == "portable")
+    return finishCostsScalar(reinterpret_cast<const uint8_t*>(mask), c, out, n);
+#ifdef COSTMAP_LAYERS_LANES_SIMD
+  else if (k == "sse2")
+    invalid = stream ? finishCostsSse2<true>(reinterpret_cast<const uint8_t*>(mask), c, out, n)
+                     : finishCostsSse2<false>(reinterpret_cast<const uint8_t*>(mask), c, out, n);
+  else if (k == "avx2" && __builtin_cpu_supports("avx2"))
+    invalid = stream ? finishCostsAvx2<true>(reinterpret_cast<const uint8_t*>(mask), c, out, n)
+                     : finishCostsAvx2<false>(reinterpret_cast<const uint8_t*>(mask), c, out, n);
+#endif
+  else
+    return std::numeric_limits<std::size_t>::max();
+  if (stream) finishStreaming();
+  return invalid;
+}
 
 LanesFilterConfig parseLanesFilterConfig(const ParamReader& params)
 {
@@ -143,8 +293,7 @@ std::size_t LanesFilter::computeCosts(const OccupancyGridData& mask, std::vector
   {
     // No distance below the lethal one: every forbidden cell is lethal (254 - 0).
     std::memset(costs.data(), 0, n);
-    finishCosts(m, costs.data(), n);
-    return scanMask(m, n, nullptr);
+    return finishCosts(m, costs.data(), costs.data(), n, false);
   }
 
   // Every squared distance below q must come out exactly: a band of radius cap with cap^2 >= q - 1.
@@ -163,19 +312,24 @@ std::size_t LanesFilter::computeCosts(const OccupancyGridData& mask, std::vector
   std::vector<uint8_t> lut;
   if (cap <= static_cast<uint64_t>(kMaxBandedCap8))
   {
-    // The banded cost-domain engine wants a non-increasing table, merged with max into the grid: give
-    // it 254 - cost (non-increasing since the cost never falls with distance; 0 beyond the band, where
-    // everything is lethal) over a grid marking lane cells 1 and others 0, then turn it back.
+    // The banded cost-domain engine wants a non-increasing table: give it 254 - cost (non-increasing
+    // since the cost never falls with distance; 0 beyond the band, where everything is lethal), with the
+    // lane cells of the mask as sources, and turn each row back while it is in cache.
     buildLut(lut, static_cast<std::size_t>(cap * cap) + 1);
     for (auto& c : lut) c = static_cast<uint8_t>(LETHAL_OBSTACLE - c);
     lut[0] = lut.size() > 1 ? lut[1] : 0;  // the lane cells themselves: never used
-    const std::size_t invalid = scanMask(m, n, costs.data());
-    cappedCostMerge8(costs.data(), w, h, w, SourceRange{1, 1}, static_cast<int>(cap), all, lut.data(),
-                     CostMergeRule{255, 255}, scratch_);
-    finishCosts(m, costs.data(), n);
+    std::size_t invalid = 0;
+    const SourceRange lanes{static_cast<uint8_t>(kLane), static_cast<uint8_t>(kLane)};
+    const bool stream = n >= kStreamCostsFrom;
+    cappedCostRows8(bytes, w, h, w, lanes, static_cast<int>(cap), all, lut.data(), scratch_,
+                    [&](int y, const uint8_t* row) {
+                      const std::size_t o = static_cast<std::size_t>(y) * static_cast<std::size_t>(w);
+                      invalid += finishCosts(m + o, row, costs.data() + o, static_cast<std::size_t>(w), stream);
+                    });
+    if (stream) finishStreaming();
     return invalid;
   }
-  const std::size_t invalid = scanMask(m, n, nullptr);
+  const std::size_t invalid = countInvalid(m, n);
   const SourceRange lanes{static_cast<uint8_t>(kLane), static_cast<uint8_t>(kLane)};
   if (cap <= static_cast<uint64_t>(kMaxBandedLanesCap))
   {

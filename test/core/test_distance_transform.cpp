@@ -380,6 +380,60 @@ TEST_P(CostMergeTest, AgreesWithPortableOnLargeGridWithStride)
       ASSERT_EQ(mine[static_cast<std::size_t>(y) * stride + x], grid[static_cast<std::size_t>(y) * stride + x]);
 }
 
+TEST_P(CostMergeTest, CostRowsMatchBruteForceAndLeaveTheGridAlone)
+{
+  std::mt19937 rng(static_cast<unsigned>(std::hash<std::string>()(GetParam()) % 1000 + 17));
+  DistanceTransformScratch scratch;
+  for (int trial = 0; trial < 100; ++trial)
+  {
+    const int w = 1 + static_cast<int>(rng() % 200), h = 1 + static_cast<int>(rng() % 50);
+    const int stride = w + static_cast<int>(rng() % 5);
+    const auto cells = randomGrid(rng, stride, h, (trial % 5) * 0.02 + 0.002);
+    const SourceRange src = trial % 3 ? SourceRange{254, 254} : SourceRange{254, 255};
+    std::vector<uint8_t> tight(static_cast<std::size_t>(w) * h);  // the same cells without the stride
+    for (int y = 0; y < h; ++y)
+      std::copy_n(cells.begin() + static_cast<std::ptrdiff_t>(y) * stride, w,
+                  tight.begin() + static_cast<std::ptrdiff_t>(y) * w);
+    DistanceWindow win;
+    win.x0 = static_cast<int>(rng() % static_cast<unsigned>(w));
+    win.y0 = static_cast<int>(rng() % static_cast<unsigned>(h));
+    win.x1 = win.x0 + 1 + static_cast<int>(rng() % static_cast<unsigned>(w - win.x0));
+    win.y1 = win.y0 + 1 + static_cast<int>(rng() % static_cast<unsigned>(h - win.y0));
+    if (trial % 4 == 0) win = DistanceWindow{0, 0, w, h};
+    if (trial % 7 == 0) win = DistanceWindow{-5, -3, w + 4, h + 9};  // clipped to the grid
+    const int x0 = std::max(0, win.x0), x1 = std::min(w, win.x1);
+    const int y0 = std::max(0, win.y0), y1 = std::min(h, win.y1);
+    const int cap = static_cast<int>(rng() % (kMaxBandedCap8 + 1));
+    const auto costs = randomCosts(rng, cap);
+    const auto d = bruteForce(tight, w, h, src);
+    std::vector<int> calls(static_cast<std::size_t>(h), 0);
+    cappedCostRows8(cells.data(), w, h, stride, src, cap, win, costs.data(), scratch,
+                    [&](int y, const uint8_t* row) {
+                      ASSERT_GE(y, y0);
+                      ASSERT_LT(y, y1);
+                      ++calls[static_cast<std::size_t>(y)];
+                      for (int x = x0; x < x1; ++x)
+                      {
+                        const uint32_t d2 = d[static_cast<std::size_t>(y) * w + x];
+                        const uint8_t expected = d2 <= static_cast<uint32_t>(cap * cap) ? costs[d2] : uint8_t{0};
+                        ASSERT_EQ(row[x - x0], expected) << "trial " << trial << " cell " << x << "," << y << " cap "
+                                                         << cap << " grid " << w << "x" << h;
+                      }
+                    });
+    for (int y = 0; y < h; ++y) ASSERT_EQ(calls[static_cast<std::size_t>(y)], y >= y0 && y < y1 ? 1 : 0) << y;
+  }
+  // The grid is only read.
+  const auto cells = randomGrid(rng, 70, 30, 0.05);
+  auto copy = cells;
+  cappedCostRows8(copy.data(), 70, 30, 70, SourceRange{254, 255}, 6, DistanceWindow{0, 0, 70, 30},
+                  randomCosts(rng, 6).data(), scratch, [](int, const uint8_t*) {});
+  EXPECT_EQ(copy, cells);
+  const std::vector<uint8_t> rising = {10, 20};
+  EXPECT_THROW(cappedCostRows8(copy.data(), 2, 2, 2, SourceRange{}, 1, DistanceWindow{0, 0, 2, 2}, rising.data(),
+                               scratch, [](int, const uint8_t*) {}),
+               std::invalid_argument);
+}
+
 INSTANTIATE_TEST_SUITE_P(Kernels, CostMergeTest, ::testing::ValuesIn(kernelNames()),
                          [](const ::testing::TestParamInfo<std::string>& info) {
                            std::string name = info.param;

@@ -1,12 +1,14 @@
 // LanesFilter: the cost profile against the exact distance to the nearest lane cell (checked by hand
 // for straight lanes and by brute force for a diagonal one, on each distance engine), what is left
-// untouched, soft values, the unknown-master rule, and recomputation only on a new mask.
+// untouched, soft values, the unknown-master rule, and recomputation only on a new mask; the vector
+// kernels of the last step against its definition.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -557,4 +559,93 @@ TEST(LanesFilter, InvalidValuesSkippedAndWarnedOnce)
   rig.apply(m, master);
   EXPECT_EQ(rig.ctx->reports.size(), 1u);
   EXPECT_FALSE(rig.filter->isClearable());
+}
+
+// ---------------------------------------------------------------- the last step's kernels
+
+TEST(LanesFilter, FinishKernelsMatchTheDefinition)
+{
+  std::mt19937 rng(11);
+  const int8_t plain[] = {0, 100, -1};
+  for (const std::size_t n : {std::size_t{0}, std::size_t{1}, std::size_t{15}, std::size_t{16}, std::size_t{33},
+                              std::size_t{64}, std::size_t{517}})
+    for (int trial = 0; trial < 6; ++trial)
+    {
+      // Trial 0: every byte value in turn; others: blocks of lane / forbidden / unknown cells only (the
+      // fast path) between blocks of any value.
+      std::vector<int8_t> mask(n);
+      std::vector<uint8_t> c(n);
+      for (std::size_t k = 0; k < n; ++k)
+      {
+        if (trial == 0)
+          mask[k] = static_cast<int8_t>(static_cast<uint8_t>(k * 37 % 256));
+        else if ((k / (8u << (trial % 3))) % 2 == 0)
+          mask[k] = plain[rng() % 3];
+        else
+          mask[k] = static_cast<int8_t>(static_cast<uint8_t>(rng() % 256));
+        c[k] = static_cast<uint8_t>(rng() % 256);
+      }
+      std::vector<uint8_t> expected(n);
+      std::size_t invalid = 0;
+      for (std::size_t k = 0; k < n; ++k)
+      {
+        invalid += mask[k] < -1 || mask[k] > 100 ? 1 : 0;
+        expected[k] = mask[k] == 100 ? static_cast<uint8_t>(254 - c[k]) : keepoutCost(mask[k]);
+      }
+      for (const char* kernel : {"portable", "sse2", "avx2", static_cast<const char*>(nullptr)})
+        for (const bool stream : {false, true})
+          for (const std::size_t offset : {0, 1, 13, 32})
+          {
+            SCOPED_TRACE(std::string(kernel ? kernel : "default") + " n " + std::to_string(n) + " trial " +
+                         std::to_string(trial) + (stream ? " streamed" : "") + " offset " + std::to_string(offset));
+            std::vector<uint8_t> buf(n + 96, 0xAB);
+            uint8_t* out = buf.data() + offset;
+            const std::size_t got = lanesFinishCosts(mask.data(), c.data(), out, n, stream, kernel);
+            if (got == std::numeric_limits<std::size_t>::max())
+            {
+              EXPECT_TRUE(kernel != nullptr && std::string(kernel) != "portable");  // not run here
+              continue;
+            }
+            EXPECT_EQ(got, invalid);
+            for (std::size_t k = 0; k < n; ++k) ASSERT_EQ(out[k], expected[k]) << "cell " << k << " value " << int{mask[k]};
+            for (std::size_t k = 0; k < buf.size(); ++k)
+              if (k < offset || k >= offset + n) ASSERT_EQ(buf[k], 0xAB) << "outside, byte " << k;
+            // In place (out == c).
+            std::vector<uint8_t> inplace = c;
+            EXPECT_EQ(lanesFinishCosts(mask.data(), inplace.data(), inplace.data(), n, stream, kernel), invalid);
+            EXPECT_EQ(inplace, expected);
+          }
+    }
+}
+
+TEST(LanesFilter, RandomMaskOfEveryValueMatchesBruteForce)
+{
+  // Wider than several vector blocks and not a multiple of any, every byte value, lanes sprinkled:
+  // the 8-bit band (cap 10) with its row-wise last step.
+  std::mt19937 rng(29);
+  const int w = 203, h = 41;
+  OccupancyGridData m = makeMask(w, h, 0.05, 100);
+  std::size_t invalid = 0;
+  for (auto& v : m.data)
+  {
+    const unsigned r = rng() % 100;
+    v = r < 2 ? int8_t{0} : r < 70 ? int8_t{100} : static_cast<int8_t>(static_cast<uint8_t>(rng() % 256));
+    invalid += v < -1 || v > 100 ? 1 : 0;
+  }
+  ASSERT_GT(invalid, 0u);
+  const Params p{0.5, 1, "linear", 10.0};
+  Rig rig(p);
+  Costmap2D master = masterFor(m, 0);
+  rig.apply(m, master);
+  const LanesFilterConfig c = configOf(p);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+    {
+      const int8_t v = m.data[static_cast<std::size_t>(y) * w + x];
+      int expected = keepoutCost(v);
+      if (v == 100)
+        expected = lanesForbiddenCost(c, std::sqrt(static_cast<double>(nearestLaneSq(m, x, y))) * 0.05, 0.05);
+      ASSERT_EQ(master.getCost(x, y), expected) << x << "," << y << " value " << int{v};
+    }
+  EXPECT_EQ(rig.ctx->countReports(std::to_string(invalid) + " values outside -1..100"), 1);
 }

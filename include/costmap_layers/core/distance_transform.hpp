@@ -14,7 +14,7 @@
 //    increase, cost(min over candidates of d^2) = max over candidates of cost(d^2): the row pass works
 //    in the cost domain, one 16-entry lookup per column offset (a byte shuffle on SSE4.1 / AVX2 /
 //    AVX-512 / NEON), blocks with no source within cap are skipped, and the vertical pass streams
-//    through cache in stripes of rows.
+//    through cache in stripes of rows. cappedCostRows8() streams the same costs to a sink instead.
 // All are exact: every reported squared distance equals min over sources of dx^2 + dy^2.
 // None allocates once its scratch has grown to the largest size used.
 #pragma once
@@ -59,6 +59,7 @@ struct DistanceTransformScratch
   std::vector<uint16_t> acc16;   ///< banded 16-bit: output row
   std::vector<uint8_t> merge_g;  ///< cost merge: one stripe of padded vertical-distance rows
   std::vector<uint8_t> merge_lut;  ///< cost merge: the per-offset 16-entry cost tables
+  std::vector<uint8_t> merge_out;  ///< cost rows: the row handed to the sink
 };
 
 /// Exact squared Euclidean distance from every cell of a width x height grid to the nearest source.
@@ -122,6 +123,19 @@ struct CostMergeRule
 void cappedCostMerge8(uint8_t* grid, int width, int height, std::ptrdiff_t stride, SourceRange source, int cap,
                       const DistanceWindow& window, const uint8_t* cost_by_sq_dist, CostMergeRule rule,
                       DistanceTransformScratch& scratch);
+
+/// Called once per window row by cappedCostRows8() with the costs of columns [x0, x1) of that row
+/// (costs[0] is column x0). Rows come in an unspecified order, each exactly once; the pointer is valid
+/// during the call only.
+using CostRowSink = std::function<void(int y, const uint8_t* costs)>;
+
+/// The costs of cappedCostMerge8() without the merge: for every cell of the window (clipped to the
+/// grid), c = cost_by_sq_dist[d2] if d2 <= cap^2, else 0, streamed to sink row by row; grid is only
+/// read (the sources stay where they are, so it may be a mask of which only some values are sources).
+/// Same requirements on cost_by_sq_dist and cap (else std::invalid_argument).
+void cappedCostRows8(const uint8_t* grid, int width, int height, std::ptrdiff_t stride, SourceRange source,
+                     int cap, const DistanceWindow& window, const uint8_t* cost_by_sq_dist,
+                     DistanceTransformScratch& scratch, const CostRowSink& sink);
 
 /// Whether the banded kernels may use a wider instruction set chosen at run time (SSE4.1, AVX2 or
 /// AVX-512BW on x86, NEON on AArch64). The default is true; false forces "portable".

@@ -63,6 +63,16 @@ uint8_t lanesForbiddenCost(const LanesFilterConfig& config, double d, double res
 /// resolution: the least integer q with sqrt(q) * resolution >= lane_border_width.
 uint64_t lanesLethalSquaredDistance(const LanesFilterConfig& config, double resolution);
 
+/// LanesFilter's last step over n mask cells, exposed for tests: a forbidden cell (100) takes
+/// 254 - c[k] (c: 254 minus its distance cost, 0 beyond the band), any other value its soft cost
+/// round(v * 254 / 100) (0 for 0, -1 and values outside -1..100). out may be c. With stream, out is
+/// written around the caches (and ordered before the return).
+/// @param kernel  "portable", "sse2" or "avx2" (x86); nullptr for the one LanesFilter uses
+/// @return the number of values outside -1..100, or SIZE_MAX (writing nothing) for a kernel this
+///         machine does not run
+std::size_t lanesFinishCosts(const int8_t* mask, const uint8_t* c, uint8_t* out, std::size_t n, bool stream,
+                             const char* kernel = nullptr);
+
 class LanesFilter : public CostGridFilter
 {
 public:
