@@ -343,9 +343,6 @@ struct MergeConsts
 {
   const uint8_t* lut;
   const uint8_t* cost_sq;
-  /// beyond[D] = cost_sq[(D + 1)^2], the most any column offset above D can add (D in 0..cap): once a
-  /// block's costs all reach it after offsets 0..D, the larger offsets cannot change them.
-  const uint8_t* beyond;
   uint8_t* sq_row;  ///< portable row pass: n + 2 * (cap + kMaxLanes) bytes of scratch
   int cap;
   uint8_t far;
@@ -424,8 +421,6 @@ __attribute__((target("sse4.1"))) void mergeRowSse41(const MergeRow& r, const Me
   const __m128i far = _mm_set1_epi8(static_cast<char>(k.far));
   const __m128i special = _mm_set1_epi8(static_cast<char>(k.special));
   const __m128i threshold = _mm_set1_epi8(static_cast<char>(k.threshold));
-  __m128i beyond[kMaxBandedCap8 + 1];
-  for (int dx = 0; dx <= cap; ++dx) beyond[dx] = _mm_set1_epi8(static_cast<char>(k.beyond[dx]));
   for (int x = 0; x < r.n; x += V)
   {
     const uint8_t* g = r.g + x;
@@ -437,27 +432,19 @@ __attribute__((target("sse4.1"))) void mergeRowSse41(const MergeRow& r, const Me
       if (oo == cap) break;
     }
     if (_mm_movemask_epi8(_mm_cmpeq_epi8(near, far)) == 0xFFFF) continue;
-    // Two accumulators: the maxima of odd and even offsets form two shorter dependency chains. Stops
-    // early once every cost reaches what the remaining offsets could add.
+    // Two accumulators: the maxima of odd and even offsets form two shorter dependency chains.
     __m128i c = _mm_shuffle_epi8(load(k.lut), load(g));
-    if (_mm_movemask_epi8(_mm_cmpeq_epi8(_mm_max_epu8(c, beyond[0]), c)) != 0xFFFF)
+    __m128i c1 = _mm_setzero_si128();
+    int dx = 1;
+    for (; dx < cap; dx += 2)
     {
-      __m128i c1 = _mm_setzero_si128();
-      int dx = 1;
-      for (; dx < cap; dx += 2)
-      {
-        c1 = _mm_max_epu8(c1,
-                          _mm_shuffle_epi8(load(k.lut + kLutRow * dx), _mm_min_epu8(load(g - dx), load(g + dx))));
-        const int e = dx + 1;
-        c = _mm_max_epu8(c, _mm_shuffle_epi8(load(k.lut + kLutRow * e), _mm_min_epu8(load(g - e), load(g + e))));
-        const __m128i both = _mm_max_epu8(c, c1);
-        if (_mm_movemask_epi8(_mm_cmpeq_epi8(_mm_max_epu8(both, beyond[e]), both)) == 0xFFFF) break;
-      }
-      if (dx == cap)
-        c1 = _mm_max_epu8(c1,
-                          _mm_shuffle_epi8(load(k.lut + kLutRow * dx), _mm_min_epu8(load(g - dx), load(g + dx))));
-      c = _mm_max_epu8(c, c1);
+      c1 = _mm_max_epu8(c1, _mm_shuffle_epi8(load(k.lut + kLutRow * dx), _mm_min_epu8(load(g - dx), load(g + dx))));
+      const int e = dx + 1;
+      c = _mm_max_epu8(c, _mm_shuffle_epi8(load(k.lut + kLutRow * e), _mm_min_epu8(load(g - e), load(g + e))));
     }
+    if (dx == cap)
+      c1 = _mm_max_epu8(c1, _mm_shuffle_epi8(load(k.lut + kLutRow * dx), _mm_min_epu8(load(g - dx), load(g + dx))));
+    c = _mm_max_epu8(c, c1);
     uint8_t tmp[V];
     const bool whole = x + V <= r.n;
     uint8_t* dst = whole ? r.out + x : tmp;
@@ -478,12 +465,8 @@ __attribute__((target("avx2"))) void mergeRowAvx2(const MergeRow& r, const Merge
   const __m256i special = _mm256_set1_epi8(static_cast<char>(k.special));
   const __m256i threshold = _mm256_set1_epi8(static_cast<char>(k.threshold));
   __m256i lut[kMaxBandedCap8 + 1];
-  __m256i beyond[kMaxBandedCap8 + 1];
   for (int dx = 0; dx <= cap; ++dx)
-  {
     lut[dx] = load256(k.lut + kLutRow * dx);
-    beyond[dx] = _mm256_set1_epi8(static_cast<char>(k.beyond[dx]));
-  }
   for (int x = 0; x < r.n; x += V)
   {
     const uint8_t* g = r.g + x;
@@ -495,25 +478,19 @@ __attribute__((target("avx2"))) void mergeRowAvx2(const MergeRow& r, const Merge
       if (oo == cap) break;
     }
     if (_mm256_movemask_epi8(_mm256_cmpeq_epi8(near, far)) == -1) continue;
-    // Two accumulators: the maxima of odd and even offsets form two shorter dependency chains. Stops
-    // early once every cost reaches what the remaining offsets could add.
+    // Two accumulators: the maxima of odd and even offsets form two shorter dependency chains.
     __m256i c = _mm256_shuffle_epi8(lut[0], load256(g));
-    if (_mm256_movemask_epi8(_mm256_cmpeq_epi8(_mm256_max_epu8(c, beyond[0]), c)) != -1)
+    __m256i c1 = _mm256_setzero_si256();
+    int dx = 1;
+    for (; dx < cap; dx += 2)
     {
-      __m256i c1 = _mm256_setzero_si256();
-      int dx = 1;
-      for (; dx < cap; dx += 2)
-      {
-        c1 = _mm256_max_epu8(c1, _mm256_shuffle_epi8(lut[dx], _mm256_min_epu8(load256(g - dx), load256(g + dx))));
-        const int e = dx + 1;
-        c = _mm256_max_epu8(c, _mm256_shuffle_epi8(lut[e], _mm256_min_epu8(load256(g - e), load256(g + e))));
-        const __m256i both = _mm256_max_epu8(c, c1);
-        if (_mm256_movemask_epi8(_mm256_cmpeq_epi8(_mm256_max_epu8(both, beyond[e]), both)) == -1) break;
-      }
-      if (dx == cap)
-        c1 = _mm256_max_epu8(c1, _mm256_shuffle_epi8(lut[dx], _mm256_min_epu8(load256(g - dx), load256(g + dx))));
-      c = _mm256_max_epu8(c, c1);
+      c1 = _mm256_max_epu8(c1, _mm256_shuffle_epi8(lut[dx], _mm256_min_epu8(load256(g - dx), load256(g + dx))));
+      const int e = dx + 1;
+      c = _mm256_max_epu8(c, _mm256_shuffle_epi8(lut[e], _mm256_min_epu8(load256(g - e), load256(g + e))));
     }
+    if (dx == cap)
+      c1 = _mm256_max_epu8(c1, _mm256_shuffle_epi8(lut[dx], _mm256_min_epu8(load256(g - dx), load256(g + dx))));
+    c = _mm256_max_epu8(c, c1);
     uint8_t tmp[V];
     const bool whole = x + V <= r.n;
     uint8_t* dst = whole ? r.out + x : tmp;
@@ -535,12 +512,8 @@ __attribute__((target("avx512f,avx512bw"))) void mergeRowAvx512(const MergeRow& 
   const __m512i special = _mm512_set1_epi8(static_cast<char>(k.special));
   const __m512i threshold = _mm512_set1_epi8(static_cast<char>(k.threshold));
   __m512i lut[kMaxBandedCap8 + 1];
-  __m512i beyond[kMaxBandedCap8 + 1];
   for (int dx = 0; dx <= cap; ++dx)
-  {
     lut[dx] = load512(k.lut + kLutRow * dx);
-    beyond[dx] = _mm512_set1_epi8(static_cast<char>(k.beyond[dx]));
-  }
   for (int x = 0; x < r.n; x += V)
   {
     const uint8_t* g = r.g + x;
@@ -552,24 +525,19 @@ __attribute__((target("avx512f,avx512bw"))) void mergeRowAvx512(const MergeRow& 
       if (oo == cap) break;
     }
     if (_mm512_cmpneq_epu8_mask(near, far) == 0) continue;
-    // Two accumulators: the maxima of odd and even offsets form two shorter dependency chains. Stops
-    // early once every cost reaches what the remaining offsets could add.
+    // Two accumulators: the maxima of odd and even offsets form two shorter dependency chains.
     __m512i c = _mm512_shuffle_epi8(lut[0], load512(g));
-    if (_mm512_cmplt_epu8_mask(c, beyond[0]) != 0)
+    __m512i c1 = _mm512_setzero_si512();
+    int dx = 1;
+    for (; dx < cap; dx += 2)
     {
-      __m512i c1 = _mm512_setzero_si512();
-      int dx = 1;
-      for (; dx < cap; dx += 2)
-      {
-        c1 = _mm512_max_epu8(c1, _mm512_shuffle_epi8(lut[dx], _mm512_min_epu8(load512(g - dx), load512(g + dx))));
-        const int e = dx + 1;
-        c = _mm512_max_epu8(c, _mm512_shuffle_epi8(lut[e], _mm512_min_epu8(load512(g - e), load512(g + e))));
-        if (_mm512_cmplt_epu8_mask(_mm512_max_epu8(c, c1), beyond[e]) == 0) break;
-      }
-      if (dx == cap)
-        c1 = _mm512_max_epu8(c1, _mm512_shuffle_epi8(lut[dx], _mm512_min_epu8(load512(g - dx), load512(g + dx))));
-      c = _mm512_max_epu8(c, c1);
+      c1 = _mm512_max_epu8(c1, _mm512_shuffle_epi8(lut[dx], _mm512_min_epu8(load512(g - dx), load512(g + dx))));
+      const int e = dx + 1;
+      c = _mm512_max_epu8(c, _mm512_shuffle_epi8(lut[e], _mm512_min_epu8(load512(g - e), load512(g + e))));
     }
+    if (dx == cap)
+      c1 = _mm512_max_epu8(c1, _mm512_shuffle_epi8(lut[dx], _mm512_min_epu8(load512(g - dx), load512(g + dx))));
+    c = _mm512_max_epu8(c, c1);
     const int left = r.n - x;
     const __mmask64 lanes = left >= V ? ~__mmask64{0} : ((__mmask64{1} << left) - 1);
     uint8_t* dst = r.out + x;
@@ -720,6 +688,7 @@ COSTMAP_LAYERS_DT_INLINE void mergeDriver(const MergeJob& j, RowPass row_pass)
     // Upward through the stripe, then the row pass, one row at a time while it is in cache. The
     // vertical distance of a row is min(its downward distance, the next row's vertical distance + 1).
     const uint8_t* below = up;
+    const uint8_t* costed = nullptr;  // sink mode: the band of the row whose costs out_row holds
     for (int y = s1 - 1; y >= s0; --y)
     {
       uint8_t* __restrict gr = j.rows + static_cast<std::size_t>(y - s0) * j.row_stride;
@@ -742,9 +711,15 @@ COSTMAP_LAYERS_DT_INLINE void mergeDriver(const MergeJob& j, RowPass row_pass)
       }
       if (j.sink != nullptr)
       {
-        // A zero start makes the merge rule (old 0 is never special) leave exactly the cost.
-        std::memset(j.out_row, 0, static_cast<std::size_t>(n));
-        row_pass(MergeRow{gr + j.pad, j.out_row, n}, j.consts);
+        // The costs of a row depend on its vertical distances only: a row whose band equals the one
+        // before (long straight lanes, open space) reuses its costs. Otherwise a zero start makes the
+        // merge rule (old 0 is never special) leave exactly the cost.
+        if (costed == nullptr || std::memcmp(costed, dst, static_cast<std::size_t>(cw)) != 0)
+        {
+          std::memset(j.out_row, 0, static_cast<std::size_t>(n));
+          row_pass(MergeRow{gr + j.pad, j.out_row, n}, j.consts);
+          costed = dst;
+        }
         (*j.sink)(y, j.out_row);
       }
       else
@@ -811,7 +786,7 @@ void runCostMerge(const char* what, const uint8_t* grid, uint8_t* target, int wi
   if (win.x0 >= win.x1 || win.y0 >= win.y1) return;
 
   // The tables: 16 entries per column offset, then 256 squared distances.
-  const std::size_t lut_size = static_cast<std::size_t>(kLutRow * (cap + 1) + 256 + kMaxBandedCap8 + 1);
+  const std::size_t lut_size = static_cast<std::size_t>(kLutRow * (cap + 1) + 256);
   if (scratch.merge_lut.size() < lut_size) scratch.merge_lut.resize(lut_size);
   uint8_t* lut = scratch.merge_lut.data();
   for (int dx = 0; dx <= cap; ++dx)
@@ -823,8 +798,6 @@ void runCostMerge(const char* what, const uint8_t* grid, uint8_t* target, int wi
     }
   uint8_t* cost_sq = lut + kLutRow * (cap + 1);
   for (int d2 = 0; d2 < 256; ++d2) cost_sq[d2] = d2 <= cap_sq ? cost_by_sq_dist[d2] : uint8_t{0};
-  uint8_t* beyond = cost_sq + 256;
-  for (int d = 0; d <= cap; ++d) beyond[d] = cost_sq[(d + 1) * (d + 1)];
 
   const int n = win.x1 - win.x0;
   const int cw = std::min(width, win.x1 + cap) - std::max(0, win.x0 - cap);
@@ -853,7 +826,7 @@ void runCostMerge(const char* what, const uint8_t* grid, uint8_t* target, int wi
   job.stride = stride;
   job.source = source;
   job.win = win;
-  job.consts = MergeConsts{lut,          cost_sq, beyond, scratch.run.data() + 2 * cw, cap, static_cast<uint8_t>(cap + 1),
+  job.consts = MergeConsts{lut,        cost_sq,     scratch.run.data() + 2 * cw, cap, static_cast<uint8_t>(cap + 1),
                            rule.special, rule.special_threshold};
   const std::size_t misalign = reinterpret_cast<std::uintptr_t>(scratch.merge_g.data() + pad) % kMaxLanes;
   job.rows = scratch.merge_g.data() + (misalign == 0 ? 0 : kMaxLanes - misalign);

@@ -422,6 +422,70 @@ TEST_P(CostMergeTest, CostRowsMatchBruteForceAndLeaveTheGridAlone)
                     });
     for (int y = 0; y < h; ++y) ASSERT_EQ(calls[static_cast<std::size_t>(y)], y >= y0 && y < y1 ? 1 : 0) << y;
   }
+  // Runs of identical rows (whose costs are reused) between rows that differ only in their last or
+  // first column.
+  {
+    const int w = 300, h = 200;
+    std::vector<uint8_t> grid(static_cast<std::size_t>(w) * h, 0);
+    for (int y = 0; y < h; ++y)
+    {
+      uint8_t* row = grid.data() + static_cast<std::size_t>(y) * w;
+      const int kind = y % 41;
+      if (kind < 30)
+      {
+        row[10] = row[11] = row[150] = 254;
+        if (kind >= 20) row[w - 1] = 254;
+        if (kind == 25) row[0] = 254;
+      }
+      if (y == 133) std::fill(row, row + w, uint8_t{254});
+    }
+    const auto d = bruteForce(grid, w, h, SourceRange{254, 254});
+    for (const int cap : {3, kMaxBandedCap8})
+    {
+      const auto costs = randomCosts(rng, cap);
+      int rows = 0;
+      cappedCostRows8(grid.data(), w, h, w, SourceRange{254, 254}, cap, DistanceWindow{0, 0, w, h}, costs.data(),
+                      scratch, [&](int y, const uint8_t* row) {
+                        ++rows;
+                        for (int x = 0; x < w; ++x)
+                        {
+                          const uint32_t d2 = d[static_cast<std::size_t>(y) * w + x];
+                          const uint8_t expected = d2 <= static_cast<uint32_t>(cap * cap) ? costs[d2] : uint8_t{0};
+                          ASSERT_EQ(row[x], expected) << "repeated rows, cell " << x << "," << y << " cap " << cap;
+                        }
+                      });
+      EXPECT_EQ(rows, h);
+    }
+  }
+  // The same over several stripes of a wide grid, against cappedCostMerge8 (brute-force checked above):
+  // merged into the grid itself, non-source cells (0) end up with the cost.
+  {
+    const int w = 5000, h = 150;
+    std::vector<uint8_t> grid(static_cast<std::size_t>(w) * h, 0);
+    for (int y = 0; y < h; ++y)
+    {
+      uint8_t* row = grid.data() + static_cast<std::size_t>(y) * w;
+      if (y % 23 < 15)
+        for (int x = 7; x < w; x += 97) row[x] = 254;
+      if (y % 23 == 9) row[w - 1] = 254;
+      if (y % 61 == 5) std::fill(row, row + w, uint8_t{254});
+    }
+    const auto costs = randomCosts(rng, kMaxBandedCap8);
+    auto merged = grid;
+    cappedCostMerge8(merged.data(), w, h, w, SourceRange{254, 254}, kMaxBandedCap8, DistanceWindow{0, 0, w, h},
+                     costs.data(), CostMergeRule{255, 255}, scratch);
+    int rows = 0;
+    cappedCostRows8(grid.data(), w, h, w, SourceRange{254, 254}, kMaxBandedCap8, DistanceWindow{0, 0, w, h},
+                    costs.data(), scratch, [&](int y, const uint8_t* row) {
+                      ++rows;
+                      for (int x = 0; x < w; ++x)
+                      {
+                        const std::size_t i = static_cast<std::size_t>(y) * w + x;
+                        ASSERT_EQ(row[x], grid[i] == 254 ? costs[0] : merged[i]) << "wide, cell " << x << "," << y;
+                      }
+                    });
+    EXPECT_EQ(rows, h);
+  }
   // The grid is only read.
   const auto cells = randomGrid(rng, 70, 30, 0.05);
   auto copy = cells;

@@ -132,6 +132,8 @@ using CostRowSink = std::function<void(int y, const uint8_t* costs)>;
 /// The costs of cappedCostMerge8() without the merge: for every cell of the window (clipped to the
 /// grid), c = cost_by_sq_dist[d2] if d2 <= cap^2, else 0, streamed to sink row by row; grid is only
 /// read (the sources stay where they are, so it may be a mask of which only some values are sources).
+/// A row whose vertical distances equal those of the row handed over before it reuses that row's
+/// costs (straight lanes, open space) instead of running the row pass again.
 /// Same requirements on cost_by_sq_dist and cap (else std::invalid_argument).
 void cappedCostRows8(const uint8_t* grid, int width, int height, std::ptrdiff_t stride, SourceRange source,
                      int cap, const DistanceWindow& window, const uint8_t* cost_by_sq_dist,
