@@ -13,6 +13,7 @@ PKGS=(
   libpng-dev libbenchmark-dev libstd-srvs-dev ros-std-srvs python3-std-srvs python3-rospy
   python3-tf2-ros python3-yaml libsensor-msgs-dev ros-sensor-msgs python3-sensor-msgs
   libmessage-filters-dev libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
+  clang libclang-rt-14-dev
 )
 missing=()
 for p in "${PKGS[@]}"; do

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Every test: installs what is missing, builds (Release), runs the unit tests, the tool tests and the
-# rostests through colcon, then the core's unit tests under ASan + UBSan, prints every failure, and
-# exits non-zero when any test fails.
+# rostests through colcon, then the core's unit tests under ASan + UBSan and a short run of every
+# fuzz target, prints every failure, and exits non-zero when any test fails.
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 build_package
@@ -17,6 +17,11 @@ bash "$ROOT/scripts/sanitize.sh" > "$ROOT/log/sanitize.log" 2>&1
 sanitize_rc=$?
 tail -n 3 "$ROOT/log/sanitize.log"
 [ "$sanitize_rc" -eq 0 ] || { echo "test.sh: the sanitizer run failed, see log/sanitize.log:"; tail -n 60 "$ROOT/log/sanitize.log"; }
+# Every libFuzzer target for a short fixed time, from its seed corpus and its regression inputs.
+FUZZ_SECONDS="${FUZZ_SECONDS:-10}" bash "$ROOT/scripts/fuzz.sh" > "$ROOT/log/fuzz.log" 2>&1
+fuzz_rc=$?
+tail -n 12 "$ROOT/log/fuzz.log"
+[ "$fuzz_rc" -eq 0 ] || { echo "test.sh: a fuzz target failed, see log/fuzz.log:"; tail -n 60 "$ROOT/log/fuzz.log"; }
 colcon test-result --test-result-base "$ROOT/build" --verbose > "$ROOT/log/test-result.txt" 2>&1
 result_rc=$?
 set -e
@@ -40,8 +45,9 @@ for f in glob.glob(sys.argv[1] + "/**/*.xml", recursive=True):
             passed += 1
 print(f"tests: {passed} passed, {failed} failed, {skipped} skipped")
 PY
-if [ "$test_rc" -ne 0 ] || [ "$result_rc" -ne 0 ] || [ "$sanitize_rc" -ne 0 ]; then
-  echo "test.sh: FAILED (colcon test rc=$test_rc, test-result rc=$result_rc, sanitizers rc=$sanitize_rc)" >&2
+if [ "$test_rc" -ne 0 ] || [ "$result_rc" -ne 0 ] || [ "$sanitize_rc" -ne 0 ] || [ "$fuzz_rc" -ne 0 ]; then
+  echo "test.sh: FAILED (colcon test rc=$test_rc, test-result rc=$result_rc, sanitizers rc=$sanitize_rc," \
+    "fuzzing rc=$fuzz_rc)" >&2
   exit 1
 fi
 echo "test.sh: all tests passed"

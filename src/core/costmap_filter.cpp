@@ -136,8 +136,9 @@ void CostmapFilter::onInitialize()
   context_->subscribeGrid(mask_topic_, GridKind::Mask,
                           [this](const std::shared_ptr<const OccupancyGridData>& mask) {
                             const std::string error = setMask(mask);
+                            // Throttled per field, so that each distinct problem is still reported once.
                             if (!error.empty())
-                              context_->report(Severity::Error, "mask",
+                              context_->report(Severity::Error, "mask/" + error.substr(0, error.find(' ')),
                                                name_ + ": mask on " + mask_topic_ + " rejected, keeping the "
                                                "previous one: " + error);
                           });

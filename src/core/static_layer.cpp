@@ -74,8 +74,10 @@ std::string StaticLayer::setMap(std::shared_ptr<const OccupancyGridData> map)
   std::string error = map ? validateGrid(*map) : std::string("no map");
   if (!error.empty())
   {
+    // Throttled per field, so that each distinct problem is still reported once.
+    const std::string key = "map/" + error.substr(0, error.find(' '));
     error = name_ + ": map on " + config_.map_topic + " rejected, keeping the previous one: " + error;
-    context_->report(Severity::Error, "map", error);
+    context_->report(Severity::Error, key, error);
     return error;
   }
   std::lock_guard<std::mutex> lock(mutex_);

@@ -268,7 +268,7 @@ TEST(CostmapFilterBase, RejectedMaskOnTopicIsReportedAndIgnored)
   EXPECT_EQ(r.filter->getMask(), first);
   ASSERT_EQ(r.ctx->reports.size(), 1u);
   EXPECT_EQ(r.ctx->reports[0].severity, Severity::Error);
-  EXPECT_EQ(r.ctx->reports[0].key, "mask");
+  EXPECT_EQ(r.ctx->reports[0].key, "mask/info.resolution");  // throttled per field
   EXPECT_NE(r.ctx->reports[0].message.find("test_filter"), std::string::npos);
   EXPECT_NE(r.ctx->reports[0].message.find("/map_filter"), std::string::npos);
   EXPECT_NE(r.ctx->reports[0].message.find("resolution"), std::string::npos);

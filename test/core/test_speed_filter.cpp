@@ -317,6 +317,25 @@ TEST(SpeedFilter, RepublishedFeaturesTakeEffectAtTheNextCycle)
   EXPECT_DOUBLE_EQ(r.last(), 0.25);
 }
 
+TEST(SpeedFilter, ABadEntryKeepsItsAreasLastGoodLimit)
+{
+  Rig r;
+  r.ctx->publishGrid(GridKind::Mask, makeMask());
+  r.ctx->publishSpeedLimits(allLimits());
+  EXPECT_EQ(r.atArea(2), 1u);
+  EXPECT_DOUBLE_EQ(r.last(), limitOf(2));
+  SpeedLimitsData bad;
+  bad.limits = {{2, std::nan("")}, {3, -1.0}, {4, 0.44}};
+  EXPECT_EQ(r.filter->setSpeedLimits(bad), 2u);
+  EXPECT_EQ(r.atArea(2), 0u);  // still the last good limit: nothing new to publish
+  EXPECT_EQ(r.atArea(3), 1u);
+  EXPECT_DOUBLE_EQ(r.last(), limitOf(3));  // kept as well
+  EXPECT_EQ(r.atArea(4), 1u);
+  EXPECT_DOUBLE_EQ(r.last(), 0.44);  // the good entry took effect
+  EXPECT_EQ(r.atArea(5), 1u);
+  EXPECT_DOUBLE_EQ(r.last(), kDefault);  // left out of the message: no limit any more
+}
+
 TEST(SpeedFilter, RepublishedMaskTakesEffectAtTheNextCycle)
 {
   Rig r;
