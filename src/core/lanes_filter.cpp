@@ -347,14 +347,20 @@ std::size_t LanesFilter::computeCosts(const OccupancyGridData& mask, std::vector
   sq_dist_.resize(n);
   const uint32_t max_sq = static_cast<uint32_t>(std::min<uint64_t>(q - 1, kFarSquaredDistance - 1));
   squaredDistanceTransform(bytes, w, h, w, lanes, sq_dist_.data(), w, max_sq, scratch_);
-  if (q <= kMaxLutEntries)
+  // The table only needs the distances that occur (a tiny mask with a huge border in cells must not
+  // build millions of entries): up to the largest one below q, then one lethal entry for the rest.
+  uint64_t seen = 0;
+  for (std::size_t k = 0; k < n; ++k)
+    if (sq_dist_[k] < q) seen = std::max<uint64_t>(seen, sq_dist_[k]);
+  if (seen < kMaxLutEntries)
   {
-    buildLut(lut, static_cast<std::size_t>(q) + 1);  // the last entry (q) is lethal: farther cells map to it
+    buildLut(lut, static_cast<std::size_t>(seen) + 1);
+    lut.push_back(LETHAL_OBSTACLE);  // index seen + 1: every cell at or beyond the lethal distance
     for (int y = 0; y < h; ++y)
     {
       const std::size_t o = static_cast<std::size_t>(y) * w;
-      writeRow(m + o, sq_dist_.data() + o, lut.data(), static_cast<std::size_t>(q), costs.data() + o,
-                          static_cast<std::size_t>(w));
+      writeRow(m + o, sq_dist_.data() + o, lut.data(), static_cast<std::size_t>(seen) + 1, costs.data() + o,
+               static_cast<std::size_t>(w));
     }
     return invalid;
   }

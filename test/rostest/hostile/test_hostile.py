@@ -1,0 +1,225 @@
+#!/usr/bin/env python3
+"""Hostile input: for every input class the node reads (maps, masks, map updates, speed limits, laser
+scans, point clouds, ranges) the malformed variants (truncated, oversized, NaN/inf, negative or zero
+sizes, huge dimensions, wrong frames) are published while the node runs. It must keep running, the
+published costmap and /max_speed must keep their last good values, and each problem must be reported
+by an error that names the field and its value, throttled (not once per message)."""
+import math
+import os
+import struct
+import sys
+import threading
+import time
+import unittest
+
+import rospy
+import rostest
+from costmap_layers.msg import MaxSpeed, SpeedLimit, SpeedLimits
+from map_msgs.msg import OccupancyGridUpdate
+from nav_msgs.msg import OccupancyGrid
+from rosgraph_msgs.msg import Log
+from sensor_msgs.msg import LaserScan, PointCloud2, PointField, Range
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from grid_watch import GridWatcher  # noqa: E402
+
+NAN = float("nan")
+INF = float("inf")
+
+
+def grid(width, height, resolution, data, frame="map", ox=0.0, oy=0.0):
+    g = OccupancyGrid()
+    g.header.frame_id = frame
+    g.header.stamp = rospy.Time.now()
+    g.info.width, g.info.height, g.info.resolution = width, height, resolution
+    g.info.origin.position.x, g.info.origin.position.y = ox, oy
+    g.info.origin.orientation.w = 1.0
+    g.data = data
+    return g
+
+
+def scan(**kw):
+    s = LaserScan()
+    s.header.frame_id = "base_link"
+    s.header.stamp = rospy.Time.now() - rospy.Duration(0.05)
+    s.angle_min, s.angle_max, s.angle_increment = -0.1, 0.1, 0.1
+    s.range_min, s.range_max = 0.1, 5.0
+    s.ranges = [1.0, 1.0, 1.0]
+    for k, v in kw.items():
+        setattr(s, k, v)
+    return s
+
+
+def cloud(**kw):
+    c = PointCloud2()
+    c.header.frame_id = "base_link"
+    c.header.stamp = rospy.Time.now() - rospy.Duration(0.05)
+    c.height, c.width = 1, 2
+    c.fields = [PointField("x", 0, PointField.FLOAT32, 1), PointField("y", 4, PointField.FLOAT32, 1),
+                PointField("z", 8, PointField.FLOAT32, 1)]
+    c.point_step, c.row_step = 12, 24
+    c.data = struct.pack("<ffffff", 1.0, 0.0, 0.3, 1.0, 0.1, 0.3)
+    for k, v in kw.items():
+        setattr(c, k, v)
+    return c
+
+
+def sonar(**kw):
+    r = Range()
+    r.header.frame_id = "base_link"
+    r.header.stamp = rospy.Time.now() - rospy.Duration(0.05)
+    r.field_of_view, r.min_range, r.max_range, r.range = 0.3, 0.1, 3.0, 1.0
+    for k, v in kw.items():
+        setattr(r, k, v)
+    return r
+
+
+class HostileTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node("test_hostile")
+        cls.grid = GridWatcher("/costmap_node")
+        cls.lock = threading.Lock()
+        cls.logs = []
+        cls.speeds = []
+
+        def on_log(m):
+            if m.name == "/costmap_node" and m.level >= Log.WARN:
+                with cls.lock:
+                    cls.logs.append(m.msg)
+
+        def on_speed(m):
+            with cls.lock:
+                cls.speeds.append(m.max_speed)
+
+        rospy.Subscriber("/rosout", Log, on_log)
+        rospy.Subscriber("/max_speed", MaxSpeed, on_speed)
+        cls.pubs = {
+            "/map": rospy.Publisher("/map", OccupancyGrid, queue_size=10),
+            "/map_updates": rospy.Publisher("/map_updates", OccupancyGridUpdate, queue_size=10),
+            "/keepout_filter_mask": rospy.Publisher("/keepout_filter_mask", OccupancyGrid, queue_size=10),
+            "/speed_filter_mask": rospy.Publisher("/speed_filter_mask", OccupancyGrid, queue_size=10),
+            "/features": rospy.Publisher("/features", SpeedLimits, queue_size=10),
+            "/scan": rospy.Publisher("/scan", LaserScan, queue_size=10),
+            "/cloud": rospy.Publisher("/cloud", PointCloud2, queue_size=10),
+            "/sonar": rospy.Publisher("/sonar", Range, queue_size=10),
+        }
+        # A good state to keep: the static map with the keepout dock drawn, and area 1's limit.
+        dock = (14.0, 8.5)
+        assert cls.grid.wait_until(lambda g: g.at(*dock) == 100, 40.0), "no good costmap to start from"
+        deadline = time.time() + 20
+        while time.time() < deadline:
+            with cls.lock:
+                if cls.speeds and cls.speeds[-1] == 0.3:
+                    break
+            time.sleep(0.1)
+        rospy.sleep(1.0)  # let the first cycles' own output settle
+        cls.good_grid = cls.grid.snapshot()
+        with cls.lock:
+            cls.good_speeds = list(cls.speeds)
+        for p in cls.pubs.values():  # let every publisher connect before the bad input goes out
+            deadline = time.time() + 10
+            while p.get_num_connections() == 0 and time.time() < deadline:
+                time.sleep(0.05)
+
+    def flood(self, topic, messages, repeat=5):
+        import rosnode
+        for _ in range(repeat):
+            for m in messages:
+                self.pubs[topic].publish(m)
+                rospy.sleep(0.02)
+        rospy.sleep(0.5)
+        self.assertTrue(rosnode.rosnode_ping("/costmap_node", max_count=1),
+                        "costmap_node died after bad input on %s" % topic)
+
+    def said(self, *needles):
+        with self.lock:
+            return [m for m in self.logs if all(n in m for n in needles)]
+
+    def wait_said(self, *needles, timeout=10.0):
+        deadline = time.time() + timeout
+        while not self.said(*needles) and time.time() < deadline:
+            time.sleep(0.1)
+        return self.said(*needles)
+
+    def test_bad_input_of_every_class(self):
+        bad_grids = [
+            grid(10, 10, 0.05, [0] * 7),                    # truncated data
+            grid(10, 10, 0.05, [0] * 1000),                 # oversized data
+            grid(10, 10, 0.0, [0] * 100),                   # zero resolution
+            grid(10, 10, NAN, [0] * 100),                   # NaN resolution
+            grid(10, 10, 0.05, [0] * 100, ox=INF),          # infinite origin
+            grid(100000, 100000, 0.05, [0] * 16),           # would need 10 G cells
+            grid(0, 10, 0.05, []),                          # zero width
+        ]
+        for topic in ("/map", "/keepout_filter_mask", "/speed_filter_mask"):
+            self.flood(topic, bad_grids, repeat=3)
+        # A mask in a frame tf does not know: the speed filter cannot place the robot in it, so the
+        # last published limit stays.
+        self.flood("/speed_filter_mask", [grid(10, 10, 0.5, [1] * 100, frame="nowhere")], repeat=1)
+
+        bad_update = OccupancyGridUpdate()
+        bad_update.header.frame_id = "map"
+        bad_update.x, bad_update.y, bad_update.width, bad_update.height = 310, 190, 50, 50  # leaves the map
+        bad_update.data = [100] * 2500
+        short_update = OccupancyGridUpdate()
+        short_update.header.frame_id = "map"
+        short_update.x, short_update.y, short_update.width, short_update.height = 1, 1, 5, 5
+        short_update.data = [100] * 3  # truncated
+        self.flood("/map_updates", [bad_update, short_update])
+
+        bad_features = SpeedLimits()
+        bad_features.header.frame_id = "map"
+        bad_features.limits = [SpeedLimit(1, NAN), SpeedLimit(2, -1.0)]
+        self.flood("/features", [bad_features])
+
+        self.flood("/scan", [scan(angle_increment=0.0), scan(angle_increment=NAN), scan(range_max=INF),
+                             scan(ranges=[1.0] * 1000), scan(angle_min=-INF)])
+        self.flood("/cloud", [cloud(point_step=0), cloud(row_step=3), cloud(data=b"\x00" * 5),
+                              cloud(fields=[PointField("x", 100, PointField.FLOAT32, 1)]),
+                              cloud(width=1000000000, row_step=12000000000 % (2 ** 32)), cloud(is_bigendian=True)])
+        self.flood("/sonar", [sonar(range=NAN), sonar(field_of_view=-1.0), sonar(min_range=INF), sonar(max_range=NAN)])
+        rospy.sleep(2.0)
+
+        # Still running: it answers a service and keeps publishing.
+        import rosnode
+        self.assertTrue(rosnode.rosnode_ping("/costmap_node", max_count=1), "costmap_node died")
+
+        # The good state is kept. Sensor layers: the big-endian cloud is well-formed (the node reads it
+        # byte-swapped, garbage coordinates but not a crash); compare the cells nobody's sensor reaches.
+        now = self.grid.snapshot()
+        w = self.grid.width
+        changed = [(i % w, i // w) for i, (a, b) in enumerate(zip(now, self.good_grid)) if a != b]
+        far = [c for c in changed if math.hypot(c[0] * 0.05 - 5.0, c[1] * 0.05 - 1.5) > 6.0]
+        self.assertEqual(far, [], "the costmap changed where no valid reading reached")
+        for x, y in [(14.0, 8.5), (0.1, 5.0), (8.0, 7.3)]:  # keepout dock, a wall, a rack
+            self.assertEqual(self.grid.at(x, y), 100)
+        with self.lock:
+            self.assertEqual(self.speeds[len(self.good_speeds):], [], "/max_speed changed")
+
+        # Each problem was named, with the field and the value.
+        expectations = [
+            ("data has 7 values", "expected info.width x info.height = 100"),
+            ("info.resolution",),
+            ("info.origin",),
+            ("exceeds the limit",),
+            ("info.width/info.height must be positive", "0x10"),
+            ("mask frame nowhere",),
+            ("map update rejected",),
+            ("max_speed",),
+            ("angle_increment",),
+            ("point_step",),
+            ("Range",),
+        ]
+        for needles in expectations:
+            self.assertTrue(self.wait_said(*needles, timeout=5.0), "no error names %s; got:\n%s" % (
+                needles, "\n".join(self.logs[-40:])))
+        # Throttled: the same key is not logged once per message (each bad grid went out 3 times to
+        # each of 3 topics within a second).
+        for needles in [("data has 7 values",), ("angle_increment is zero",)]:
+            n = len(self.said(*needles))
+            self.assertLessEqual(n, 3, "%s logged %d times: not throttled" % (needles, n))
+
+
+if __name__ == "__main__":
+    rostest.rosrun("costmap_layers", "hostile", HostileTest)
