@@ -286,7 +286,12 @@ std::size_t LanesFilter::computeCosts(const OccupancyGridData& mask, std::vector
   costs.resize(n);
   const int8_t* m = mask.data.data();
   const auto* bytes = reinterpret_cast<const uint8_t*>(m);
-  const uint64_t q = lanesLethalSquaredDistance(config_, mask.resolution);
+  // No two cells of the mask are farther apart than its diagonal: a lethal distance beyond that (a wide
+  // border on a fine mask, up to "never") changes nothing, and clamping it keeps cap * cap below from
+  // overflowing (which looped forever).
+  const uint64_t diagonal_sq = static_cast<uint64_t>(w) * static_cast<uint64_t>(w) +
+                               static_cast<uint64_t>(h) * static_cast<uint64_t>(h);
+  const uint64_t q = std::min(lanesLethalSquaredDistance(config_, mask.resolution), diagonal_sq + 1);
   const bool any_lane = std::memchr(bytes, static_cast<uint8_t>(kLane), n) != nullptr;
 
   if (!any_lane || q <= 1)

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# The soak test (minutes long, not part of scripts/test.sh): costmap_node at 20 Hz on the 4000x4000
+# synthetic map with three filters and two sensor sources at 40 Hz, masks and features republished
+# every second, tf jumps, bursts of malformed messages. Checks memory growth after warm-up, update
+# overruns, and that /max_speed and the costmap still answer.   SOAK_SECONDS=600 scripts/soak.sh
+set -euo pipefail
+source "$(dirname "$0")/common.sh"
+build_package
+source_install
+MAPS="$ROOT/../shared/maps"
+[ -f "$MAPS/synthetic_indoor_4000.pgm.gz" ] || { echo "soak: needs ../shared/maps/synthetic_indoor_4000" >&2; exit 1; }
+TMP=$(mktemp -d)
+trap 'rm -rf "$TMP"' EXIT
+gunzip -c "$MAPS/synthetic_indoor_4000.pgm.gz" > "$TMP/synthetic_indoor_4000.pgm"
+cp "$MAPS/synthetic_indoor_4000.yaml" "$TMP/"
+export ROS_HOME="${ROS_HOME:-$ROOT/log/soak_ros_home}"
+set +e
+roslaunch --screen "$ROOT/test/soak/soak.launch" map:="$TMP/synthetic_indoor_4000.yaml" \
+  seconds:="${SOAK_SECONDS:-300}" example:="$ROOT/example" params:="$ROOT/test/soak/soak.yaml" 2>&1 | tee "$TMP/soak.log" | grep --line-buffered -E "^soak:|FATAL|ERROR"
+set -e
+grep -q "^soak: PASSED" "$TMP/soak.log"
