@@ -278,6 +278,24 @@ uint64_t lanesLethalSquaredDistance(const LanesFilterConfig& c, double r)
 
 void LanesFilter::onInitializeFilter(const ParamReader& params) { config_ = parseLanesFilterConfig(params); }
 
+void LanesFilter::reconfigure(const ParamValue& params)
+{
+  const ParamReader reader(params, name_);
+  const LanesFilterConfig next = parseLanesFilterConfig(reader);  // validates first
+  const bool enabled = reader.getBool("enabled", true);
+  config_ = next;
+  invalidateCosts();
+  setFilterEnabled(enabled);
+}
+
+std::vector<ParamSpec> LanesFilter::tunableParameters(const ParamValue& params) const
+{
+  return recordParameters(params, name_, [](const ParamReader& r) {
+    r.getBool("enabled", true);
+    parseLanesFilterConfig(r);
+  });
+}
+
 std::size_t LanesFilter::computeCosts(const OccupancyGridData& mask, std::vector<uint8_t>& costs)
 {
   ++cost_computations_;

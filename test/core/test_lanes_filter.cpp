@@ -609,7 +609,10 @@ TEST(LanesFilter, FinishKernelsMatchTheDefinition)
             EXPECT_EQ(got, invalid);
             for (std::size_t k = 0; k < n; ++k) ASSERT_EQ(out[k], expected[k]) << "cell " << k << " value " << int{mask[k]};
             for (std::size_t k = 0; k < buf.size(); ++k)
-              if (k < offset || k >= offset + n) ASSERT_EQ(buf[k], 0xAB) << "outside, byte " << k;
+              if (k < offset || k >= offset + n)
+              {
+                ASSERT_EQ(buf[k], 0xAB) << "outside, byte " << k;
+              }
             // In place (out == c).
             std::vector<uint8_t> inplace = c;
             EXPECT_EQ(lanesFinishCosts(mask.data(), inplace.data(), inplace.data(), n, stream, kernel), invalid);
@@ -648,4 +651,39 @@ TEST(LanesFilter, RandomMaskOfEveryValueMatchesBruteForce)
       ASSERT_EQ(master.getCost(x, y), expected) << x << "," << y << " value " << int{v};
     }
   EXPECT_EQ(rig.ctx->countReports(std::to_string(invalid) + " values outside -1..100"), 1);
+}
+
+TEST(LanesFilter, ReconfigureChangesTheBorderAndRecomputes)
+{
+  // A lane along row 0 of a 1 x 20 strip at 0.1 m: forbidden cell k (k >= 1) is k * 0.1 m from it.
+  Rig r(Params{0.5, 1, "linear", 10.0});
+  OccupancyGridData mask = makeMask(1, 20, 0.1, 100);
+  at(mask, 0, 0) = 0;
+  Costmap2D master = masterFor(mask, 0);
+  r.apply(mask, master);
+  const std::size_t computed = r.filter->costComputations();
+  EXPECT_EQ(master.getCost(0, 5), LETHAL_OBSTACLE);  // 0.5 m: lethal with a 0.5 m border
+  EXPECT_LT(master.getCost(0, 4), LETHAL_OBSTACLE);
+
+  // Every tunable parameter is described, with the parse function's defaults and the current values.
+  const auto specs = r.filter->tunableParameters(Params{0.5, 1, "linear", 10.0}.value());
+  std::vector<std::string> names;
+  for (const auto& s : specs) names.push_back(s.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"enabled", "lane_border_width", "border_cost", "cost_profile", "decay"}));
+  EXPECT_DOUBLE_EQ(specs[1].default_value.asDouble(), 0.5);
+
+  // A bad value is refused and changes nothing.
+  ParamValue bad = Params{-1.0, 1, "linear", 10.0}.value();
+  EXPECT_THROW(r.filter->reconfigure(bad), std::invalid_argument);
+  EXPECT_DOUBLE_EQ(r.filter->config().lane_border_width, 0.5);
+
+  // A wider border: the costs are recomputed (once) and cell 5 is no longer lethal.
+  r.filter->reconfigure(Params{1.0, 1, "linear", 10.0}.value());
+  Costmap2D again = masterFor(mask, 0);
+  r.cycle();
+  r.filter->updateCosts(again, 0, 0, 1, 20);
+  EXPECT_EQ(r.filter->costComputations(), computed + 1);
+  EXPECT_LT(again.getCost(0, 5), LETHAL_OBSTACLE);
+  EXPECT_EQ(again.getCost(0, 5), static_cast<uint8_t>(referenceCost(Params{1.0, 1, "linear", 10.0}, 0.5, 0.1)));
+  EXPECT_EQ(again.getCost(0, 10), LETHAL_OBSTACLE);
 }

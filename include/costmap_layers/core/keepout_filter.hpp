@@ -33,6 +33,8 @@ protected:
 
   void process(Costmap2D& master_grid, const CellWindow& window, const OccupancyGridData& mask,
                const MaskMapping& mapping, double robot_x, double robot_y, double robot_yaw) final;
+  /// Recompute the costs at the next update (after a parameter change). Update thread only.
+  void invalidateCosts() { costs_for_.reset(); }
 
 private:
   std::shared_ptr<const OccupancyGridData> costs_for_;  ///< the mask the costs were computed from

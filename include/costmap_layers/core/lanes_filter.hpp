@@ -79,6 +79,10 @@ public:
   const LanesFilterConfig& config() const { return config_; }
   /// How many times the per-mask costs were computed (once per new mask). For tests and diagnostics.
   std::size_t costComputations() const { return cost_computations_; }
+  /// Changes lane_border_width, border_cost, cost_profile, decay and enabled at run time; the costs
+  /// are recomputed at the next update.
+  void reconfigure(const ParamValue& params) override;
+  std::vector<ParamSpec> tunableParameters(const ParamValue& params) const override;
 
 protected:
   void onInitializeFilter(const ParamReader& params) override;
