@@ -35,7 +35,8 @@ public:
     std::mt19937 rng(7);
     std::uniform_int_distribution<int> cost(0, 255);
     uint8_t* d = costmap_.data();
-    for (std::size_t k = 0; k < costmap_.cellCount(); ++k) d[k] = static_cast<uint8_t>(cost(rng));
+    for (std::size_t k = 0; k < costmap_.cellCount(); ++k)
+      d[k] = static_cast<uint8_t>(cost(rng));
   }
 };
 
@@ -108,7 +109,8 @@ void BM_KeepoutFilter(benchmark::State& state)
   mask->data.resize(static_cast<std::size_t>(mask->width) * mask->height);
   std::mt19937 rng(3);
   std::uniform_int_distribution<int> v(-1, 100);
-  for (auto& c : mask->data) c = static_cast<int8_t>(v(rng) < 60 ? 0 : v(rng));
+  for (auto& c : mask->data)
+    c = static_cast<int8_t>(v(rng) < 60 ? 0 : v(rng));
   filter->setMask(mask);
   Costmap2D master(kSize, kSize, 0.05, 0.0, 0.0, 0);
   double x0 = 0, y0 = 0, x1 = 0, y1 = 0;

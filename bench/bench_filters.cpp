@@ -46,9 +46,12 @@ std::shared_ptr<OccupancyGridData> laneGridMask()
     for (unsigned x = 0; x < kSize; ++x)
     {
       int8_t v = 100;
-      if (x % 100 < 20 || y % 100 < 20) v = 0;
-      else if (x % 400 >= 40 && x % 400 < 80 && y % 400 >= 40 && y % 400 < 80) v = -1;
-      else if (x % 300 >= 50 && x % 300 < 60 && y % 300 >= 50 && y % 300 < 60) v = 60;
+      if (x % 100 < 20 || y % 100 < 20)
+        v = 0;
+      else if (x % 400 >= 40 && x % 400 < 80 && y % 400 >= 40 && y % 400 < 80)
+        v = -1;
+      else if (x % 300 >= 50 && x % 300 < 60 && y % 300 >= 50 && y % 300 < 60)
+        v = 60;
       m->data[static_cast<std::size_t>(y) * kSize + x] = v;
     }
   return m;

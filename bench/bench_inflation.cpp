@@ -43,7 +43,10 @@ public:
   double transformTolerance() const override { return 0.3; }
   void subscribeGrid(const std::string&, GridKind, GridCallback cb) override { grid_cb = std::move(cb); }
   void subscribeSpeedLimits(const std::string&, SpeedLimitsCallback) override {}
-  MaxSpeedPublisher advertiseMaxSpeed(const std::string&) override { return [](double) {}; }
+  MaxSpeedPublisher advertiseMaxSpeed(const std::string&) override
+  {
+    return [](double) {};
+  }
   void advertiseToggle(std::function<void(bool)>) override {}
   std::optional<Transform2D> lookupTransform(const std::string&, const std::string&, std::string*) override
   {
@@ -98,7 +101,8 @@ double yamlNumber(const std::string& yaml, const std::string& key, double def)
 
 const SyntheticMap& syntheticMap()
 {
-  static const SyntheticMap map = [] {
+  static const SyntheticMap map = []
+  {
     SyntheticMap m;
     const std::string dir = std::string(COSTMAP_LAYERS_SOURCE_DIR) + "/../shared/maps/";
     const std::string gz = dir + "synthetic_indoor_4000.pgm.gz";
@@ -174,7 +178,10 @@ ParamValue inflationParams()
   return p;
 }
 
-Footprint squareFootprint() { return {{-0.22, -0.22}, {0.22, -0.22}, {0.22, 0.22}, {-0.22, 0.22}}; }
+Footprint squareFootprint()
+{
+  return {{-0.22, -0.22}, {0.22, -0.22}, {0.22, 0.22}, {-0.22, 0.22}};
+}
 
 /// A static layer fed with the synthetic map, then an inflation layer, on a non-rolling costmap.
 struct StaticRig
@@ -295,7 +302,8 @@ void BM_RollingScanInflation(benchmark::State& state)
   for (int k = 0; k < 360; ++k)
   {
     const double a = 2.0 * M_PI * k / 360.0;
-    const double wall = std::min(4.0 / std::max(std::fabs(std::cos(a)), 1e-3), 3.0 / std::max(std::fabs(std::sin(a)), 1e-3));
+    const double wall =
+        std::min(4.0 / std::max(std::fabs(std::cos(a)), 1e-3), 3.0 / std::max(std::fabs(std::sin(a)), 1e-3));
     scan->ranges.push_back(k % 17 == 0 ? 1.5 : std::min(wall, 6.0));
   }
   lc.addPlugin(scan);

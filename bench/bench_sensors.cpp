@@ -84,7 +84,8 @@ void BM_RollingObstacleInflationCycle(benchmark::State& state)
   }
   int lethal = 0;
   const Costmap2D& m = lc.getCostmap();
-  for (std::size_t k = 0; k < m.cellCount(); ++k) lethal += m.data()[k] == LETHAL_OBSTACLE;
+  for (std::size_t k = 0; k < m.cellCount(); ++k)
+    lethal += m.data()[k] == LETHAL_OBSTACLE;
   state.counters["lethal"] = lethal;
 }
 BENCHMARK(BM_RollingObstacleInflationCycle)->Arg(200)->Arg(400)->Unit(benchmark::kMicrosecond);
@@ -120,7 +121,9 @@ void BM_VoxelLayerCameraCloud(benchmark::State& state)
   LayeredCostmap lc("odom", true, false);
   lc.resizeMap(200, 200, 0.05, 0, 0);
   ParamValue p = paramMap({{"observation_sources", S("camera")}, {"z_voxels", I(16)}, {"z_resolution", D(0.1)}});
-  p.set("camera", paramMap({{"data_type", S("PointCloud2")}, {"clearing", B(true)}, {"marking", B(true)},
+  p.set("camera", paramMap({{"data_type", S("PointCloud2")},
+                            {"clearing", B(true)},
+                            {"marking", B(true)},
                             {"min_obstacle_height", D(-1.0)}}));
   auto ctx = std::make_shared<FakeContext>(p);
   auto voxels = std::make_shared<VoxelLayer>();

@@ -9,7 +9,7 @@ namespace costmap_layers
 {
 Costmap2D::Costmap2D(unsigned int size_x, unsigned int size_y, double resolution, double origin_x, double origin_y,
                      uint8_t default_value)
-  : default_value_(default_value)
+    : default_value_(default_value)
 {
   resizeMap(size_x, size_y, resolution, origin_x, origin_y);
 }
@@ -55,8 +55,7 @@ unsigned int Costmap2D::cellDistance(double world_dist) const
   return static_cast<unsigned int>(cells);
 }
 
-void Costmap2D::resizeMap(unsigned int size_x, unsigned int size_y, double resolution, double origin_x,
-                          double origin_y)
+void Costmap2D::resizeMap(unsigned int size_x, unsigned int size_y, double resolution, double origin_x, double origin_y)
 {
   size_x_ = size_x;
   size_y_ = size_y;
@@ -66,7 +65,10 @@ void Costmap2D::resizeMap(unsigned int size_x, unsigned int size_y, double resol
   cells_.assign(static_cast<std::size_t>(size_x) * size_y, default_value_);
 }
 
-void Costmap2D::resetMaps() { std::fill(cells_.begin(), cells_.end(), default_value_); }
+void Costmap2D::resetMaps()
+{
+  std::fill(cells_.begin(), cells_.end(), default_value_);
+}
 
 void Costmap2D::resetMap(unsigned int x0, unsigned int y0, unsigned int xn, unsigned int yn)
 {
@@ -180,7 +182,8 @@ void Costmap2D::convexFillCells(const std::vector<MapLocation>& polygon, std::ve
   }
   for (unsigned int x = min_x; x <= max_x; ++x)
   {
-    for (unsigned int y = lo[x - min_x]; y <= hi[x - min_x]; ++y) cells.push_back({x, y});
+    for (unsigned int y = lo[x - min_x]; y <= hi[x - min_x]; ++y)
+      cells.push_back({x, y});
   }
 }
 
@@ -196,7 +199,8 @@ bool Costmap2D::setConvexPolygonCost(const std::vector<Eigen::Vector2d>& polygon
   }
   std::vector<MapLocation> cells;
   convexFillCells(map_polygon, cells);
-  for (const auto& c : cells) setCost(c.x, c.y, cost);
+  for (const auto& c : cells)
+    setCost(c.x, c.y, cost);
   return true;
 }
 }  // namespace costmap_layers

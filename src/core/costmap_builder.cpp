@@ -7,7 +7,8 @@ namespace costmap_layers
 void loadPlugins(LayeredCostmap& costmap, const PluginLists& lists, const LayerFactory& factory,
                  const ContextFactory& contexts)
 {
-  auto load = [&](const PluginSpec& spec, bool is_filter) {
+  auto load = [&](const PluginSpec& spec, bool is_filter)
+  {
     std::shared_ptr<Layer> layer;
     try
     {
@@ -32,7 +33,9 @@ void loadPlugins(LayeredCostmap& costmap, const PluginLists& lists, const LayerF
       costmap.addPlugin(layer);
     layer->matchSize();
   };
-  for (const auto& spec : lists.plugins) load(spec, false);
-  for (const auto& spec : lists.filters) load(spec, true);
+  for (const auto& spec : lists.plugins)
+    load(spec, false);
+  for (const auto& spec : lists.filters)
+    load(spec, true);
 }
 }  // namespace costmap_layers

@@ -81,8 +81,8 @@ std::vector<PluginSpec> parseOneList(const ParamValue& ns, const std::string& ke
         if (type == nullptr) type = item.find("plugin");
         if (name == nullptr || name->type() != ParamValue::Type::String || type == nullptr ||
             type->type() != ParamValue::Type::String)
-          throw std::invalid_argument("costmap: each entry of '" + key +
-                                      "' needs string fields name and type (got " + item.toString() + ")");
+          throw std::invalid_argument("costmap: each entry of '" + key + "' needs string fields name and type (got " +
+                                      item.toString() + ")");
         specs.push_back({name->asString(), type->asString()});
       }
       else if (item.type() == ParamValue::Type::String)
@@ -132,7 +132,8 @@ PluginLists parsePluginLists(const ParamValue& ns)
     for (const auto& s : *l)
     {
       if (!seen.insert(s.name).second)
-        throw std::invalid_argument("costmap: plugin name '" + s.name + "' is used twice; each instance needs its "
+        throw std::invalid_argument("costmap: plugin name '" + s.name +
+                                    "' is used twice; each instance needs its "
                                     "own name (and parameter namespace)");
     }
   }

@@ -23,8 +23,8 @@ std::string validateGrid(const OccupancyGridData& grid, uint64_t max_cells)
   else if (!std::isfinite(grid.resolution) || grid.resolution <= 0.0)
     err << "info.resolution must be finite and positive (got " << grid.resolution << ")";
   else if (!std::isfinite(grid.origin_x) || !std::isfinite(grid.origin_y) || !std::isfinite(grid.origin_yaw))
-    err << "info.origin must be finite (got x=" << grid.origin_x << " y=" << grid.origin_y
-        << " yaw=" << grid.origin_yaw << ")";
+    err << "info.origin must be finite (got x=" << grid.origin_x << " y=" << grid.origin_y << " yaw=" << grid.origin_yaw
+        << ")";
   else if (std::fabs(grid.origin_x) > 1e7 || std::fabs(grid.origin_y) > 1e7)
     err << "info.origin is absurdly far away (got x=" << grid.origin_x << " y=" << grid.origin_y << ")";
   return err.str();
@@ -41,7 +41,8 @@ void MaskMapping::build(const Costmap2D& master, const CellWindow& window, const
   const double cm = std::cos(mask.origin_yaw), sm = std::sin(mask.origin_yaw);
   const double inv = 1.0 / mask.resolution;
   // to grid coordinates: g = R(-origin_yaw) * (T(p) - origin) / mask_res
-  auto toGrid = [&](double wx, double wy, double& gx, double& gy) {
+  auto toGrid = [&](double wx, double wy, double& gx, double& gy)
+  {
     const double fx = to_mask.x + ct * wx - st * wy - mask.origin_x;
     const double fy = to_mask.y + st * wx + ct * wy - mask.origin_y;
     gx = (cm * fx + sm * fy) * inv;
@@ -83,9 +84,11 @@ void MaskMapping::build(const Costmap2D& master, const CellWindow& window, const
   // The on-mask columns: one run, since the column map is linear (checked, not assumed).
   const int n = static_cast<int>(cols_.size());
   cols_lo_ = 0;
-  while (cols_lo_ < n && cols_[static_cast<std::size_t>(cols_lo_)] < 0) ++cols_lo_;
+  while (cols_lo_ < n && cols_[static_cast<std::size_t>(cols_lo_)] < 0)
+    ++cols_lo_;
   cols_hi_ = n;
-  while (cols_hi_ > cols_lo_ && cols_[static_cast<std::size_t>(cols_hi_ - 1)] < 0) --cols_hi_;
+  while (cols_hi_ > cols_lo_ && cols_[static_cast<std::size_t>(cols_hi_ - 1)] < 0)
+    --cols_hi_;
   cols_contiguous_ = std::all_of(cols_.begin() + cols_lo_, cols_.begin() + cols_hi_, [](int32_t c) { return c >= 0; });
 
   // The byte-gather plan: blocks of 16 (else 8) window columns whose mask columns all fall within 16
@@ -134,13 +137,16 @@ void CostmapFilter::onInitialize()
   enabled_ = true;
   onInitializeFilter(params);
   context_->subscribeGrid(mask_topic_, GridKind::Mask,
-                          [this](const std::shared_ptr<const OccupancyGridData>& mask) {
+                          [this](const std::shared_ptr<const OccupancyGridData>& mask)
+                          {
                             const std::string error = setMask(mask);
                             // Throttled per field, so that each distinct problem is still reported once.
                             if (!error.empty())
                               context_->report(Severity::Error, "mask/" + error.substr(0, error.find(' ')),
-                                               name_ + ": mask on " + mask_topic_ + " rejected, keeping the "
-                                               "previous one: " + error);
+                                               name_ + ": mask on " + mask_topic_ +
+                                                   " rejected, keeping the "
+                                                   "previous one: " +
+                                                   error);
                           });
   context_->advertiseToggle([this](bool on) { setFilterEnabled(on); });
 }
@@ -173,8 +179,7 @@ std::shared_ptr<const OccupancyGridData> CostmapFilter::getMask() const
   return mask_;
 }
 
-bool CostmapFilter::maskBoundsInGlobal(const OccupancyGridData& mask, double& x0, double& y0, double& x1,
-                                       double& y1)
+bool CostmapFilter::maskBoundsInGlobal(const OccupancyGridData& mask, double& x0, double& y0, double& x1, double& y1)
 {
   const std::string& global = context_->globalFrame();
   Transform2D from_mask;  // mask frame -> global frame
@@ -269,8 +274,8 @@ void CostmapFilter::updateCosts(Costmap2D& master_grid, int min_i, int min_j, in
   process(master_grid, window, *active_mask_, mapping_, robot_x_, robot_y_, robot_yaw_);
 }
 
-std::optional<int8_t> CostmapFilter::maskValueAt(const OccupancyGridData& mask, const Transform2D& to_mask,
-                                                 double wx, double wy)
+std::optional<int8_t> CostmapFilter::maskValueAt(const OccupancyGridData& mask, const Transform2D& to_mask, double wx,
+                                                 double wy)
 {
   double fx, fy;
   to_mask.apply(wx, wy, fx, fy);

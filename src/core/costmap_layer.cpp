@@ -11,8 +11,8 @@ namespace costmap_layers
 void CostmapLayer::matchSize()
 {
   const Costmap2D& master = layered_costmap_->getCostmap();
-  costmap_.resizeMap(master.getSizeInCellsX(), master.getSizeInCellsY(), master.getResolution(),
-                     master.getOriginX(), master.getOriginY());
+  costmap_.resizeMap(master.getSizeInCellsX(), master.getSizeInCellsY(), master.getResolution(), master.getOriginX(),
+                     master.getOriginY());
 }
 
 void CostmapLayer::touch(double x, double y, double* min_x, double* min_y, double* max_x, double* max_y)
@@ -75,14 +75,16 @@ void mergeRows(const Costmap2D& own, Costmap2D& master, int min_i, int min_j, in
 
 void CostmapLayer::updateWithMax(Costmap2D& master, int min_i, int min_j, int max_i, int max_j) const
 {
-  mergeRows(costmap_, master, min_i, min_j, max_i, max_j, [](uint8_t* m, const uint8_t* o, std::size_t n) {
-    for (std::size_t k = 0; k < n; ++k)
-    {
-      const uint8_t own = o[k], old = m[k];
-      const bool take = own != NO_INFORMATION && (old == NO_INFORMATION || old < own);
-      m[k] = take ? own : old;
-    }
-  });
+  mergeRows(costmap_, master, min_i, min_j, max_i, max_j,
+            [](uint8_t* m, const uint8_t* o, std::size_t n)
+            {
+              for (std::size_t k = 0; k < n; ++k)
+              {
+                const uint8_t own = o[k], old = m[k];
+                const bool take = own != NO_INFORMATION && (old == NO_INFORMATION || old < own);
+                m[k] = take ? own : old;
+              }
+            });
 }
 
 void CostmapLayer::updateWithTrueOverwrite(Costmap2D& master, int min_i, int min_j, int max_i, int max_j) const
@@ -93,34 +95,41 @@ void CostmapLayer::updateWithTrueOverwrite(Costmap2D& master, int min_i, int min
 
 void CostmapLayer::updateWithOverwrite(Costmap2D& master, int min_i, int min_j, int max_i, int max_j) const
 {
-  mergeRows(costmap_, master, min_i, min_j, max_i, max_j, [](uint8_t* m, const uint8_t* o, std::size_t n) {
-    for (std::size_t k = 0; k < n; ++k) m[k] = o[k] != NO_INFORMATION ? o[k] : m[k];
-  });
+  mergeRows(costmap_, master, min_i, min_j, max_i, max_j,
+            [](uint8_t* m, const uint8_t* o, std::size_t n)
+            {
+              for (std::size_t k = 0; k < n; ++k)
+                m[k] = o[k] != NO_INFORMATION ? o[k] : m[k];
+            });
 }
 
 void CostmapLayer::updateWithAddition(Costmap2D& master, int min_i, int min_j, int max_i, int max_j) const
 {
-  mergeRows(costmap_, master, min_i, min_j, max_i, max_j, [](uint8_t* m, const uint8_t* o, std::size_t n) {
-    for (std::size_t k = 0; k < n; ++k)
-    {
-      const unsigned own = o[k], old = m[k];
-      const unsigned sum = std::min(old + own, static_cast<unsigned>(MAX_NON_OBSTACLE));
-      const unsigned merged = old == NO_INFORMATION ? own : sum;
-      m[k] = static_cast<uint8_t>(own == NO_INFORMATION ? old : merged);
-    }
-  });
+  mergeRows(costmap_, master, min_i, min_j, max_i, max_j,
+            [](uint8_t* m, const uint8_t* o, std::size_t n)
+            {
+              for (std::size_t k = 0; k < n; ++k)
+              {
+                const unsigned own = o[k], old = m[k];
+                const unsigned sum = std::min(old + own, static_cast<unsigned>(MAX_NON_OBSTACLE));
+                const unsigned merged = old == NO_INFORMATION ? own : sum;
+                m[k] = static_cast<uint8_t>(own == NO_INFORMATION ? old : merged);
+              }
+            });
 }
 
 void CostmapLayer::updateWithMaxWithoutUnknownOverwrite(Costmap2D& master, int min_i, int min_j, int max_i,
                                                         int max_j) const
 {
-  mergeRows(costmap_, master, min_i, min_j, max_i, max_j, [](uint8_t* m, const uint8_t* o, std::size_t n) {
-    for (std::size_t k = 0; k < n; ++k)
-    {
-      const uint8_t own = o[k], old = m[k];
-      const bool take = own != NO_INFORMATION && old != NO_INFORMATION && old < own;
-      m[k] = take ? own : old;
-    }
-  });
+  mergeRows(costmap_, master, min_i, min_j, max_i, max_j,
+            [](uint8_t* m, const uint8_t* o, std::size_t n)
+            {
+              for (std::size_t k = 0; k < n; ++k)
+              {
+                const uint8_t own = o[k], old = m[k];
+                const bool take = own != NO_INFORMATION && old != NO_INFORMATION && old < own;
+                m[k] = take ? own : old;
+              }
+            });
 }
 }  // namespace costmap_layers

@@ -36,11 +36,14 @@ namespace
 constexpr uint32_t kNoSourceInColumn = 0x7FFFFFFFu;
 
 /// floor(num / den) for den > 0.
-int64_t floorDiv(int64_t num, int64_t den) { return num >= 0 ? num / den : -((-num + den - 1) / den); }
+int64_t floorDiv(int64_t num, int64_t den)
+{
+  return num >= 0 ? num / den : -((-num + den - 1) / den);
+}
 }  // namespace
 
-void squaredDistanceTransform(const uint8_t* grid, int width, int height, std::ptrdiff_t stride,
-                              SourceRange source, uint32_t* out, std::ptrdiff_t out_stride, uint32_t max_sq_dist,
+void squaredDistanceTransform(const uint8_t* grid, int width, int height, std::ptrdiff_t stride, SourceRange source,
+                              uint32_t* out, std::ptrdiff_t out_stride, uint32_t max_sq_dist,
                               DistanceTransformScratch& scratch)
 {
   if (width <= 0 || height <= 0) return;
@@ -64,7 +67,8 @@ void squaredDistanceTransform(const uint8_t* grid, int width, int height, std::p
   {
     uint32_t* g = out + y * out_stride;
     const uint32_t* next = out + (y + 1) * out_stride;
-    for (int x = 0; x < width; ++x) g[x] = std::min(g[x], std::min(next[x] + 1u, kNoSourceInColumn));
+    for (int x = 0; x < width; ++x)
+      g[x] = std::min(g[x], std::min(next[x] + 1u, kNoSourceInColumn));
   }
 
   // Pass 2, per row: lower envelope of the parabolas (x - u)^2 + g(u)^2 over the columns u that have
@@ -147,7 +151,8 @@ COSTMAP_LAYERS_DT_INLINE void bandedKernel(const uint8_t* grid, int width, int h
   const uint8_t far_g = static_cast<uint8_t>(cap + 1);
   const T far_sq = static_cast<T>(cap * cap + 1);
 
-  auto advance = [&](int y) {
+  auto advance = [&](int y)
+  {
     const uint8_t* __restrict src = grid + y * stride + cx0;
     for (int k = 0; k < cw; ++k)
     {
@@ -186,7 +191,8 @@ COSTMAP_LAYERS_DT_INLINE void bandedKernel(const uint8_t* grid, int width, int h
       const T sq = static_cast<T>(v * v);
       band[k] = sq < far_sq ? sq : far_sq;
     }
-    for (int k = 0; k < n; ++k) acc[k] = g[k];
+    for (int k = 0; k < n; ++k)
+      acc[k] = g[k];
     for (int dx = 1; dx <= cap; ++dx)
     {
       const T c = static_cast<T>(dx * dx);
@@ -263,7 +269,8 @@ bool cpuRuns(int k)
 
 int bestKernel()
 {
-  static const int best = [] {
+  static const int best = []
+  {
     int b = kPortable;
     for (int k = 0; k < kKernelCount; ++k)
       if (cpuRuns(k)) b = k;
@@ -291,8 +298,8 @@ bool useAvx2()
 
 template <class T>
 void runBanded(const uint8_t* grid, int width, int height, std::ptrdiff_t stride, SourceRange source, int cap,
-               const DistanceWindow& window, std::vector<uint8_t>& run, std::vector<uint8_t>& up,
-               std::vector<T>& row, std::vector<T>& acc, const std::function<void(int, const T*)>& sink)
+               const DistanceWindow& window, std::vector<uint8_t>& run, std::vector<uint8_t>& up, std::vector<T>& row,
+               std::vector<T>& acc, const std::function<void(int, const T*)>& sink)
 {
   DistanceWindow win;
   win.x0 = std::max(0, window.x0);
@@ -302,7 +309,8 @@ void runBanded(const uint8_t* grid, int width, int height, std::ptrdiff_t stride
   if (win.x0 >= win.x1 || win.y0 >= win.y1 || cap < 0) return;
   const int cw = std::min(width, win.x1 + cap) - std::max(0, win.x0 - cap);
   const std::size_t n = static_cast<std::size_t>(win.x1 - win.x0);
-  auto grow = [](auto& v, std::size_t size) {
+  auto grow = [](auto& v, std::size_t size)
+  {
     if (v.size() < size) v.resize(size);
   };
   grow(run, static_cast<std::size_t>(cw));
@@ -316,8 +324,7 @@ void runBanded(const uint8_t* grid, int width, int height, std::ptrdiff_t stride
     return;
   }
 #endif
-  bandedPortable<T>(grid, width, height, stride, source, cap, win, run.data(), up.data(), row.data(), acc.data(),
-                    sink);
+  bandedPortable<T>(grid, width, height, stride, source, cap, win, run.data(), up.data(), row.data(), acc.data(), sink);
 }
 
 // ---- Cost merge: the banded 8-bit transform in the cost domain, written into the grid ------------
@@ -378,12 +385,14 @@ COSTMAP_LAYERS_DT_INLINE void mergeRowPortable(const MergeRow& r, const MergeCon
   {
     const uint8_t* __restrict g = r.g + x;
     uint8_t near = far;
-    for (int i = -cap; i < kBlock + cap; ++i) near = g[i] < near ? g[i] : near;
+    for (int i = -cap; i < kBlock + cap; ++i)
+      near = g[i] < near ? g[i] : near;
     if (near >= far) continue;
     const uint8_t* __restrict q = sq + x;
     uint8_t d[kBlock];
     uint8_t c[kBlock];
-    for (int i = 0; i < kBlock; ++i) d[i] = q[i];
+    for (int i = 0; i < kBlock; ++i)
+      d[i] = q[i];
     for (int dx = 1; dx <= cap; ++dx)
     {
       const uint8_t dx2 = static_cast<uint8_t>(dx * dx);
@@ -393,10 +402,12 @@ COSTMAP_LAYERS_DT_INLINE void mergeRowPortable(const MergeRow& r, const MergeCon
         d[i] = d[i] < m ? d[i] : m;
       }
     }
-    for (int i = 0; i < kBlock; ++i) c[i] = k.cost_sq[d[i]];
+    for (int i = 0; i < kBlock; ++i)
+      c[i] = k.cost_sq[d[i]];
     const int len = std::min(kBlock, r.n - x);
     uint8_t* __restrict out = r.out + x;
-    for (int i = 0; i < len; ++i) out[i] = mergeCell(out[i], c[i], k.special, k.threshold);
+    for (int i = 0; i < len; ++i)
+      out[i] = mergeCell(out[i], c[i], k.special, k.threshold);
   }
 }
 
@@ -496,8 +507,7 @@ __attribute__((target("avx2"))) void mergeRowAvx2(const MergeRow& r, const Merge
     uint8_t* dst = whole ? r.out + x : tmp;
     if (!whole) std::memcpy(tmp, r.out + x, static_cast<std::size_t>(r.n - x));
     const __m256i old = load256(dst);
-    const __m256i for_special =
-        _mm256_blendv_epi8(special, c, _mm256_cmpeq_epi8(_mm256_max_epu8(c, threshold), c));
+    const __m256i for_special = _mm256_blendv_epi8(special, c, _mm256_cmpeq_epi8(_mm256_max_epu8(c, threshold), c));
     const __m256i res = _mm256_blendv_epi8(_mm256_max_epu8(old, c), for_special, _mm256_cmpeq_epi8(old, special));
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst), res);
     if (!whole) std::memcpy(r.out + x, tmp, static_cast<std::size_t>(r.n - x));
@@ -543,8 +553,8 @@ __attribute__((target("avx512f,avx512bw"))) void mergeRowAvx512(const MergeRow& 
     uint8_t* dst = r.out + x;
     const __m512i old = _mm512_maskz_loadu_epi8(lanes, dst);
     const __m512i for_special = _mm512_mask_blend_epi8(_mm512_cmpge_epu8_mask(c, threshold), special, c);
-    const __m512i res = _mm512_mask_blend_epi8(_mm512_cmpeq_epi8_mask(old, special), _mm512_max_epu8(old, c),
-                                               for_special);
+    const __m512i res =
+        _mm512_mask_blend_epi8(_mm512_cmpeq_epi8_mask(old, special), _mm512_max_epu8(old, c), for_special);
     _mm512_mask_storeu_epi8(dst, lanes, res);
   }
 }
@@ -558,7 +568,8 @@ void mergeRowNeon(const MergeRow& r, const MergeConsts& k)
   const uint8x16_t special = vdupq_n_u8(k.special);
   const uint8x16_t threshold = vdupq_n_u8(k.threshold);
   uint8x16_t lut[kMaxBandedCap8 + 1];
-  for (int dx = 0; dx <= cap; ++dx) lut[dx] = vld1q_u8(k.lut + kLutRow * dx);
+  for (int dx = 0; dx <= cap; ++dx)
+    lut[dx] = vld1q_u8(k.lut + kLutRow * dx);
   for (int x = 0; x < r.n; x += V)
   {
     const uint8_t* g = r.g + x;
@@ -601,19 +612,19 @@ struct MergeJob
   const uint8_t* grid;  // sources are read here
   uint8_t* target;      // merged in place (same cells as grid), or nullptr to stream rows to sink
   std::ptrdiff_t target_stride;
-  uint8_t* out_row;     // sink mode: one window row, cleared before each row pass
+  uint8_t* out_row;  // sink mode: one window row, cleared before each row pass
   const CostRowSink* sink;
   int width, height;
   std::ptrdiff_t stride;
   SourceRange source;
   DistanceWindow win;  // clipped, non-empty
   MergeConsts consts;
-  uint8_t* rows;       // stripe rows of row_stride bytes each; window column 0 at offset pad
+  uint8_t* rows;  // stripe rows of row_stride bytes each; window column 0 at offset pad
   int row_stride;
   int pad;
-  int stripe;          // rows per stripe
-  uint8_t* run;        // the vertical distances of the row before the stripe, band width
-  uint8_t* up;         // the upward running distance past the stripe, band width
+  int stripe;    // rows per stripe
+  uint8_t* run;  // the vertical distances of the row before the stripe, band width
+  uint8_t* up;   // the upward running distance past the stripe, band width
 };
 
 /// The vertical pass, in stripes of rows, and the row pass per row (in decreasing y within a stripe:
@@ -707,7 +718,8 @@ COSTMAP_LAYERS_DT_INLINE void mergeDriver(const MergeJob& j, RowPass row_pass)
       if (ahead < ry1)
       {
         const uint8_t* next = j.grid + ahead * j.stride + cx0;
-        for (int k = 0; k < cw; k += 64) COSTMAP_LAYERS_DT_PREFETCH(next + k);
+        for (int k = 0; k < cw; k += 64)
+          COSTMAP_LAYERS_DT_PREFETCH(next + k);
       }
       if (j.sink != nullptr)
       {
@@ -728,33 +740,45 @@ COSTMAP_LAYERS_DT_INLINE void mergeDriver(const MergeJob& j, RowPass row_pass)
   }
 }
 
-void mergePortable(const MergeJob& j) { mergeDriver(j, mergeRowPortable); }
+void mergePortable(const MergeJob& j)
+{
+  mergeDriver(j, mergeRowPortable);
+}
 
 #ifdef COSTMAP_LAYERS_DT_AVX2_DISPATCH
-__attribute__((target("sse4.1"))) void mergeSse41(const MergeJob& j) { mergeDriver(j, mergeRowSse41); }
-__attribute__((target("avx2"))) void mergeAvx2(const MergeJob& j) { mergeDriver(j, mergeRowAvx2); }
+__attribute__((target("sse4.1"))) void mergeSse41(const MergeJob& j)
+{
+  mergeDriver(j, mergeRowSse41);
+}
+__attribute__((target("avx2"))) void mergeAvx2(const MergeJob& j)
+{
+  mergeDriver(j, mergeRowAvx2);
+}
 __attribute__((target("avx512f,avx512bw"))) void mergeAvx512(const MergeJob& j)
 {
   mergeDriver(j, mergeRowAvx512);
 }
 #endif
 #ifdef COSTMAP_LAYERS_DT_NEON
-void mergeNeon(const MergeJob& j) { mergeDriver(j, mergeRowNeon); }
+void mergeNeon(const MergeJob& j)
+{
+  mergeDriver(j, mergeRowNeon);
+}
 #endif
 }  // namespace
 
-void cappedSquaredDistanceRows8(const uint8_t* grid, int width, int height, std::ptrdiff_t stride,
-                                SourceRange source, int cap, const DistanceWindow& window,
-                                DistanceTransformScratch& scratch, const DistanceRowSink8& sink)
+void cappedSquaredDistanceRows8(const uint8_t* grid, int width, int height, std::ptrdiff_t stride, SourceRange source,
+                                int cap, const DistanceWindow& window, DistanceTransformScratch& scratch,
+                                const DistanceRowSink8& sink)
 {
   if (cap > kMaxBandedCap8) throw std::invalid_argument("cappedSquaredDistanceRows8: cap above kMaxBandedCap8");
   runBanded<uint8_t>(grid, width, height, stride, source, cap, window, scratch.run, scratch.up, scratch.row8,
                      scratch.acc8, sink);
 }
 
-void cappedSquaredDistanceRows16(const uint8_t* grid, int width, int height, std::ptrdiff_t stride,
-                                 SourceRange source, int cap, const DistanceWindow& window,
-                                 DistanceTransformScratch& scratch, const DistanceRowSink16& sink)
+void cappedSquaredDistanceRows16(const uint8_t* grid, int width, int height, std::ptrdiff_t stride, SourceRange source,
+                                 int cap, const DistanceWindow& window, DistanceTransformScratch& scratch,
+                                 const DistanceRowSink16& sink)
 {
   if (cap > kMaxBandedCap16) throw std::invalid_argument("cappedSquaredDistanceRows16: cap above kMaxBandedCap16");
   runBanded<uint16_t>(grid, width, height, stride, source, cap, window, scratch.run, scratch.up, scratch.row16,
@@ -765,15 +789,13 @@ namespace
 {
 /// The engine behind cappedCostMerge8 (target != nullptr: merged into target, which is grid) and
 /// cappedCostRows8 (sink != nullptr).
-void runCostMerge(const char* what, const uint8_t* grid, uint8_t* target, int width, int height,
-                  std::ptrdiff_t stride, SourceRange source, int cap, const DistanceWindow& window,
-                  const uint8_t* cost_by_sq_dist, CostMergeRule rule, DistanceTransformScratch& scratch,
-                  const CostRowSink* sink)
+void runCostMerge(const char* what, const uint8_t* grid, uint8_t* target, int width, int height, std::ptrdiff_t stride,
+                  SourceRange source, int cap, const DistanceWindow& window, const uint8_t* cost_by_sq_dist,
+                  CostMergeRule rule, DistanceTransformScratch& scratch, const CostRowSink* sink)
 {
   if (cap < 0 || cap > kMaxBandedCap8)
     throw std::invalid_argument(std::string(what) + ": cap outside [0, kMaxBandedCap8]");
-  if (rule.special_threshold == 0)
-    throw std::invalid_argument(std::string(what) + ": special_threshold must be >= 1");
+  if (rule.special_threshold == 0) throw std::invalid_argument(std::string(what) + ": special_threshold must be >= 1");
   const int cap_sq = cap * cap;
   for (int d2 = 1; d2 <= cap_sq; ++d2)
     if (cost_by_sq_dist[d2] > cost_by_sq_dist[d2 - 1])
@@ -797,7 +819,8 @@ void runCostMerge(const char* what, const uint8_t* grid, uint8_t* target, int wi
       lut[kLutRow * dx + i] = v <= cap && d2 <= cap_sq ? cost_by_sq_dist[d2] : uint8_t{0};
     }
   uint8_t* cost_sq = lut + kLutRow * (cap + 1);
-  for (int d2 = 0; d2 < 256; ++d2) cost_sq[d2] = d2 <= cap_sq ? cost_by_sq_dist[d2] : uint8_t{0};
+  for (int d2 = 0; d2 < 256; ++d2)
+    cost_sq[d2] = d2 <= cap_sq ? cost_by_sq_dist[d2] : uint8_t{0};
 
   const int n = win.x1 - win.x0;
   const int cw = std::min(width, win.x1 + cap) - std::max(0, win.x0 - cap);
@@ -826,8 +849,13 @@ void runCostMerge(const char* what, const uint8_t* grid, uint8_t* target, int wi
   job.stride = stride;
   job.source = source;
   job.win = win;
-  job.consts = MergeConsts{lut,        cost_sq,     scratch.run.data() + 2 * cw, cap, static_cast<uint8_t>(cap + 1),
-                           rule.special, rule.special_threshold};
+  job.consts = MergeConsts{lut,
+                           cost_sq,
+                           scratch.run.data() + 2 * cw,
+                           cap,
+                           static_cast<uint8_t>(cap + 1),
+                           rule.special,
+                           rule.special_threshold};
   const std::size_t misalign = reinterpret_cast<std::uintptr_t>(scratch.merge_g.data() + pad) % kMaxLanes;
   job.rows = scratch.merge_g.data() + (misalign == 0 ? 0 : kMaxLanes - misalign);
   job.row_stride = row_stride;
@@ -867,9 +895,9 @@ void cappedCostMerge8(uint8_t* grid, int width, int height, std::ptrdiff_t strid
                scratch, nullptr);
 }
 
-void cappedCostRows8(const uint8_t* grid, int width, int height, std::ptrdiff_t stride, SourceRange source,
-                     int cap, const DistanceWindow& window, const uint8_t* cost_by_sq_dist,
-                     DistanceTransformScratch& scratch, const CostRowSink& sink)
+void cappedCostRows8(const uint8_t* grid, int width, int height, std::ptrdiff_t stride, SourceRange source, int cap,
+                     const DistanceWindow& window, const uint8_t* cost_by_sq_dist, DistanceTransformScratch& scratch,
+                     const CostRowSink& sink)
 {
   runCostMerge("cappedCostRows8", grid, nullptr, width, height, stride, source, cap, window, cost_by_sq_dist,
                CostMergeRule{255, 255}, scratch, &sink);
@@ -904,5 +932,8 @@ bool setDistanceTransformKernel(const char* name)
   return false;
 }
 
-const char* distanceTransformKernel() { return kKernelNames[currentKernel()]; }
+const char* distanceTransformKernel()
+{
+  return kKernelNames[currentKernel()];
+}
 }  // namespace costmap_layers

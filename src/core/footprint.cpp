@@ -50,7 +50,8 @@ void calculateMinAndMaxDistances(const Footprint& footprint, double& min_dist, d
   if (footprint.size() <= 2)
   {
     min_dist = 0.0;
-    for (const auto& p : footprint) max_dist = std::max(max_dist, p.norm());
+    for (const auto& p : footprint)
+      max_dist = std::max(max_dist, p.norm());
     return;
   }
   const Eigen::Vector2d origin(0.0, 0.0);
@@ -66,9 +67,7 @@ void calculateMinAndMaxDistances(const Footprint& footprint, double& min_dist, d
 Footprint parseFootprintString(const std::string& text)
 {
   // Accept exactly nested brackets of numbers: [[x, y], [x, y], ...].
-  auto fail = [&text](const std::string& why) {
-    throw std::invalid_argument("footprint \"" + text + "\": " + why);
-  };
+  auto fail = [&text](const std::string& why) { throw std::invalid_argument("footprint \"" + text + "\": " + why); };
   std::vector<double> numbers;
   std::vector<int> group_sizes;
   int depth = 0;
@@ -119,7 +118,8 @@ Footprint parseFootprintString(const std::string& text)
   }
   if (group_sizes.size() < 3) fail("a footprint needs at least 3 points");
   Footprint fp;
-  for (std::size_t k = 0; k + 1 < numbers.size(); k += 2) fp.emplace_back(numbers[k], numbers[k + 1]);
+  for (std::size_t k = 0; k + 1 < numbers.size(); k += 2)
+    fp.emplace_back(numbers[k], numbers[k + 1]);
   return fp;
 }
 
@@ -128,7 +128,8 @@ Footprint transformFootprint(double x, double y, double yaw, const Footprint& fo
   const double c = std::cos(yaw), s = std::sin(yaw);
   Footprint out;
   out.reserve(footprint.size());
-  for (const auto& p : footprint) out.emplace_back(x + c * p.x() - s * p.y(), y + s * p.x() + c * p.y());
+  for (const auto& p : footprint)
+    out.emplace_back(x + c * p.x() - s * p.y(), y + s * p.x() + c * p.y());
   return out;
 }
 

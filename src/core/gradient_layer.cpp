@@ -39,14 +39,15 @@ void GradientLayer::reconfigure(const ParamValue& params)
 
 std::vector<ParamSpec> GradientLayer::tunableParameters(const ParamValue& params) const
 {
-  return recordParameters(params, name_, [](const ParamReader& r) {
-    r.getBool("enabled", true);
-    parseGradientConfig(r);
-  });
+  return recordParameters(params, name_,
+                          [](const ParamReader& r)
+                          {
+                            r.getBool("enabled", true);
+                            parseGradientConfig(r);
+                          });
 }
 
-void GradientLayer::updateBounds(double, double, double, double* min_x, double* min_y, double* max_x,
-                                 double* max_y)
+void GradientLayer::updateBounds(double, double, double, double* min_x, double* min_y, double* max_x, double* max_y)
 {
   if (need_recalculation_)
   {

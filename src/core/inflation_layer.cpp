@@ -77,9 +77,15 @@ void InflationLayer::onFootprintChanged()
   need_reinflation_ = true;
 }
 
-void InflationLayer::reset() { need_reinflation_ = true; }
+void InflationLayer::reset()
+{
+  need_reinflation_ = true;
+}
 
-void InflationLayer::reconfigure(const ParamValue& params) { setConfig(parseInflationConfig(ParamReader(params, name_))); }
+void InflationLayer::reconfigure(const ParamValue& params)
+{
+  setConfig(parseInflationConfig(ParamReader(params, name_)));
+}
 
 std::vector<ParamSpec> InflationLayer::tunableParameters(const ParamValue& params) const
 {
@@ -103,8 +109,8 @@ void InflationLayer::rebuildTable()
   if (size > kMaxTableSize) return;  // computed per cell
   cost_table_.assign(static_cast<std::size_t>(size), 0);
   for (uint64_t d2 = 0; d2 <= cap_sq; ++d2)
-    cost_table_[static_cast<std::size_t>(d2)] = inflationCost(std::sqrt(static_cast<double>(d2)), resolution_,
-                                                              inscribed_radius_, config_.cost_scaling_factor);
+    cost_table_[static_cast<std::size_t>(d2)] =
+        inflationCost(std::sqrt(static_cast<double>(d2)), resolution_, inscribed_radius_, config_.cost_scaling_factor);
   table_non_increasing_ = true;
   for (uint64_t d2 = 1; d2 <= cap_sq; ++d2)
     if (cost_table_[static_cast<std::size_t>(d2)] > cost_table_[static_cast<std::size_t>(d2 - 1)])
@@ -115,12 +121,10 @@ uint8_t InflationLayer::costAtSquaredDistance(uint32_t d2) const
 {
   if (d2 > table_limit_) return 0;
   if (d2 < cost_table_.size()) return cost_table_[d2];
-  return inflationCost(std::sqrt(static_cast<double>(d2)), resolution_, inscribed_radius_,
-                       config_.cost_scaling_factor);
+  return inflationCost(std::sqrt(static_cast<double>(d2)), resolution_, inscribed_radius_, config_.cost_scaling_factor);
 }
 
-void InflationLayer::updateBounds(double, double, double, double* min_x, double* min_y, double* max_x,
-                                  double* max_y)
+void InflationLayer::updateBounds(double, double, double, double* min_x, double* min_y, double* max_x, double* max_y)
 {
   if (need_reinflation_)
   {
@@ -150,17 +154,20 @@ void InflationLayer::writeRow(uint8_t* master_row, const T* sq_dist, int n)
   {
     // The table covers every value the banded engines report.
     const uint8_t* table = cost_table_.data();
-    for (int k = 0; k < n; ++k) costs[k] = table[sq_dist[k]];
+    for (int k = 0; k < n; ++k)
+      costs[k] = table[sq_dist[k]];
   }
   else if (!cost_table_.empty())
   {
     const uint8_t* table = cost_table_.data();
     const uint32_t limit = table_limit_;
-    for (int k = 0; k < n; ++k) costs[k] = sq_dist[k] <= limit ? table[sq_dist[k]] : uint8_t{0};
+    for (int k = 0; k < n; ++k)
+      costs[k] = sq_dist[k] <= limit ? table[sq_dist[k]] : uint8_t{0};
   }
   else
   {
-    for (int k = 0; k < n; ++k) costs[k] = costAtSquaredDistance(sq_dist[k]);
+    for (int k = 0; k < n; ++k)
+      costs[k] = costAtSquaredDistance(sq_dist[k]);
   }
   // An unknown cell takes the cost only from the threshold on; any other cell takes the maximum.
   const uint8_t unknown_threshold = config_.inflate_unknown ? uint8_t{1} : INSCRIBED_INFLATED_OBSTACLE;
@@ -195,7 +202,7 @@ void InflationLayer::updateCosts(Costmap2D& master_grid, int min_i, int min_j, i
   const int n = win.x1 - win.x0;
   if (row_costs_.size() < static_cast<std::size_t>(n)) row_costs_.resize(static_cast<std::size_t>(n));
   const SourceRange sources = config_.inflate_around_unknown ? SourceRange{LETHAL_OBSTACLE, NO_INFORMATION}
-                                                              : SourceRange{LETHAL_OBSTACLE, LETHAL_OBSTACLE};
+                                                             : SourceRange{LETHAL_OBSTACLE, LETHAL_OBSTACLE};
   uint8_t* data = master_grid.data();
   const std::ptrdiff_t stride = width;
   // The engines read the sources of a row (and the rows after it) before the sink writes that row;
@@ -229,8 +236,7 @@ void InflationLayer::updateCosts(Costmap2D& master_grid, int min_i, int min_j, i
     squaredDistanceTransform(data + py0 * stride + px0, pw, ph, stride, sources, exact_.data(), pw, table_limit_,
                              scratch_);
     for (int y = win.y0; y < win.y1; ++y)
-      writeRow(data + y * stride + win.x0, exact_.data() + static_cast<std::size_t>(y - py0) * pw + (win.x0 - px0),
-               n);
+      writeRow(data + y * stride + win.x0, exact_.data() + static_cast<std::size_t>(y - py0) * pw + (win.x0 - px0), n);
   }
 }
 }  // namespace costmap_layers

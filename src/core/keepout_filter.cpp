@@ -28,15 +28,18 @@ void CostGridFilter::process(Costmap2D& master_grid, const CellWindow&, const Oc
                            " values outside -1..100 (invalid in an OccupancyGrid); they are skipped");
   }
   mapping.forEachRow(master_grid, costs_.data(), mask.width, mask.height, uint8_t{0}, scratch_,
-                     [](uint8_t* cells, const uint8_t* costs, std::size_t n) {
-                       for (std::size_t k = 0; k < n; ++k) cells[k] = mergeFilterCost(cells[k], costs[k]);
+                     [](uint8_t* cells, const uint8_t* costs, std::size_t n)
+                     {
+                       for (std::size_t k = 0; k < n; ++k)
+                         cells[k] = mergeFilterCost(cells[k], costs[k]);
                      });
 }
 
 std::size_t KeepoutFilter::computeCosts(const OccupancyGridData& mask, std::vector<uint8_t>& costs)
 {
   std::array<uint8_t, 256> table{};
-  for (int b = 0; b < 256; ++b) table[static_cast<std::size_t>(b)] = keepoutCost(static_cast<int8_t>(b));
+  for (int b = 0; b < 256; ++b)
+    table[static_cast<std::size_t>(b)] = keepoutCost(static_cast<int8_t>(b));
   costs.resize(mask.data.size());
   std::size_t invalid = 0;
   for (std::size_t k = 0; k < mask.data.size(); ++k)

@@ -52,7 +52,8 @@ std::size_t countInvalid(const int8_t* m, std::size_t n)
   {
     const std::size_t e = std::min(n, o + kBlock);
     uint32_t count = 0;
-    for (std::size_t k = o; k < e; ++k) count += static_cast<uint8_t>(static_cast<uint8_t>(m[k]) + 1u) > 101u ? 1u : 0u;
+    for (std::size_t k = o; k < e; ++k)
+      count += static_cast<uint8_t>(static_cast<uint8_t>(m[k]) + 1u) > 101u ? 1u : 0u;
     invalid += count;
   }
   return invalid;
@@ -81,7 +82,7 @@ std::size_t finishCostsScalar(const uint8_t* u, const uint8_t* c, uint8_t* out, 
     const uint8_t v = u[k];
     invalid += static_cast<uint8_t>(v + 1u) > 101u ? 1u : 0u;
     out[k] = v == static_cast<uint8_t>(kForbidden) ? static_cast<uint8_t>(LETHAL_OBSTACLE - c[k])
-                                                  : softCost(static_cast<int8_t>(v));
+                                                   : softCost(static_cast<int8_t>(v));
   }
   return invalid;
 }
@@ -112,8 +113,7 @@ std::size_t finishCostsSse2(const uint8_t* u, const uint8_t* c, uint8_t* out, st
     const __m128i d = _mm_loadu_si128(reinterpret_cast<const __m128i*>(c + k));
     const __m128i is_forbidden = _mm_cmpeq_epi8(v, forbidden);
     __m128i res = _mm_and_si128(is_forbidden, _mm_sub_epi8(lethal, d));
-    const __m128i plain =
-        _mm_or_si128(_mm_or_si128(_mm_cmpeq_epi8(v, zero), is_forbidden), _mm_cmpeq_epi8(v, unknown));
+    const __m128i plain = _mm_or_si128(_mm_or_si128(_mm_cmpeq_epi8(v, zero), is_forbidden), _mm_cmpeq_epi8(v, unknown));
     if (_mm_movemask_epi8(plain) != 0xFFFF)
     {
       // soft: v - 1 < 99; valid: v + 1 <= 101 (unsigned bytes)
@@ -139,7 +139,7 @@ std::size_t finishCostsSse2(const uint8_t* u, const uint8_t* c, uint8_t* out, st
 
 template <bool kStream>
 __attribute__((target("avx2"))) std::size_t finishCostsAvx2(const uint8_t* u, const uint8_t* c, uint8_t* out,
-                                                             std::size_t n)
+                                                            std::size_t n)
 {
   const __m256i zero = _mm256_setzero_si256();
   const __m256i forbidden = _mm256_set1_epi8(static_cast<char>(kForbidden));
@@ -271,12 +271,17 @@ uint64_t lanesLethalSquaredDistance(const LanesFilterConfig& c, double r)
   // Beyond any grid's reach (the validator caps masks at 4e8 cells): never lethal by distance.
   if (!(ratio < 1e9)) return std::numeric_limits<uint64_t>::max();
   uint64_t q = static_cast<uint64_t>(std::floor(ratio * ratio));
-  while (q > 0 && lethal(q - 1)) --q;
-  while (!lethal(q)) ++q;
+  while (q > 0 && lethal(q - 1))
+    --q;
+  while (!lethal(q))
+    ++q;
   return q;
 }
 
-void LanesFilter::onInitializeFilter(const ParamReader& params) { config_ = parseLanesFilterConfig(params); }
+void LanesFilter::onInitializeFilter(const ParamReader& params)
+{
+  config_ = parseLanesFilterConfig(params);
+}
 
 void LanesFilter::reconfigure(const ParamValue& params)
 {
@@ -290,10 +295,12 @@ void LanesFilter::reconfigure(const ParamValue& params)
 
 std::vector<ParamSpec> LanesFilter::tunableParameters(const ParamValue& params) const
 {
-  return recordParameters(params, name_, [](const ParamReader& r) {
-    r.getBool("enabled", true);
-    parseLanesFilterConfig(r);
-  });
+  return recordParameters(params, name_,
+                          [](const ParamReader& r)
+                          {
+                            r.getBool("enabled", true);
+                            parseLanesFilterConfig(r);
+                          });
 }
 
 std::size_t LanesFilter::computeCosts(const OccupancyGridData& mask, std::vector<uint8_t>& costs)
@@ -307,8 +314,8 @@ std::size_t LanesFilter::computeCosts(const OccupancyGridData& mask, std::vector
   // No two cells of the mask are farther apart than its diagonal: a lethal distance beyond that (a wide
   // border on a fine mask, up to "never") changes nothing, and clamping it keeps cap * cap below from
   // overflowing (which looped forever).
-  const uint64_t diagonal_sq = static_cast<uint64_t>(w) * static_cast<uint64_t>(w) +
-                               static_cast<uint64_t>(h) * static_cast<uint64_t>(h);
+  const uint64_t diagonal_sq =
+      static_cast<uint64_t>(w) * static_cast<uint64_t>(w) + static_cast<uint64_t>(h) * static_cast<uint64_t>(h);
   const uint64_t q = std::min(lanesLethalSquaredDistance(config_, mask.resolution), diagonal_sq + 1);
   const bool any_lane = std::memchr(bytes, static_cast<uint8_t>(kLane), n) != nullptr;
 
@@ -321,15 +328,18 @@ std::size_t LanesFilter::computeCosts(const OccupancyGridData& mask, std::vector
 
   // Every squared distance below q must come out exactly: a band of radius cap with cap^2 >= q - 1.
   uint64_t cap = static_cast<uint64_t>(std::sqrt(static_cast<double>(q - 1)));
-  while (cap * cap < q - 1) ++cap;
-  while (cap > 0 && (cap - 1) * (cap - 1) >= q - 1) --cap;
+  while (cap * cap < q - 1)
+    ++cap;
+  while (cap > 0 && (cap - 1) * (cap - 1) >= q - 1)
+    --cap;
 
-  auto buildLut = [&](std::vector<uint8_t>& lut, std::size_t entries) {
+  auto buildLut = [&](std::vector<uint8_t>& lut, std::size_t entries)
+  {
     lut.resize(entries);
     for (std::size_t d2 = 0; d2 < entries; ++d2)
-      lut[d2] = d2 >= q ? LETHAL_OBSTACLE
-                        : lanesForbiddenCost(config_, std::sqrt(static_cast<double>(d2)) * mask.resolution,
-                                             mask.resolution);
+      lut[d2] =
+          d2 >= q ? LETHAL_OBSTACLE
+                  : lanesForbiddenCost(config_, std::sqrt(static_cast<double>(d2)) * mask.resolution, mask.resolution);
   };
   const DistanceWindow all{0, 0, w, h};
   std::vector<uint8_t> lut;
@@ -339,13 +349,15 @@ std::size_t LanesFilter::computeCosts(const OccupancyGridData& mask, std::vector
     // since the cost never falls with distance; 0 beyond the band, where everything is lethal), with the
     // lane cells of the mask as sources, and turn each row back while it is in cache.
     buildLut(lut, static_cast<std::size_t>(cap * cap) + 1);
-    for (auto& c : lut) c = static_cast<uint8_t>(LETHAL_OBSTACLE - c);
+    for (auto& c : lut)
+      c = static_cast<uint8_t>(LETHAL_OBSTACLE - c);
     lut[0] = lut.size() > 1 ? lut[1] : 0;  // the lane cells themselves: never used
     std::size_t invalid = 0;
     const SourceRange lanes{static_cast<uint8_t>(kLane), static_cast<uint8_t>(kLane)};
     const bool stream = n >= kStreamCostsFrom;
     cappedCostRows8(bytes, w, h, w, lanes, static_cast<int>(cap), all, lut.data(), scratch_,
-                    [&](int y, const uint8_t* row) {
+                    [&](int y, const uint8_t* row)
+                    {
                       const std::size_t o = static_cast<std::size_t>(y) * static_cast<std::size_t>(w);
                       invalid += finishCosts(m + o, row, costs.data() + o, static_cast<std::size_t>(w), stream);
                     });
@@ -358,10 +370,10 @@ std::size_t LanesFilter::computeCosts(const OccupancyGridData& mask, std::vector
   {
     buildLut(lut, 65536);
     cappedSquaredDistanceRows16(bytes, w, h, w, lanes, static_cast<int>(cap), all, scratch_,
-                                [&](int y, const uint16_t* d2) {
+                                [&](int y, const uint16_t* d2)
+                                {
                                   const std::size_t o = static_cast<std::size_t>(y) * w;
-                                  writeRow(m + o, d2, lut.data(), 65535, costs.data() + o,
-                                                      static_cast<std::size_t>(w));
+                                  writeRow(m + o, d2, lut.data(), 65535, costs.data() + o, static_cast<std::size_t>(w));
                                 });
     return invalid;
   }
@@ -394,8 +406,8 @@ std::size_t LanesFilter::computeCosts(const OccupancyGridData& mask, std::vector
     else if (sq_dist_[k] == kFarSquaredDistance)
       costs[k] = LETHAL_OBSTACLE;
     else
-      costs[k] = lanesForbiddenCost(config_, std::sqrt(static_cast<double>(sq_dist_[k])) * mask.resolution,
-                                    mask.resolution);
+      costs[k] =
+          lanesForbiddenCost(config_, std::sqrt(static_cast<double>(sq_dist_[k])) * mask.resolution, mask.resolution);
   }
   return invalid;
 }

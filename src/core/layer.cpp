@@ -15,7 +15,10 @@ void Layer::initialize(LayeredCostmap* parent, const std::string& name, std::sha
   initialized_ = true;
 }
 
-void Layer::reconfigure(const ParamValue& params) { enabled_ = ParamReader(params, name_).getBool("enabled", true); }
+void Layer::reconfigure(const ParamValue& params)
+{
+  enabled_ = ParamReader(params, name_).getBool("enabled", true);
+}
 
 std::vector<ParamSpec> Layer::tunableParameters(const ParamValue& params) const
 {

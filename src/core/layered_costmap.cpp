@@ -9,7 +9,7 @@
 namespace costmap_layers
 {
 LayeredCostmap::LayeredCostmap(std::string global_frame, bool rolling_window, bool track_unknown)
-  : global_frame_(std::move(global_frame)), rolling_window_(rolling_window), track_unknown_(track_unknown)
+    : global_frame_(std::move(global_frame)), rolling_window_(rolling_window), track_unknown_(track_unknown)
 {
   const uint8_t def = track_unknown ? NO_INFORMATION : FREE_SPACE;
   primary_.setDefaultValue(def);
@@ -19,11 +19,16 @@ LayeredCostmap::LayeredCostmap(std::string global_frame, bool rolling_window, bo
 LayeredCostmap::~LayeredCostmap()
 {
   // Layers hold a plain pointer back to this object: drop them first, in reverse order of creation.
-  while (!filters_.empty()) filters_.pop_back();
-  while (!plugins_.empty()) plugins_.pop_back();
+  while (!filters_.empty())
+    filters_.pop_back();
+  while (!plugins_.empty())
+    plugins_.pop_back();
 }
 
-void LayeredCostmap::addPlugin(std::shared_ptr<Layer> plugin) { plugins_.push_back(std::move(plugin)); }
+void LayeredCostmap::addPlugin(std::shared_ptr<Layer> plugin)
+{
+  plugins_.push_back(std::move(plugin));
+}
 
 void LayeredCostmap::addFilter(std::shared_ptr<Layer> filter)
 {
@@ -51,7 +56,8 @@ void LayeredCostmap::resizeMap(unsigned int size_x, unsigned int size_y, double 
   if (!filters_.empty()) combined_.resizeMap(size_x, size_y, resolution, origin_x, origin_y);
   for (const auto* list : {&plugins_, &filters_})
   {
-    for (const auto& layer : *list) layer->matchSize();
+    for (const auto& layer : *list)
+      layer->matchSize();
   }
 }
 
@@ -142,7 +148,8 @@ void LayeredCostmap::setFootprint(const Footprint& footprint)
   calculateMinAndMaxDistances(footprint_, inscribed_radius_, circumscribed_radius_);
   for (const auto* list : {&plugins_, &filters_})
   {
-    for (const auto& layer : *list) layer->onFootprintChanged();
+    for (const auto& layer : *list)
+      layer->onFootprintChanged();
   }
 }
 }  // namespace costmap_layers

@@ -5,7 +5,7 @@
 namespace costmap_layers
 {
 ObservationBuffer::ObservationBuffer(std::string name, const ObservationBufferConfig& config, uint64_t now_ns)
-  : name_(std::move(name)), config_(config), last_updated_ns_(now_ns)
+    : name_(std::move(name)), config_(config), last_updated_ns_(now_ns)
 {
 }
 
@@ -23,7 +23,8 @@ void ObservationBuffer::purgeLocked(uint64_t now_ns)
   if (observations_.empty()) return;
   if (config_.observation_persistence <= 0.0)
   {
-    while (observations_.size() > 1) observations_.pop_front();
+    while (observations_.size() > 1)
+      observations_.pop_front();
     return;
   }
   const double keep_ns = config_.observation_persistence * 1e9;

@@ -33,7 +33,8 @@ std::vector<std::string> sourceNames(const ParamReader& p)
   {
     std::istringstream in(v->asString());
     std::string name;
-    while (in >> name) names.push_back(name);
+    while (in >> name)
+      names.push_back(name);
   }
   else if (v->isList())
   {
@@ -124,17 +125,21 @@ void ObstacleLayer::onInitialize()
     const ObservationSourceConfig& s = config_.sources[i];
     if (s.data_type == SensorDataType::LaserScan)
       context_->subscribeLaserScan(s.topic, s.sensor_frame,
-                                   [this, i](const std::shared_ptr<const LaserScanData>& scan, const SensorPose& pose) {
+                                   [this, i](const std::shared_ptr<const LaserScanData>& scan, const SensorPose& pose)
+                                   {
                                      if (scan) addLaserScan(i, *scan, pose);
                                    });
     else
       context_->subscribePointCloud2(
-          s.topic, s.sensor_frame, [this, i](const std::shared_ptr<const PointCloud2Data>& cloud, const SensorPose& pose) {
+          s.topic, s.sensor_frame,
+          [this, i](const std::shared_ptr<const PointCloud2Data>& cloud, const SensorPose& pose)
+          {
             if (cloud) addPointCloud2(i, *cloud, pose);
           });
   }
   if (config_.sources.empty())
-    context_->report(Severity::Warn, "no_sources", name_ + ": no observation_sources: the layer only clears the footprint");
+    context_->report(Severity::Warn, "no_sources",
+                     name_ + ": no observation_sources: the layer only clears the footprint");
 }
 
 void ObstacleLayer::matchSize()
@@ -200,7 +205,8 @@ void ObstacleLayer::bufferPoints(std::size_t source, const std::vector<Point3f>&
   obs->raytrace_max_range = s.raytrace_max_range;
   const Transform3D& T = pose.to_global;
   const double zmin = s.min_obstacle_height, zmax = s.max_obstacle_height;
-  auto project = [&](const std::vector<Point3f>& in, std::vector<Point3f>& out) {
+  auto project = [&](const std::vector<Point3f>& in, std::vector<Point3f>& out)
+  {
     out.reserve(in.size());
     for (const Point3f& p : in)
     {
@@ -270,8 +276,10 @@ void ObstacleLayer::updateBounds(double robot_x, double robot_y, double robot_ya
   }
   current_ = current;
 
-  for (const auto& obs : clearing_) raytraceFreespace(*obs, min_x, min_y, max_x, max_y);
-  for (const auto& obs : marking_) markObservation(*obs, min_x, min_y, max_x, max_y);
+  for (const auto& obs : clearing_)
+    raytraceFreespace(*obs, min_x, min_y, max_x, max_y);
+  for (const auto& obs : marking_)
+    markObservation(*obs, min_x, min_y, max_x, max_y);
   // Drop the references now: an observation must not outlive its buffer's persistence by a cycle.
   marking_.clear();
   clearing_.clear();
@@ -281,7 +289,8 @@ void ObstacleLayer::updateBounds(double robot_x, double robot_y, double robot_ya
   if (config_.footprint_clearing_enabled)
   {
     transformed_footprint_ = transformFootprint(robot_x, robot_y, robot_yaw, getFootprint());
-    for (const auto& v : transformed_footprint_) touch(v.x(), v.y(), min_x, min_y, max_x, max_y);
+    for (const auto& v : transformed_footprint_)
+      touch(v.x(), v.y(), min_x, min_y, max_x, max_y);
   }
 }
 
@@ -319,7 +328,8 @@ void ObstacleLayer::raytraceFreespace(const Observation& obs, double* min_x, dou
   uint8_t* grid = costmap_.data();
   auto clear = [grid](unsigned int index) { grid[index] = FREE_SPACE; };
   double ex_min = ox, ey_min = oy, ex_max = ox, ey_max = oy;
-  auto ray = [&](const Point3f& p) {
+  auto ray = [&](const Point3f& p)
+  {
     double t;
     if (!clipRay2D(ox, oy, p.x, p.y, obs.raytrace_max_range, t)) return;
     const double ex = ox + t * (p.x - ox), ey = oy + t * (p.y - oy);
@@ -331,14 +341,15 @@ void ObstacleLayer::raytraceFreespace(const Observation& obs, double* min_x, dou
     ex_max = std::max(ex_max, ex);
     ey_max = std::max(ey_max, ey);
   };
-  for (const Point3f& p : obs.points) ray(p);
-  for (const Point3f& p : obs.clear_only) ray(p);
+  for (const Point3f& p : obs.points)
+    ray(p);
+  for (const Point3f& p : obs.clear_only)
+    ray(p);
   touch(ex_min, ey_min, min_x, min_y, max_x, max_y);
   touch(ex_max, ey_max, min_x, min_y, max_x, max_y);
 }
 
-void ObstacleLayer::markObservation(const Observation& obs, double* min_x, double* min_y, double* max_x,
-                                    double* max_y)
+void ObstacleLayer::markObservation(const Observation& obs, double* min_x, double* min_y, double* max_x, double* max_y)
 {
   const double max2 = obs.obstacle_max_range * obs.obstacle_max_range;
   const double min2 = obs.obstacle_min_range * obs.obstacle_min_range;
@@ -387,10 +398,12 @@ void ObstacleLayer::updateCosts(Costmap2D& master_grid, int min_i, int min_j, in
 void ObstacleLayer::reset()
 {
   costmap_.resetMaps();
-  for (auto& b : buffers_) b->clear();
+  for (auto& b : buffers_)
+    b->clear();
   clearStaticObservations(true, true);
   const uint64_t now = context_ ? context_->nowNs() : 0;
-  for (auto& b : buffers_) b->resetLastUpdated(now);
+  for (auto& b : buffers_)
+    b->resetLastUpdated(now);
   current_ = true;
 }
 
@@ -398,8 +411,12 @@ void ObstacleLayer::activate()
 {
   active_ = true;
   const uint64_t now = context_->nowNs();
-  for (auto& b : buffers_) b->resetLastUpdated(now);
+  for (auto& b : buffers_)
+    b->resetLastUpdated(now);
 }
 
-void ObstacleLayer::deactivate() { active_ = false; }
+void ObstacleLayer::deactivate()
+{
+  active_ = false;
+}
 }  // namespace costmap_layers

@@ -40,8 +40,14 @@ bool ParamReader::getBool(const std::string& name, bool def) const
 int ParamReader::getInt(const std::string& name, int def, int min, int max) const
 {
   const ParamValue* v = ns_.find(name);
-  const auto noted = [&](int value) {
-    note({name, ParamValue::Type::Int, ParamValue::makeInt(def), ParamValue::makeInt(value), double(min), double(max),
+  const auto noted = [&](int value)
+  {
+    note({name,
+          ParamValue::Type::Int,
+          ParamValue::makeInt(def),
+          ParamValue::makeInt(value),
+          double(min),
+          double(max),
           {}});
     return value;
   };
@@ -54,15 +60,15 @@ int ParamReader::getInt(const std::string& name, int def, int min, int max) cons
     value = static_cast<int64_t>(v->asDouble());
   else
     fail(name, "must be an integer");
-  if (value < min || value > max)
-    fail(name, "must be in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
+  if (value < min || value > max) fail(name, "must be in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
   return noted(static_cast<int>(value));
 }
 
 double ParamReader::getDouble(const std::string& name, double def, double min, double max) const
 {
   const ParamValue* v = ns_.find(name);
-  const auto noted = [&](double value) {
+  const auto noted = [&](double value)
+  {
     note({name, ParamValue::Type::Double, ParamValue::makeDouble(def), ParamValue::makeDouble(value), min, max, {}});
     return value;
   };
@@ -101,7 +107,8 @@ std::string ParamReader::getChoice(const std::string& name, const std::string& d
     }
   }
   std::string list;
-  for (const auto& c : choices) list += (list.empty() ? "" : ", ") + c;
+  for (const auto& c : choices)
+    list += (list.empty() ? "" : ", ") + c;
   fail(name, "must be one of: " + list);
 }
 }  // namespace costmap_layers

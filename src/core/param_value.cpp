@@ -56,8 +56,8 @@ namespace
 {
 [[noreturn]] void wrongType(const ParamValue& v, const char* wanted)
 {
-  throw std::invalid_argument(std::string("expected ") + wanted + ", got " +
-                              ParamValue::typeName(v.type()) + " " + v.toString());
+  throw std::invalid_argument(std::string("expected ") + wanted + ", got " + ParamValue::typeName(v.type()) + " " +
+                              v.toString());
 }
 }  // namespace
 
@@ -145,15 +145,26 @@ std::string ParamValue::toString() const
   std::ostringstream out;
   switch (type_)
   {
-    case Type::Null: out << "null"; break;
-    case Type::Bool: out << (b_ ? "true" : "false"); break;
-    case Type::Int: out << i_; break;
-    case Type::Double: out << d_; break;
-    case Type::String: out << '"' << s_ << '"'; break;
+    case Type::Null:
+      out << "null";
+      break;
+    case Type::Bool:
+      out << (b_ ? "true" : "false");
+      break;
+    case Type::Int:
+      out << i_;
+      break;
+    case Type::Double:
+      out << d_;
+      break;
+    case Type::String:
+      out << '"' << s_ << '"';
+      break;
     case Type::List:
     {
       out << '[';
-      for (std::size_t k = 0; k < list_.size() && k < 8; ++k) out << (k ? ", " : "") << list_[k].toString();
+      for (std::size_t k = 0; k < list_.size() && k < 8; ++k)
+        out << (k ? ", " : "") << list_[k].toString();
       if (list_.size() > 8) out << ", ...";
       out << ']';
       break;
@@ -175,13 +186,20 @@ const char* ParamValue::typeName(Type t)
 {
   switch (t)
   {
-    case Type::Null: return "null";
-    case Type::Bool: return "boolean";
-    case Type::Int: return "integer";
-    case Type::Double: return "double";
-    case Type::String: return "string";
-    case Type::List: return "list";
-    case Type::Map: return "map";
+    case Type::Null:
+      return "null";
+    case Type::Bool:
+      return "boolean";
+    case Type::Int:
+      return "integer";
+    case Type::Double:
+      return "double";
+    case Type::String:
+      return "string";
+    case Type::List:
+      return "list";
+    case Type::Map:
+      return "map";
   }
   return "?";
 }

@@ -22,7 +22,8 @@ RangeSensorConfig parseRangeSensorConfig(const ParamReader& p)
     {
       std::istringstream in(t->asString());
       std::string topic;
-      while (in >> topic) c.topics.push_back(topic);
+      while (in >> topic)
+        c.topics.push_back(topic);
     }
     else if (t->isList())
     {
@@ -62,12 +63,15 @@ double gamma(double theta, double max_angle)
   return 1.0 - q * q;
 }
 
-double delta(double phi, double phi_v) { return 1.0 - (1.0 + std::tanh(2.0 * (phi - phi_v))) / 2.0; }
+double delta(double phi, double phi_v)
+{
+  return 1.0 - (1.0 + std::tanh(2.0 * (phi - phi_v))) / 2.0;
+}
 
 double sensorModel(double r, double phi, double theta, double max_angle, double phi_v, double resolution)
 {
   const double lambda = delta(phi, phi_v) * gamma(theta, max_angle);
-  const double band = resolution * r;  // Nav2: delta = resolution, band = delta * r
+  const double band = resolution * r;                                   // Nav2: delta = resolution, band = delta * r
   if (phi >= 0.0 && phi < r - 2.0 * band) return (1.0 - lambda) * 0.5;  // free ahead of the reading
   if (phi < r - band)
   {
@@ -94,9 +98,11 @@ void RangeSensorLayer::onInitialize()
     context_->report(Severity::Warn, "no_topics", name_ + ": no range topics given (parameter 'topics')");
   for (const auto& topic : config_.topics)
   {
-    context_->subscribeRange(topic, [this](const std::shared_ptr<const RangeData>& range, const SensorPose& pose) {
-      if (range) addRange(*range, pose);
-    });
+    context_->subscribeRange(topic,
+                             [this](const std::shared_ptr<const RangeData>& range, const SensorPose& pose)
+                             {
+                               if (range) addRange(*range, pose);
+                             });
   }
 }
 
@@ -167,7 +173,8 @@ void RangeSensorLayer::applyReading(const Pending& reading)
     context_->report(Severity::Warn, "invalid_range", name_ + ": range reading too far from the grid ignored");
     return;
   }
-  auto touchTouched = [this](double x, double y) {
+  auto touchTouched = [this](double x, double y)
+  {
     if (!touched_)
     {
       touched_min_x_ = touched_max_x_ = x;
@@ -197,17 +204,16 @@ void RangeSensorLayer::applyReading(const Pending& reading)
   touchTouched(ax, ay);
   touchTouched(bx, by);
 
-  const int size_x = static_cast<int>(costmap_.getSizeInCellsX()), size_y = static_cast<int>(costmap_.getSizeInCellsY());
+  const int size_x = static_cast<int>(costmap_.getSizeInCellsX()),
+            size_y = static_cast<int>(costmap_.getSizeInCellsY());
   const int bx0 = std::max(0, std::min({Ox, Ax, Bx})), by0 = std::max(0, std::min({Oy, Ay, By}));
   const int bx1 = std::min(size_x - 1, std::max({Ox, Ax, Bx})), by1 = std::min(size_y - 1, std::max({Oy, Ay, By}));
 
-  auto orient2d = [](long ax_, long ay_, long bx_, long by_, long cx_, long cy_) {
-    return (bx_ - ax_) * (cy_ - ay_) - (by_ - ay_) * (cx_ - ax_);
-  };
-  const double area =
-      std::fabs((static_cast<double>(Ax) * (By - Oy) + static_cast<double>(Bx) * (Oy - Ay) +
-                 static_cast<double>(Ox) * (Ay - By)) /
-                2.0);
+  auto orient2d = [](long ax_, long ay_, long bx_, long by_, long cx_, long cy_)
+  { return (bx_ - ax_) * (cy_ - ay_) - (by_ - ay_) * (cx_ - ax_); };
+  const double area = std::fabs((static_cast<double>(Ax) * (By - Oy) + static_cast<double>(Bx) * (Oy - Ay) +
+                                 static_cast<double>(Ox) * (Ay - By)) /
+                                2.0);
   const double inside_limit = -config_.inflate_cone * area;
   for (int x = bx0; x <= bx1; ++x)
   {
@@ -227,8 +233,8 @@ void RangeSensorLayer::applyReading(const Pending& reading)
   }
 }
 
-void RangeSensorLayer::updateBounds(double robot_x, double robot_y, double /*robot_yaw*/, double* min_x,
-                                    double* min_y, double* max_x, double* max_y)
+void RangeSensorLayer::updateBounds(double robot_x, double robot_y, double /*robot_yaw*/, double* min_x, double* min_y,
+                                    double* max_x, double* max_y)
 {
   if (layered_costmap_->isRolling())
     costmap_.updateOrigin(robot_x - costmap_.getSizeInMetersX() / 2, robot_y - costmap_.getSizeInMetersY() / 2);
@@ -239,7 +245,8 @@ void RangeSensorLayer::updateBounds(double robot_x, double robot_y, double /*rob
   }
   const uint64_t now = context_->nowNs();
   const bool got_readings = !work_.empty();
-  for (const Pending& r : work_) applyReading(r);
+  for (const Pending& r : work_)
+    applyReading(r);
   work_.clear();
   if (touched_)
   {

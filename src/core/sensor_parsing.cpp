@@ -35,8 +35,7 @@ std::string validateLaserScan(const LaserScanData& scan)
   if (!std::isfinite(scan.range_min)) return describe("LaserScan range_min is not finite", scan.range_min);
   if (!std::isfinite(scan.range_max)) return describe("LaserScan range_max is not finite", scan.range_max);
   if (scan.range_min < 0.0f) return describe("LaserScan range_min is negative", scan.range_min);
-  if (scan.range_max < scan.range_min)
-    return describe("LaserScan range_max is below range_min", scan.range_max);
+  if (scan.range_max < scan.range_min) return describe("LaserScan range_max is below range_min", scan.range_max);
 
   const double span = static_cast<double>(scan.angle_max) - static_cast<double>(scan.angle_min);
   const double steps = span / static_cast<double>(scan.angle_increment);
@@ -48,8 +47,7 @@ std::string validateLaserScan(const LaserScanData& scan)
   if (std::fabs(got - expected) > 1.0)
   {
     std::ostringstream s;
-    s << "LaserScan ranges has " << scan.ranges.size() << " values but the angles describe " << expected
-      << " beams";
+    s << "LaserScan ranges has " << scan.ranges.size() << " values but the angles describe " << expected << " beams";
     return s.str();
   }
   return {};
@@ -156,7 +154,8 @@ T readSwapped(const uint8_t* p, bool swap)
   uint8_t bytes[sizeof(T)];
   if (swap)
   {
-    for (std::size_t k = 0; k < sizeof(T); ++k) bytes[k] = p[sizeof(T) - 1 - k];
+    for (std::size_t k = 0; k < sizeof(T); ++k)
+      bytes[k] = p[sizeof(T) - 1 - k];
   }
   else
   {
@@ -176,7 +175,8 @@ inline double readCoordinate(const uint8_t* point, const FieldView& f, bool swap
 std::string validateLayout(const PointCloud2Data& cloud, FieldView fields[3])
 {
   const uint64_t count = static_cast<uint64_t>(cloud.width) * cloud.height;
-  if (count > 0 && cloud.point_step == 0) return "PointCloud2 point_step is 0 with " + std::to_string(count) + " points";
+  if (count > 0 && cloud.point_step == 0)
+    return "PointCloud2 point_step is 0 with " + std::to_string(count) + " points";
   const char* names[3] = {"x", "y", "z"};
   for (int k = 0; k < 3; ++k)
   {
@@ -185,8 +185,8 @@ std::string validateLayout(const PointCloud2Data& cloud, FieldView fields[3])
   }
   const uint64_t row_bytes = static_cast<uint64_t>(cloud.width) * cloud.point_step;
   if (static_cast<uint64_t>(cloud.row_step) < row_bytes)
-    return "PointCloud2 row_step " + std::to_string(cloud.row_step) + " is below width * point_step = " +
-           std::to_string(row_bytes);
+    return "PointCloud2 row_step " + std::to_string(cloud.row_step) +
+           " is below width * point_step = " + std::to_string(row_bytes);
   const uint64_t needed = static_cast<uint64_t>(cloud.row_step) * cloud.height;
   if (static_cast<uint64_t>(cloud.data.size()) < needed)
     return "PointCloud2 data has " + std::to_string(cloud.data.size()) + " bytes, row_step * height needs " +
@@ -273,13 +273,14 @@ RangeInterpretation interpretRange(const RangeData& range, RangeInputType type, 
     out.error = describe("Range range is NaN", range.range);
     return out;
   }
-  const bool fixed = type == RangeInputType::Fixed || (type == RangeInputType::All && range.min_range == range.max_range);
+  const bool fixed =
+      type == RangeInputType::Fixed || (type == RangeInputType::All && range.min_range == range.max_range);
   if (fixed)
   {
     if (!std::isinf(range.range))
     {
-      out.error = describe("Range from a fixed-distance ranger (min_range == max_range) must be -inf or +inf",
-                           range.range);
+      out.error =
+          describe("Range from a fixed-distance ranger (min_range == max_range) must be -inf or +inf", range.range);
       return out;
     }
     if (range.range > 0)

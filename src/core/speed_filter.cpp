@@ -41,7 +41,8 @@ SpeedLimitTable buildSpeedLimitTable(const SpeedLimitsData& limits, const SpeedF
 {
   SpeedLimitTable table;
   std::array<bool, SpeedLimitTable::kMaxAreaId + 1> seen{};
-  auto issue = [&](bool error, std::size_t index, uint32_t id, const std::string& text) {
+  auto issue = [&](bool error, std::size_t index, uint32_t id, const std::string& text)
+  {
     if (issues) issues->push_back({error, index, id, text});
   };
   for (std::size_t k = 0; k < limits.limits.size(); ++k)
@@ -83,9 +84,11 @@ void SpeedFilter::onInitializeFilter(const ParamReader& params)
   config_ = parseSpeedFilterConfig(params);
   publish_ = context_->advertiseMaxSpeed(config_.max_speed_topic);
   if (config_.mask_mode == SpeedMaskMode::AreaId)
-    context_->subscribeSpeedLimits(config_.features_topic, [this](const std::shared_ptr<const SpeedLimitsData>& m) {
-      if (m) setSpeedLimits(*m);
-    });
+    context_->subscribeSpeedLimits(config_.features_topic,
+                                   [this](const std::shared_ptr<const SpeedLimitsData>& m)
+                                   {
+                                     if (m) setSpeedLimits(*m);
+                                   });
 }
 
 std::size_t SpeedFilter::setSpeedLimits(const SpeedLimitsData& limits)
@@ -120,7 +123,10 @@ std::size_t SpeedFilter::setSpeedLimits(const SpeedLimitsData& limits)
 
 namespace
 {
-bool runTimeTunable(const std::string& name) { return name != "features_topic" && name != "max_speed_topic" && name != "mask_mode"; }
+bool runTimeTunable(const std::string& name)
+{
+  return name != "features_topic" && name != "max_speed_topic" && name != "mask_mode";
+}
 }  // namespace
 
 void SpeedFilter::reconfigure(const ParamValue& params)
@@ -143,10 +149,12 @@ void SpeedFilter::reconfigure(const ParamValue& params)
 
 std::vector<ParamSpec> SpeedFilter::tunableParameters(const ParamValue& params) const
 {
-  std::vector<ParamSpec> all = recordParameters(params, name_, [](const ParamReader& r) {
-    r.getBool("enabled", true);
-    parseSpeedFilterConfig(r);
-  });
+  std::vector<ParamSpec> all = recordParameters(params, name_,
+                                                [](const ParamReader& r)
+                                                {
+                                                  r.getBool("enabled", true);
+                                                  parseSpeedFilterConfig(r);
+                                                });
   std::vector<ParamSpec> tunable;
   for (auto& p : all)
     if (runTimeTunable(p.name)) tunable.push_back(std::move(p));
@@ -178,8 +186,10 @@ double SpeedFilter::limitForValue(int8_t v, const SpeedLimitTable* table)
     {
       warned_ids_.set(static_cast<std::size_t>(v));
       context_->report(Severity::Warn, "unknown_area_" + std::to_string(v),
-                       name_ + ": the robot is in area " + std::to_string(v) + " of the mask, which has no speed "
-                       "limit" + (table ? " in the last message on " : " yet (nothing received on ") +
+                       name_ + ": the robot is in area " + std::to_string(v) +
+                           " of the mask, which has no speed "
+                           "limit" +
+                           (table ? " in the last message on " : " yet (nothing received on ") +
                            config_.features_topic + (table ? "" : ")") +
                            "; treating it as no area (default_max_speed " + num(none) + " m/s)");
     }
@@ -200,8 +210,8 @@ double SpeedFilter::limitForValue(int8_t v, const SpeedLimitTable* table)
   return none;
 }
 
-void SpeedFilter::processPose(const OccupancyGridData& mask, const Transform2D& to_mask, double robot_x,
-                              double robot_y, double)
+void SpeedFilter::processPose(const OccupancyGridData& mask, const Transform2D& to_mask, double robot_x, double robot_y,
+                              double)
 {
   std::shared_ptr<const SpeedLimitTable> table;
   {

@@ -51,7 +51,8 @@ void StaticLayer::onInitialize()
                           [this](const std::shared_ptr<const OccupancyGridData>& map) { setMap(map); });
   if (config_.subscribe_to_updates)
     context_->subscribeGridUpdates(config_.map_topic + "_updates",
-                                   [this](const std::shared_ptr<const OccupancyGridUpdateData>& u) {
+                                   [this](const std::shared_ptr<const OccupancyGridUpdateData>& u)
+                                   {
                                      if (u->x < 0 || u->y < 0)
                                      {
                                        context_->report(Severity::Error, "map_update",
@@ -66,7 +67,8 @@ void StaticLayer::onInitialize()
 
 void StaticLayer::rebuildTable()
 {
-  for (int b = 0; b < 256; ++b) table_[b] = interpretStaticValue(static_cast<int8_t>(static_cast<uint8_t>(b)), config_);
+  for (int b = 0; b < 256; ++b)
+    table_[b] = interpretStaticValue(static_cast<int8_t>(static_cast<uint8_t>(b)), config_);
 }
 
 std::string StaticLayer::setMap(std::shared_ptr<const OccupancyGridData> map)
@@ -134,7 +136,8 @@ void StaticLayer::markDirty(unsigned x0, unsigned y0, unsigned x1, unsigned y1)
 void StaticLayer::processMap(const OccupancyGridData& map)
 {
   const bool rolling = layered_costmap_->isRolling();
-  auto differs = [&map](const Costmap2D& c) {
+  auto differs = [&map](const Costmap2D& c)
+  {
     return c.getSizeInCellsX() != map.width || c.getSizeInCellsY() != map.height ||
            c.getResolution() != map.resolution || c.getOriginX() != map.origin_x || c.getOriginY() != map.origin_y;
   };
@@ -144,7 +147,8 @@ void StaticLayer::processMap(const OccupancyGridData& map)
   const std::size_t n = map.data.size();
   uint8_t* out = costmap_.data();
   const int8_t* in = map.data.data();
-  for (std::size_t k = 0; k < n; ++k) out[k] = table_[static_cast<uint8_t>(in[k])];
+  for (std::size_t k = 0; k < n; ++k)
+    out[k] = table_[static_cast<uint8_t>(in[k])];
   if (!rolling && differs(layered_costmap_->getCostmap()))
     layered_costmap_->resizeMap(map.width, map.height, map.resolution, map.origin_x, map.origin_y, true);
   if (!rolling && map.origin_yaw != 0.0)
@@ -170,7 +174,8 @@ void StaticLayer::processUpdate(const PendingUpdate& u)
   for (uint32_t row = 0; row < u.height; ++row)
   {
     uint8_t* out = costmap_.data() + costmap_.getIndex(u.x, u.y + row);
-    for (uint32_t k = 0; k < u.width; ++k) out[k] = table_[static_cast<uint8_t>(*in++)];
+    for (uint32_t k = 0; k < u.width; ++k)
+      out[k] = table_[static_cast<uint8_t>(*in++)];
   }
   markDirty(u.x, u.y, u.x + u.width, u.y + u.height);
 }
@@ -180,9 +185,8 @@ void StaticLayer::matchSize()
   if (layered_costmap_->isRolling()) return;  // the own grid is the map's
   const Costmap2D& master = layered_costmap_->getCostmap();
   if (master.getSizeInCellsX() == costmap_.getSizeInCellsX() &&
-      master.getSizeInCellsY() == costmap_.getSizeInCellsY() &&
-      master.getResolution() == costmap_.getResolution() && master.getOriginX() == costmap_.getOriginX() &&
-      master.getOriginY() == costmap_.getOriginY())
+      master.getSizeInCellsY() == costmap_.getSizeInCellsY() && master.getResolution() == costmap_.getResolution() &&
+      master.getOriginX() == costmap_.getOriginX() && master.getOriginY() == costmap_.getOriginY())
     return;  // e.g. the resize this layer asked for: the map just drawn stays
   CostmapLayer::matchSize();
 }
@@ -203,7 +207,8 @@ void StaticLayer::updateBounds(double, double, double, double* min_x, double* mi
     updates.swap(pending_updates_);
   }
   if (map) processMap(*map);
-  for (const auto& u : updates) processUpdate(u);
+  for (const auto& u : updates)
+    processUpdate(u);
   useExtraBounds(min_x, min_y, max_x, max_y);
   if (!map_received_) return;
 
@@ -282,7 +287,8 @@ void StaticLayer::updateCosts(Costmap2D& master_grid, int min_i, int min_j, int 
   }
   const double inv = 1.0 / costmap_.getResolution();
   const double c = std::cos(map_yaw_), s = std::sin(map_yaw_);
-  auto toCell = [&](double wx, double wy, double& gx, double& gy) {
+  auto toCell = [&](double wx, double wy, double& gx, double& gy)
+  {
     double fx, fy;
     to_map.apply(wx, wy, fx, fy);
     fx -= costmap_.getOriginX();

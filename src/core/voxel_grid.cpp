@@ -17,7 +17,10 @@ void VoxelGrid::resize(unsigned int size_x, unsigned int size_y, unsigned int si
   data_.assign(static_cast<std::size_t>(size_x) * size_y, unknown_column_);
 }
 
-void VoxelGrid::reset() { std::fill(data_.begin(), data_.end(), unknown_column_); }
+void VoxelGrid::reset()
+{
+  std::fill(data_.begin(), data_.end(), unknown_column_);
+}
 
 void VoxelGrid::shift(int dx, int dy)
 {

@@ -53,8 +53,7 @@ void VoxelLayer::moveOrigin(double new_origin_x, double new_origin_y)
   voxels_.shift(dx, dy);
 }
 
-void VoxelLayer::raytraceFreespace(const Observation& obs, double* min_x, double* min_y, double* max_x,
-                                   double* max_y)
+void VoxelLayer::raytraceFreespace(const Observation& obs, double* min_x, double* min_y, double* max_x, double* max_y)
 {
   const double res = costmap_.getResolution(), zres = voxel_config_.z_resolution;
   const double gx0 = costmap_.getOriginX(), gy0 = costmap_.getOriginY(), gz0 = voxel_config_.origin_z;
@@ -64,8 +63,9 @@ void VoxelLayer::raytraceFreespace(const Observation& obs, double* min_x, double
   if (!(ox >= gx0 && ox < gx1 && oy >= gy0 && oy < gy1 && oz >= gz0 && oz < gz1))
   {
     context_->report(Severity::Warn, "origin_outside",
-                     name_ + ": a sensor origin is outside the voxel grid (x, y in the costmap, z in [origin_z, "
-                             "origin_z + z_voxels * z_resolution)), its rays clear nothing");
+                     name_ +
+                         ": a sensor origin is outside the voxel grid (x, y in the costmap, z in [origin_z, "
+                         "origin_z + z_voxels * z_resolution)), its rays clear nothing");
     return;
   }
   touch(ox, oy, min_x, min_y, max_x, max_y);
@@ -74,7 +74,8 @@ void VoxelLayer::raytraceFreespace(const Observation& obs, double* min_x, double
   uint8_t* grid = costmap_.data();
   const unsigned int mark_t = static_cast<unsigned int>(voxel_config_.mark_threshold);
   const unsigned int unknown_t = static_cast<unsigned int>(voxel_config_.unknown_threshold);
-  auto clear = [cols, grid, mark_t, unknown_t](unsigned int index, unsigned int z) {
+  auto clear = [cols, grid, mark_t, unknown_t](unsigned int index, unsigned int z)
+  {
     uint32_t& col = cols[index];
     const uint32_t bits = ((1u << 16) | 1u) << z;
     if ((col & bits) == 0) return;  // already free: the column's counts did not change
@@ -86,7 +87,8 @@ void VoxelLayer::raytraceFreespace(const Observation& obs, double* min_x, double
   const double lim_x = voxels_.sizeX() * (1.0 - 1e-9), lim_y = voxels_.sizeY() * (1.0 - 1e-9),
                lim_z = voxels_.sizeZ() * (1.0 - 1e-9);
   double ex_min = ox, ey_min = oy, ex_max = ox, ey_max = oy;
-  auto ray = [&](const Point3f& p) {
+  auto ray = [&](const Point3f& p)
+  {
     const double a = p.x - ox, b = p.y - oy, c = p.z - oz;
     const double d = std::sqrt(a * a + b * b + c * c);
     if (!(d > 0.0)) return;
@@ -110,8 +112,10 @@ void VoxelLayer::raytraceFreespace(const Observation& obs, double* min_x, double
     ex_max = std::max(ex_max, ex);
     ey_max = std::max(ey_max, ey);
   };
-  for (const Point3f& p : obs.points) ray(p);
-  for (const Point3f& p : obs.clear_only) ray(p);
+  for (const Point3f& p : obs.points)
+    ray(p);
+  for (const Point3f& p : obs.clear_only)
+    ray(p);
   touch(ex_min, ey_min, min_x, min_y, max_x, max_y);
   touch(ex_max, ey_max, min_x, min_y, max_x, max_y);
 }

@@ -88,8 +88,8 @@ public:
     // holds is refused before the pixels are allocated (a 30-byte file must not allocate 30 GB).
     const uint64_t min_bytes = ascii ? count : count * (maxval > 255 ? 2 : 1);
     if (pos_ > b_.size() || b_.size() - pos_ < min_bytes)
-      fail(path_, "truncated pixel data: " + std::to_string(b_.size() - std::min(pos_, b_.size())) +
-                      " bytes left, " + std::to_string(count) + " samples expected");
+      fail(path_, "truncated pixel data: " + std::to_string(b_.size() - std::min(pos_, b_.size())) + " bytes left, " +
+                      std::to_string(count) + " samples expected");
     img.pixels.resize(count);
 
     if (ascii)

@@ -15,21 +15,25 @@ int main(int argc, char** argv)
   ros::NodeHandle nh, pnh("~");
   const std::string topic = pnh.param<std::string>("topic", "/costmap_node/costmap");
   const std::string output = pnh.param<std::string>("output", "costmap.png");
-  const double wait = pnh.param("wait", 0.0);        // [s] to keep applying updates after the first grid
+  const double wait = pnh.param("wait", 0.0);         // [s] to keep applying updates after the first grid
   const double timeout = pnh.param("timeout", 30.0);  // [s] to wait for the first grid
 
   std::mutex mutex;
   nav_msgs::OccupancyGrid grid;
   bool have_grid = false;
   ros::Time first;
-  auto sub = nh.subscribe<nav_msgs::OccupancyGrid>(topic, 1, [&](const nav_msgs::OccupancyGrid::ConstPtr& msg) {
-    std::lock_guard<std::mutex> lock(mutex);
-    grid = *msg;
-    if (!have_grid) first = ros::Time::now();
-    have_grid = true;
-  });
+  auto sub = nh.subscribe<nav_msgs::OccupancyGrid>(topic, 1,
+                                                   [&](const nav_msgs::OccupancyGrid::ConstPtr& msg)
+                                                   {
+                                                     std::lock_guard<std::mutex> lock(mutex);
+                                                     grid = *msg;
+                                                     if (!have_grid) first = ros::Time::now();
+                                                     have_grid = true;
+                                                   });
   auto updates = nh.subscribe<map_msgs::OccupancyGridUpdate>(
-      topic + "_updates", 10, [&](const map_msgs::OccupancyGridUpdate::ConstPtr& u) {
+      topic + "_updates", 10,
+      [&](const map_msgs::OccupancyGridUpdate::ConstPtr& u)
+      {
         std::lock_guard<std::mutex> lock(mutex);
         if (!have_grid || u->x + u->width > grid.info.width || u->y + u->height > grid.info.height ||
             u->data.size() != static_cast<std::size_t>(u->width) * u->height)

@@ -46,36 +46,45 @@ int main(int argc, char** argv)
   ros::Time last_command;
   bool stale = true;
   ros::Publisher out = nh.advertise<geometry_msgs::Twist>("cmd_vel", 10);
-  auto limits = nh.subscribe<costmap_layers::MaxSpeed>(max_speed_topic, 1, [&](const costmap_layers::MaxSpeed::ConstPtr& m) {
-    std::lock_guard<std::mutex> lock(mutex);
-    if (const auto err = costmap_layers::checkMaxSpeed(m->max_speed))
-    {
-      ROS_ERROR_THROTTLE(5.0, "speed_limiter: dropped a MaxSpeed on %s: %s; keeping %.3f m/s", max_speed_topic.c_str(),
-                         err->c_str(), limit);
-      return;
-    }
-    limit = m->max_speed;
-  });
-  auto commands = nh.subscribe<geometry_msgs::Twist>("cmd_vel_in", 10, [&](const geometry_msgs::Twist::ConstPtr& m) {
-    const costmap_layers::Twist in = fromMsg(*m);
-    if (const auto err = costmap_layers::checkTwist(in))
-    {
-      ROS_ERROR_THROTTLE(5.0, "speed_limiter: dropped a command on cmd_vel_in: %s", err->c_str());
-      return;
-    }
-    std::lock_guard<std::mutex> lock(mutex);
-    out.publish(toMsg(costmap_layers::limitTwist(in, limit)));
-    last_command = ros::Time::now();
-    stale = false;
-  });
-  auto watchdog = nh.createTimer(ros::Duration(0.05), [&](const ros::TimerEvent&) {
-    std::lock_guard<std::mutex> lock(mutex);
-    if (stale || (ros::Time::now() - last_command).toSec() <= cfg.command_timeout) return;
-    stale = true;
-    if (cfg.publish_zero_when_stale) out.publish(geometry_msgs::Twist());
-    ROS_WARN("speed_limiter: no command on cmd_vel_in for %.2f s: %s", cfg.command_timeout,
-             cfg.publish_zero_when_stale ? "published a zero command" : "stopped publishing");
-  });
+  auto limits = nh.subscribe<costmap_layers::MaxSpeed>(
+      max_speed_topic, 1,
+      [&](const costmap_layers::MaxSpeed::ConstPtr& m)
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (const auto err = costmap_layers::checkMaxSpeed(m->max_speed))
+        {
+          ROS_ERROR_THROTTLE(5.0, "speed_limiter: dropped a MaxSpeed on %s: %s; keeping %.3f m/s",
+                             max_speed_topic.c_str(), err->c_str(), limit);
+          return;
+        }
+        limit = m->max_speed;
+      });
+  auto commands = nh.subscribe<geometry_msgs::Twist>(
+      "cmd_vel_in", 10,
+      [&](const geometry_msgs::Twist::ConstPtr& m)
+      {
+        const costmap_layers::Twist in = fromMsg(*m);
+        if (const auto err = costmap_layers::checkTwist(in))
+        {
+          ROS_ERROR_THROTTLE(5.0, "speed_limiter: dropped a command on cmd_vel_in: %s", err->c_str());
+          return;
+        }
+        std::lock_guard<std::mutex> lock(mutex);
+        out.publish(toMsg(costmap_layers::limitTwist(in, limit)));
+        last_command = ros::Time::now();
+        stale = false;
+      });
+  auto watchdog =
+      nh.createTimer(ros::Duration(0.05),
+                     [&](const ros::TimerEvent&)
+                     {
+                       std::lock_guard<std::mutex> lock(mutex);
+                       if (stale || (ros::Time::now() - last_command).toSec() <= cfg.command_timeout) return;
+                       stale = true;
+                       if (cfg.publish_zero_when_stale) out.publish(geometry_msgs::Twist());
+                       ROS_WARN("speed_limiter: no command on cmd_vel_in for %.2f s: %s", cfg.command_timeout,
+                                cfg.publish_zero_when_stale ? "published a zero command" : "stopped publishing");
+                     });
   ros::spin();
   return 0;
 }

@@ -30,7 +30,8 @@ costmap_layers::SpeedLimitsData fromMsg(const costmap_layers::SpeedLimits& msg)
   d.frame_id = msg.header.frame_id;
   d.stamp_ns = msg.header.stamp.toNSec();
   d.limits.reserve(msg.limits.size());
-  for (const auto& l : msg.limits) d.limits.push_back({l.area_id, l.max_speed});
+  for (const auto& l : msg.limits)
+    d.limits.push_back({l.area_id, l.max_speed});
   return d;
 }
 
@@ -71,7 +72,8 @@ costmap_layers::PointCloud2Data fromMsg(const sensor_msgs::PointCloud2& msg)
   d.stamp_ns = msg.header.stamp.toNSec();
   d.height = msg.height;
   d.width = msg.width;
-  for (const auto& f : msg.fields) d.fields.push_back({f.name, f.offset, f.datatype, f.count});
+  for (const auto& f : msg.fields)
+    d.fields.push_back({f.name, f.offset, f.datatype, f.count});
   d.is_bigendian = msg.is_bigendian;
   d.point_step = msg.point_step;
   d.row_step = msg.row_step;
@@ -98,8 +100,8 @@ costmap_layers::Transform3D fromMsg(const geometry_msgs::Transform& msg)
   const auto& q = msg.rotation;
   const double n = std::sqrt(q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w);
   const double s = n > 0.0 ? 1.0 / n : 1.0;
-  return costmap_layers::Transform3D::fromQuaternion(msg.translation.x, msg.translation.y, msg.translation.z,
-                                                     q.x * s, q.y * s, q.z * s, n > 0.0 ? q.w * s : 1.0);
+  return costmap_layers::Transform3D::fromQuaternion(msg.translation.x, msg.translation.y, msg.translation.z, q.x * s,
+                                                     q.y * s, q.z * s, n > 0.0 ? q.w * s : 1.0);
 }
 
 void toOccupancyGrid(const costmap_layers::Costmap2D& costmap, const std::string& frame, const ros::Time& stamp,
@@ -118,7 +120,8 @@ void toOccupancyGrid(const costmap_layers::Costmap2D& costmap, const std::string
   const auto& table = costmap_layers::costTranslationTable();
   msg.data.resize(costmap.cellCount());
   const uint8_t* cells = costmap.data();
-  for (std::size_t k = 0; k < msg.data.size(); ++k) msg.data[k] = table[cells[k]];
+  for (std::size_t k = 0; k < msg.data.size(); ++k)
+    msg.data[k] = table[cells[k]];
 }
 
 void toOccupancyGridUpdate(const costmap_layers::Costmap2D& costmap, const costmap_layers::CellWindow& window,
@@ -136,7 +139,8 @@ void toOccupancyGridUpdate(const costmap_layers::Costmap2D& costmap, const costm
   for (int j = window.y0; j < window.yn; ++j)
   {
     const uint8_t* row = costmap.data() + costmap.getIndex(static_cast<unsigned>(window.x0), static_cast<unsigned>(j));
-    for (uint32_t i = 0; i < msg.width; ++i) msg.data[k++] = table[row[i]];
+    for (uint32_t i = 0; i < msg.width; ++i)
+      msg.data[k++] = table[row[i]];
   }
 }
 
@@ -144,23 +148,30 @@ ParamValue fromXmlRpc(XmlRpc::XmlRpcValue& value)
 {
   switch (value.getType())
   {
-    case XmlRpc::XmlRpcValue::TypeBoolean: return ParamValue::makeBool(static_cast<bool>(value));
-    case XmlRpc::XmlRpcValue::TypeInt: return ParamValue::makeInt(static_cast<int>(value));
-    case XmlRpc::XmlRpcValue::TypeDouble: return ParamValue::makeDouble(static_cast<double>(value));
-    case XmlRpc::XmlRpcValue::TypeString: return ParamValue::makeString(static_cast<std::string>(value));
+    case XmlRpc::XmlRpcValue::TypeBoolean:
+      return ParamValue::makeBool(static_cast<bool>(value));
+    case XmlRpc::XmlRpcValue::TypeInt:
+      return ParamValue::makeInt(static_cast<int>(value));
+    case XmlRpc::XmlRpcValue::TypeDouble:
+      return ParamValue::makeDouble(static_cast<double>(value));
+    case XmlRpc::XmlRpcValue::TypeString:
+      return ParamValue::makeString(static_cast<std::string>(value));
     case XmlRpc::XmlRpcValue::TypeArray:
     {
       ParamValue list = ParamValue::makeList();
-      for (int i = 0; i < value.size(); ++i) list.push(fromXmlRpc(value[i]));
+      for (int i = 0; i < value.size(); ++i)
+        list.push(fromXmlRpc(value[i]));
       return list;
     }
     case XmlRpc::XmlRpcValue::TypeStruct:
     {
       ParamValue map = ParamValue::makeMap();
-      for (auto it = value.begin(); it != value.end(); ++it) map.set(it->first, fromXmlRpc(it->second));
+      for (auto it = value.begin(); it != value.end(); ++it)
+        map.set(it->first, fromXmlRpc(it->second));
       return map;
     }
-    default: return ParamValue{};
+    default:
+      return ParamValue{};
   }
 }
 }  // namespace costmap_layers_ros

@@ -27,8 +27,11 @@ ParamValue readNamespace(const ros::NodeHandle& nh)
 }
 
 CostmapNode::CostmapNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
-  : nh_(nh), private_nh_(private_nh), log_(std::make_shared<ThrottledLog>()), tf_(ros::Duration(10.0)),
-    tf_listener_(tf_)
+    : nh_(nh),
+      private_nh_(private_nh),
+      log_(std::make_shared<ThrottledLog>()),
+      tf_(ros::Duration(10.0)),
+      tf_listener_(tf_)
 {
   try
   {
@@ -53,21 +56,24 @@ void CostmapNode::setUp()
   const costmap_layers::PluginLists lists = costmap_layers::parsePluginLists(params);
 
   costmap_ = std::make_unique<costmap_layers::LayeredCostmap>(config_.global_frame, config_.rolling_window,
-                                                                config_.track_unknown_space);
+                                                              config_.track_unknown_space);
   costmap_->resizeMap(config_.sizeInCellsX(), config_.sizeInCellsY(), config_.resolution, config_.origin_x,
                       config_.origin_y);
-  auto contexts = [&](const costmap_layers::PluginSpec& spec) {
+  auto contexts = [&](const costmap_layers::PluginSpec& spec)
+  {
     const ParamValue* sub = params.find(spec.name);
     return std::make_shared<RosLayerContext>(nh_, ros::NodeHandle(private_nh_, spec.name),
                                              sub != nullptr ? *sub : ParamValue::makeMap(), config_.global_frame,
                                              config_.transform_tolerance, tf_, log_);
   };
-  costmap_layers::loadPlugins(*costmap_, lists, [this](const std::string& type) { return factory_.create(type); },
-                              contexts);
+  costmap_layers::loadPlugins(
+      *costmap_, lists, [this](const std::string& type) { return factory_.create(type); }, contexts);
   for (const auto* list : {&lists.plugins, &lists.filters})
-    for (const auto& spec : *list) ROS_INFO("costmap: using plugin \"%s\" (%s)", spec.name.c_str(), spec.type.c_str());
+    for (const auto& spec : *list)
+      ROS_INFO("costmap: using plugin \"%s\" (%s)", spec.name.c_str(), spec.type.c_str());
   costmap_->setFootprint(config_.footprint.padded());
-  const LayerReconfigure::RunLocked run_locked = [this](const std::function<void()>& fn) {
+  const LayerReconfigure::RunLocked run_locked = [this](const std::function<void()>& fn)
+  {
     std::lock_guard<std::mutex> lock(update_mutex_);
     fn();
     costmap_->requestFullUpdate();
@@ -76,9 +82,9 @@ void CostmapNode::setUp()
     for (const auto& spec : *list)
     {
       const ParamValue* sub = params.find(spec.name);
-      reconfigure_.push_back(std::make_unique<LayerReconfigure>(ros::NodeHandle(private_nh_, spec.name),
-                                                                costmap_->findLayer(spec.name),
-                                                                sub != nullptr ? *sub : ParamValue::makeMap(), run_locked));
+      reconfigure_.push_back(
+          std::make_unique<LayerReconfigure>(ros::NodeHandle(private_nh_, spec.name), costmap_->findLayer(spec.name),
+                                             sub != nullptr ? *sub : ParamValue::makeMap(), run_locked));
     }
 
   costmap_pub_ = private_nh_.advertise<nav_msgs::OccupancyGrid>(
@@ -86,19 +92,21 @@ void CostmapNode::setUp()
   update_pub_ = private_nh_.advertise<map_msgs::OccupancyGridUpdate>("costmap_updates", 1);
   footprint_pub_ = private_nh_.advertise<geometry_msgs::PolygonStamped>("footprint", 1);
   clear_srv_ = private_nh_.advertiseService<std_srvs::Empty::Request, std_srvs::Empty::Response>(
-      "clear", [this](std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+      "clear",
+      [this](std_srvs::Empty::Request&, std_srvs::Empty::Response&)
+      {
         std::lock_guard<std::mutex> lock(update_mutex_);
         const int n = costmap_layers::resetClearableLayers(*costmap_);
         ROS_INFO("costmap: cleared %d clearable layer(s)", n);
         return true;
       });
   clear_around_srv_ = private_nh_.advertiseService<std_srvs::Empty::Request, std_srvs::Empty::Response>(
-      "clear_around_robot", [this](std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+      "clear_around_robot",
+      [this](std_srvs::Empty::Request&, std_srvs::Empty::Response&)
+      {
         std::lock_guard<std::mutex> lock(update_mutex_);
-        const int n =
-            costmap_layers::clearClearableLayersAround(*costmap_, last_x_, last_y_, config_.reset_distance);
-        ROS_INFO("costmap: cleared %d clearable layer(s) outside %.2f m around the robot", n,
-                 config_.reset_distance);
+        const int n = costmap_layers::clearClearableLayersAround(*costmap_, last_x_, last_y_, config_.reset_distance);
+        ROS_INFO("costmap: cleared %d clearable layer(s) outside %.2f m around the robot", n, config_.reset_distance);
         return true;
       });
 }
@@ -113,7 +121,8 @@ CostmapNode::~CostmapNode()
 std::optional<costmap_layers::Transform2D> CostmapNode::robotPose()
 {
   std::string error;
-  auto pose = lookupTransform2D(tf_, config_.global_frame, config_.robot_base_frame, config_.transform_tolerance, &error);
+  auto pose =
+      lookupTransform2D(tf_, config_.global_frame, config_.robot_base_frame, config_.transform_tolerance, &error);
   if (!pose)
     log_->log(costmap_layers::Severity::Warn, "robot_pose",
               "costmap: cannot get the robot pose (" + config_.robot_base_frame + " in " + config_.global_frame +
@@ -160,7 +169,8 @@ bool CostmapNode::updateOnce()
     const bool geometry_changed = grid.getSizeInCellsX() != last_size_x_ || grid.getSizeInCellsY() != last_size_y_ ||
                                   grid.getOriginX() != last_origin_x_ || grid.getOriginY() != last_origin_y_ ||
                                   grid.getResolution() != last_resolution_;
-    publish(!published_once_ || geometry_changed || config_.always_send_full_costmap || new_subscriber_.exchange(false));
+    publish(!published_once_ || geometry_changed || config_.always_send_full_costmap ||
+            new_subscriber_.exchange(false));
     last_publish_ = ros::WallTime::now();
   }
   return true;
@@ -194,8 +204,8 @@ void CostmapNode::publish(bool full)
 void CostmapNode::run()
 {
   // As costmap_2d does: wait for the robot's transform before the first update, saying so.
-  while (ros::ok() && !tf_.canTransform(config_.global_frame, config_.robot_base_frame, ros::Time(0),
-                                        ros::Duration(0.1)))
+  while (ros::ok() &&
+         !tf_.canTransform(config_.global_frame, config_.robot_base_frame, ros::Time(0), ros::Duration(0.1)))
     log_->log(costmap_layers::Severity::Info, "waiting_for_tf",
               "costmap: waiting for the transform " + config_.robot_base_frame + " -> " + config_.global_frame);
   const double period = 1.0 / config_.update_frequency;

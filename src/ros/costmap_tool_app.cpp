@@ -86,7 +86,8 @@ ToolArgs parseArgs(const std::vector<std::string>& args)
       catch (const std::exception&)
       {
       }
-      if (used != v.size() || n < 1 || n > 100000) throw UsageError("--repeat expects a count in 1..100000 (got \"" + v + "\")");
+      if (used != v.size() || n < 1 || n > 100000)
+        throw UsageError("--repeat expects a count in 1..100000 (got \"" + v + "\")");
       a.repeat = static_cast<int>(n);
     }
     else if (flag == "--pose")
@@ -115,8 +116,11 @@ class FileContext : public LayerContext
 {
 public:
   FileContext(std::string name, ParamValue params, std::string global_frame, double tolerance, std::ostream& err)
-    : name_(std::move(name)), params_(std::move(params)), global_frame_(std::move(global_frame)),
-      tolerance_(tolerance), err_(err)
+      : name_(std::move(name)),
+        params_(std::move(params)),
+        global_frame_(std::move(global_frame)),
+        tolerance_(tolerance),
+        err_(err)
   {
   }
   const ParamValue& params() const override { return params_; }
@@ -126,7 +130,10 @@ public:
   {
     grids.push_back({kind, std::move(cb)});
   }
-  void subscribeSpeedLimits(const std::string&, SpeedLimitsCallback cb) override { speed_limits.push_back(std::move(cb)); }
+  void subscribeSpeedLimits(const std::string&, SpeedLimitsCallback cb) override
+  {
+    speed_limits.push_back(std::move(cb));
+  }
   MaxSpeedPublisher advertiseMaxSpeed(const std::string&) override
   {
     publishes_speed = true;
@@ -142,9 +149,9 @@ public:
   }
   uint64_t nowNs() const override
   {
-    return static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(
-                                     std::chrono::system_clock::now().time_since_epoch())
-                                     .count());
+    return static_cast<uint64_t>(
+        std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch())
+            .count());
   }
   void report(Severity severity, const std::string& key, const std::string& message) override
   {
@@ -213,7 +220,8 @@ int run(const ToolArgs& a, std::ostream& out, std::ostream& err)
 
   PluginFactory factory;
   std::map<std::string, std::shared_ptr<FileContext>> contexts;
-  auto costmap = std::make_unique<LayeredCostmap>(config.global_frame, config.rolling_window, config.track_unknown_space);
+  auto costmap =
+      std::make_unique<LayeredCostmap>(config.global_frame, config.rolling_window, config.track_unknown_space);
   // Declared after the factory and destroyed first, while the plugin library is loaded.
   struct Release
   {
@@ -223,14 +231,16 @@ int run(const ToolArgs& a, std::ostream& out, std::ostream& err)
 
   // The map sets the master grid, as a static map does.
   costmap->resizeMap(map->width, map->height, map->resolution, map->origin_x, map->origin_y);
-  loadPlugins(*costmap, lists, [&factory](const std::string& type) { return factory.create(type); },
-              [&](const PluginSpec& spec) {
-                const ParamValue* sub = ns->find(spec.name);
-                auto ctx = std::make_shared<FileContext>(spec.name, sub ? *sub : ParamValue::makeMap(),
-                                                         config.global_frame, config.transform_tolerance, err);
-                contexts[spec.name] = ctx;
-                return ctx;
-              });
+  loadPlugins(
+      *costmap, lists, [&factory](const std::string& type) { return factory.create(type); },
+      [&](const PluginSpec& spec)
+      {
+        const ParamValue* sub = ns->find(spec.name);
+        auto ctx = std::make_shared<FileContext>(spec.name, sub ? *sub : ParamValue::makeMap(), config.global_frame,
+                                                 config.transform_tolerance, err);
+        contexts[spec.name] = ctx;
+        return ctx;
+      });
   const Footprint footprint = config.footprint.padded();
   costmap->setFootprint(footprint);
 
@@ -264,16 +274,19 @@ int run(const ToolArgs& a, std::ostream& out, std::ostream& err)
     if (!taken) throw std::runtime_error("--mask names a plugin that takes no mask");
   }
   for (const auto& [ctx, limits] : features)
-    for (auto& cb : ctx->speed_limits) cb(limits);
+    for (auto& cb : ctx->speed_limits)
+      cb(limits);
 
-  auto deliverMaps = [&] {
+  auto deliverMaps = [&]
+  {
     for (auto& [name, ctx] : contexts)
       for (auto& sub : ctx->grids)
         if (sub.kind == GridKind::Map) sub.cb(map);
   };
   deliverMaps();
 
-  auto pose = [&](double& x, double& y, double& yaw) {
+  auto pose = [&](double& x, double& y, double& yaw)
+  {
     const Costmap2D& g = costmap->getCostmap();
     x = a.has_pose ? a.x : g.getOriginX() + g.getSizeInMetersX() / 2;
     y = a.has_pose ? a.y : g.getOriginY() + g.getSizeInMetersY() / 2;

@@ -16,14 +16,21 @@ const char* typeName(ParamValue::Type t)
 {
   switch (t)
   {
-    case ParamValue::Type::Bool: return "bool";
-    case ParamValue::Type::Int: return "int";
-    case ParamValue::Type::Double: return "double";
-    default: return "str";
+    case ParamValue::Type::Bool:
+      return "bool";
+    case ParamValue::Type::Int:
+      return "int";
+    case ParamValue::Type::Double:
+      return "double";
+    default:
+      return "str";
   }
 }
 
-double clampLimit(double v) { return std::max(-1e9, std::min(1e9, v)); }
+double clampLimit(double v)
+{
+  return std::max(-1e9, std::min(1e9, v));
+}
 
 dynamic_reconfigure::GroupState defaultGroup()
 {
@@ -38,7 +45,7 @@ dynamic_reconfigure::GroupState defaultGroup()
 
 LayerReconfigure::LayerReconfigure(ros::NodeHandle layer_nh, std::shared_ptr<costmap_layers::Layer> layer,
                                    ParamValue params, RunLocked run_locked)
-  : nh_(std::move(layer_nh)), layer_(std::move(layer)), params_(std::move(params)), run_locked_(std::move(run_locked))
+    : nh_(std::move(layer_nh)), layer_(std::move(layer)), params_(std::move(params)), run_locked_(std::move(run_locked))
 {
   descriptions_ = nh_.advertise<dynamic_reconfigure::ConfigDescription>("parameter_descriptions", 1, true);
   updates_ = nh_.advertise<dynamic_reconfigure::Config>("parameter_updates", 1, true);
@@ -69,7 +76,8 @@ dynamic_reconfigure::Config LayerReconfigure::toConfig(const std::vector<ParamSp
       {
         dynamic_reconfigure::IntParameter p;
         p.name = s.name;
-        p.value = which < 0 ? static_cast<int>(s.min) : (which > 0 ? static_cast<int>(s.max) : static_cast<int>(v.asInt()));
+        p.value =
+            which < 0 ? static_cast<int>(s.min) : (which > 0 ? static_cast<int>(s.max) : static_cast<int>(v.asInt()));
         c.ints.push_back(p);
         break;
       }
@@ -110,9 +118,13 @@ dynamic_reconfigure::ConfigDescription LayerReconfigure::describe(const std::vec
     p.name = s.name;
     p.type = typeName(s.type);
     p.level = 0;
-    p.description = s.choices.empty() ? s.name : s.name + " (one of: " + [&] {
+    p.description = s.choices.empty() ? s.name
+                                      : s.name + " (one of: " +
+                                            [&]
+    {
       std::string list;
-      for (const auto& c : s.choices) list += (list.empty() ? "" : ", ") + c;
+      for (const auto& c : s.choices)
+        list += (list.empty() ? "" : ", ") + c;
       return list;
     }() + ")";
     p.edit_method = "";
@@ -131,14 +143,17 @@ bool LayerReconfigure::onSet(dynamic_reconfigure::Reconfigure::Request& req,
   std::lock_guard<std::mutex> lock(mutex_);
   const auto specs = layer_->tunableParameters(params_);
   ParamValue next = params_.isMap() ? params_ : ParamValue::makeMap();
-  auto known = [&specs](const std::string& name) {
-    return std::any_of(specs.begin(), specs.end(), [&name](const ParamSpec& s) { return s.name == name; });
-  };
+  auto known = [&specs](const std::string& name)
+  { return std::any_of(specs.begin(), specs.end(), [&name](const ParamSpec& s) { return s.name == name; }); };
   std::string unknown;
-  for (const auto& p : req.config.bools) known(p.name) ? (void)next.set(p.name, ParamValue::makeBool(p.value)) : (void)(unknown += " " + p.name);
-  for (const auto& p : req.config.ints) known(p.name) ? (void)next.set(p.name, ParamValue::makeInt(p.value)) : (void)(unknown += " " + p.name);
-  for (const auto& p : req.config.doubles) known(p.name) ? (void)next.set(p.name, ParamValue::makeDouble(p.value)) : (void)(unknown += " " + p.name);
-  for (const auto& p : req.config.strs) known(p.name) ? (void)next.set(p.name, ParamValue::makeString(p.value)) : (void)(unknown += " " + p.name);
+  for (const auto& p : req.config.bools)
+    known(p.name) ? (void)next.set(p.name, ParamValue::makeBool(p.value)) : (void)(unknown += " " + p.name);
+  for (const auto& p : req.config.ints)
+    known(p.name) ? (void)next.set(p.name, ParamValue::makeInt(p.value)) : (void)(unknown += " " + p.name);
+  for (const auto& p : req.config.doubles)
+    known(p.name) ? (void)next.set(p.name, ParamValue::makeDouble(p.value)) : (void)(unknown += " " + p.name);
+  for (const auto& p : req.config.strs)
+    known(p.name) ? (void)next.set(p.name, ParamValue::makeString(p.value)) : (void)(unknown += " " + p.name);
   if (!unknown.empty())
     ROS_ERROR("%s: ignored parameters that cannot change at run time:%s", layer_->getName().c_str(), unknown.c_str());
   try

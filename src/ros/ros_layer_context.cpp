@@ -1,11 +1,11 @@
 #include "costmap_layers/ros/ros_layer_context.hpp"
 
 #include <map_msgs/OccupancyGridUpdate.h>
-#include <nav_msgs/OccupancyGrid.h>
 #include <message_filters/subscriber.h>
+#include <nav_msgs/OccupancyGrid.h>
 #include <std_srvs/SetBool.h>
-#include <tf2_ros/message_filter.h>
 #include <tf2/exceptions.h>
+#include <tf2_ros/message_filter.h>
 
 #include <cmath>
 
@@ -28,23 +28,31 @@ void ThrottledLog::log(Severity severity, const std::string& key, const std::str
   }
   switch (severity)
   {
-    case Severity::Debug: ROS_DEBUG_STREAM(message); break;
-    case Severity::Info: ROS_INFO_STREAM(message); break;
-    case Severity::Warn: ROS_WARN_STREAM(message); break;
-    case Severity::Error: ROS_ERROR_STREAM(message); break;
+    case Severity::Debug:
+      ROS_DEBUG_STREAM(message);
+      break;
+    case Severity::Info:
+      ROS_INFO_STREAM(message);
+      break;
+    case Severity::Warn:
+      ROS_WARN_STREAM(message);
+      break;
+    case Severity::Error:
+      ROS_ERROR_STREAM(message);
+      break;
   }
 }
 
 RosLayerContext::RosLayerContext(ros::NodeHandle public_nh, ros::NodeHandle private_nh,
                                  costmap_layers::ParamValue params, std::string global_frame,
                                  double transform_tolerance, tf2_ros::Buffer& tf, std::shared_ptr<ThrottledLog> log)
-  : public_nh_(std::move(public_nh))
-  , private_nh_(std::move(private_nh))
-  , params_(std::move(params))
-  , global_frame_(std::move(global_frame))
-  , transform_tolerance_(transform_tolerance)
-  , tf_(tf)
-  , log_(std::move(log))
+    : public_nh_(std::move(public_nh)),
+      private_nh_(std::move(private_nh)),
+      params_(std::move(params)),
+      global_frame_(std::move(global_frame)),
+      transform_tolerance_(transform_tolerance),
+      tf_(tf),
+      log_(std::move(log))
 {
 }
 
@@ -52,7 +60,9 @@ void RosLayerContext::subscribeGrid(const std::string& topic, costmap_layers::Gr
 {
   const std::string owner = private_nh_.getNamespace();
   subscribers_.push_back(public_nh_.subscribe<nav_msgs::OccupancyGrid>(
-      topic, 1, [cb, owner, topic, log = log_](const nav_msgs::OccupancyGrid::ConstPtr& msg) {
+      topic, 1,
+      [cb, owner, topic, log = log_](const nav_msgs::OccupancyGrid::ConstPtr& msg)
+      {
         try
         {
           cb(std::make_shared<const costmap_layers::OccupancyGridData>(fromMsg(*msg)));
@@ -68,7 +78,9 @@ void RosLayerContext::subscribeGridUpdates(const std::string& topic, costmap_lay
 {
   const std::string owner = private_nh_.getNamespace();
   subscribers_.push_back(public_nh_.subscribe<map_msgs::OccupancyGridUpdate>(
-      topic, 10, [cb, owner, topic, log = log_](const map_msgs::OccupancyGridUpdate::ConstPtr& msg) {
+      topic, 10,
+      [cb, owner, topic, log = log_](const map_msgs::OccupancyGridUpdate::ConstPtr& msg)
+      {
         try
         {
           cb(std::make_shared<const costmap_layers::OccupancyGridUpdateData>(fromMsg(*msg)));
@@ -84,7 +96,9 @@ void RosLayerContext::subscribeSpeedLimits(const std::string& topic, costmap_lay
 {
   const std::string owner = private_nh_.getNamespace();
   subscribers_.push_back(public_nh_.subscribe<costmap_layers::SpeedLimits>(
-      topic, 1, [cb, owner, topic, log = log_](const costmap_layers::SpeedLimits::ConstPtr& msg) {
+      topic, 1,
+      [cb, owner, topic, log = log_](const costmap_layers::SpeedLimits::ConstPtr& msg)
+      {
         try
         {
           cb(std::make_shared<const costmap_layers::SpeedLimitsData>(fromMsg(*msg)));
@@ -107,7 +121,7 @@ struct FilteredInput
   message_filters::Subscriber<Msg> subscriber;
   tf2_ros::MessageFilter<Msg> filter;
   FilteredInput(ros::NodeHandle& nh, const std::string& topic, tf2_ros::Buffer& tf, const std::string& target)
-    : subscriber(nh, topic, 5), filter(subscriber, tf, target, kQueue, nh)
+      : subscriber(nh, topic, 5), filter(subscriber, tf, target, kQueue, nh)
   {
   }
 };
@@ -122,29 +136,32 @@ void RosLayerContext::subscribeSensor(const std::string& topic, const std::strin
   const std::string global = global_frame_;
   tf2_ros::Buffer& tf = tf_;
   auto log = log_;
-  input->filter.registerCallback([=, &tf](const typename Msg::ConstPtr& msg) {
-    try
-    {
-      costmap_layers::SensorPose pose;
-      const std::string& frame = msg->header.frame_id;
-      pose.to_global = fromMsg(tf.lookupTransform(global, frame, msg->header.stamp).transform);
-      const std::string origin_frame = sensor_frame.empty() ? frame : sensor_frame;
-      const auto origin = tf.lookupTransform(global, origin_frame, msg->header.stamp, ros::Duration(0.1));
-      pose.origin_x = origin.transform.translation.x;
-      pose.origin_y = origin.transform.translation.y;
-      pose.origin_z = origin.transform.translation.z;
-      cb(std::make_shared<const Reading>(fromMsg(*msg)), pose);
-    }
-    catch (const std::exception& e)
-    {
-      log->log(Severity::Warn, owner + topic + "/tf",
-               owner + ": dropped a reading on " + topic + " (frame " + msg->header.frame_id + "): " + e.what());
-    }
-  });
+  input->filter.registerCallback(
+      [=, &tf](const typename Msg::ConstPtr& msg)
+      {
+        try
+        {
+          costmap_layers::SensorPose pose;
+          const std::string& frame = msg->header.frame_id;
+          pose.to_global = fromMsg(tf.lookupTransform(global, frame, msg->header.stamp).transform);
+          const std::string origin_frame = sensor_frame.empty() ? frame : sensor_frame;
+          const auto origin = tf.lookupTransform(global, origin_frame, msg->header.stamp, ros::Duration(0.1));
+          pose.origin_x = origin.transform.translation.x;
+          pose.origin_y = origin.transform.translation.y;
+          pose.origin_z = origin.transform.translation.z;
+          cb(std::make_shared<const Reading>(fromMsg(*msg)), pose);
+        }
+        catch (const std::exception& e)
+        {
+          log->log(Severity::Warn, owner + topic + "/tf",
+                   owner + ": dropped a reading on " + topic + " (frame " + msg->header.frame_id + "): " + e.what());
+        }
+      });
   input->filter.registerFailureCallback(
-      [=](const typename Msg::ConstPtr& msg, tf2_ros::filter_failure_reasons::FilterFailureReason reason) {
+      [=](const typename Msg::ConstPtr& msg, tf2_ros::filter_failure_reasons::FilterFailureReason reason)
+      {
         const char* why = reason == tf2_ros::filter_failure_reasons::EmptyFrameID ? "it has no frame_id"
-                                                                                   : "no transform arrived in time";
+                                                                                  : "no transform arrived in time";
         log->log(Severity::Warn, owner + topic + "/tf",
                  owner + ": dropped a reading on " + topic + ": cannot transform frame '" + msg->header.frame_id +
                      "' into '" + global + "' (" + why + ")");
@@ -175,7 +192,8 @@ costmap_layers::MaxSpeedPublisher RosLayerContext::advertiseMaxSpeed(const std::
   publishers_.push_back(public_nh_.advertise<costmap_layers::MaxSpeed>(topic, 1, true));
   ros::Publisher pub = publishers_.back();
   const std::string frame = global_frame_;
-  return [pub, frame](double max_speed) {
+  return [pub, frame](double max_speed)
+  {
     costmap_layers::MaxSpeed msg;
     msg.header.frame_id = frame;
     msg.header.stamp = ros::Time::now();
@@ -187,7 +205,9 @@ costmap_layers::MaxSpeedPublisher RosLayerContext::advertiseMaxSpeed(const std::
 void RosLayerContext::advertiseToggle(std::function<void(bool)> cb)
 {
   services_.push_back(private_nh_.advertiseService<std_srvs::SetBool::Request, std_srvs::SetBool::Response>(
-      "toggle", [cb](std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res) {
+      "toggle",
+      [cb](std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res)
+      {
         cb(req.data);
         res.success = true;
         res.message = req.data ? "enabled" : "disabled";
@@ -203,15 +223,14 @@ std::optional<costmap_layers::Transform2D> RosLayerContext::lookupTransform(cons
 }
 
 std::optional<costmap_layers::Transform2D> lookupTransform2D(const tf2_ros::Buffer& tf, const std::string& target_frame,
-                                                             const std::string& source_frame,
-                                                             double tolerance, std::string* error)
+                                                             const std::string& source_frame, double tolerance,
+                                                             std::string* error)
 {
   try
   {
     const geometry_msgs::TransformStamped t = tf.lookupTransform(target_frame, source_frame, ros::Time(0));
     // A zero stamp means only static transforms: those never go stale.
-    if (!t.header.stamp.isZero() && (ros::Time::now() - t.header.stamp).toSec() > tolerance &&
-        tolerance > 0.0)
+    if (!t.header.stamp.isZero() && (ros::Time::now() - t.header.stamp).toSec() > tolerance && tolerance > 0.0)
     {
       if (error)
         *error = "transform " + source_frame + " -> " + target_frame + " is " +

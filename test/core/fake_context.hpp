@@ -18,7 +18,7 @@ class FakeContext : public LayerContext
 {
 public:
   explicit FakeContext(ParamValue params = ParamValue::makeMap(), std::string global_frame = "map")
-    : params_(std::move(params)), global_frame_(std::move(global_frame))
+      : params_(std::move(params)), global_frame_(std::move(global_frame))
   {
   }
 
@@ -102,7 +102,8 @@ public:
   void publishSpeedLimits(const SpeedLimitsData& limits)
   {
     auto shared = std::make_shared<const SpeedLimitsData>(limits);
-    for (auto& s : speed_subs) s.cb(shared);
+    for (auto& s : speed_subs)
+      s.cb(shared);
   }
   /// Number of reports whose text contains needle.
   int countReports(const std::string& needle) const

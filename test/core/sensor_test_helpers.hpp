@@ -37,7 +37,8 @@ inline PointCloud2Data makeCloud(const std::vector<XYZ>& pts, bool float64 = fal
   c.row_step = c.point_step * c.width;
   c.is_bigendian = big_endian;
   c.data.assign(static_cast<std::size_t>(c.row_step), 0);
-  auto put = [&](std::size_t at, double v) {
+  auto put = [&](std::size_t at, double v)
+  {
     uint8_t bytes[8];
     if (float64)
       std::memcpy(bytes, &v, 8);
@@ -50,7 +51,8 @@ inline PointCloud2Data makeCloud(const std::vector<XYZ>& pts, bool float64 = fal
     uint8_t first;
     std::memcpy(&first, &one, 1);
     const bool host_big = first == 0;
-    for (uint32_t k = 0; k < size; ++k) c.data[at + k] = bytes[host_big == big_endian ? k : size - 1 - k];
+    for (uint32_t k = 0; k < size; ++k)
+      c.data[at + k] = bytes[host_big == big_endian ? k : size - 1 - k];
   };
   for (std::size_t i = 0; i < pts.size(); ++i)
   {
@@ -90,11 +92,24 @@ inline SensorPose poseAt(double x, double y, double z, double yaw = 0.0)
 inline ParamValue paramMap(std::initializer_list<std::pair<const char*, ParamValue>> items)
 {
   ParamValue p = ParamValue::makeMap();
-  for (const auto& it : items) p.set(it.first, it.second);
+  for (const auto& it : items)
+    p.set(it.first, it.second);
   return p;
 }
-inline ParamValue S(const std::string& s) { return ParamValue::makeString(s); }
-inline ParamValue D(double d) { return ParamValue::makeDouble(d); }
-inline ParamValue I(int64_t i) { return ParamValue::makeInt(i); }
-inline ParamValue B(bool b) { return ParamValue::makeBool(b); }
+inline ParamValue S(const std::string& s)
+{
+  return ParamValue::makeString(s);
+}
+inline ParamValue D(double d)
+{
+  return ParamValue::makeDouble(d);
+}
+inline ParamValue I(int64_t i)
+{
+  return ParamValue::makeInt(i);
+}
+inline ParamValue B(bool b)
+{
+  return ParamValue::makeBool(b);
+}
 }  // namespace costmap_layers_test

@@ -23,7 +23,8 @@ Costmap2D numberedGrid(unsigned int sx, unsigned int sy, double res = 1.0, doubl
 {
   Costmap2D g(sx, sy, res, ox, oy, 0);
   for (unsigned int y = 0; y < sy; ++y)
-    for (unsigned int x = 0; x < sx; ++x) g.setCost(x, y, static_cast<uint8_t>(1 + x + 10 * y));
+    for (unsigned int x = 0; x < sx; ++x)
+      g.setCost(x, y, static_cast<uint8_t>(1 + x + 10 * y));
   return g;
 }
 
@@ -32,7 +33,8 @@ std::vector<Cell> raytrace(const Costmap2D& g, unsigned int x0, unsigned int y0,
 {
   std::vector<Cell> cells;
   g.raytraceLine(
-      [&](unsigned int index) {
+      [&](unsigned int index)
+      {
         unsigned int mx, my;
         g.indexToCells(index, mx, my);
         cells.emplace_back(static_cast<int>(mx), static_cast<int>(my));
@@ -51,7 +53,8 @@ std::vector<Cell> walk(int x0, int y0, int x1, int y1)
 std::set<Cell> toSet(const std::vector<MapLocation>& cells)
 {
   std::set<Cell> s;
-  for (const auto& c : cells) s.emplace(static_cast<int>(c.x), static_cast<int>(c.y));
+  for (const auto& c : cells)
+    s.emplace(static_cast<int>(c.x), static_cast<int>(c.y));
   return s;
 }
 
@@ -75,7 +78,8 @@ TEST(Costmap2DCoords, ConstructorSetsGeometryAndDefault)
   EXPECT_DOUBLE_EQ(g.getSizeInMetersY(), 0.75);
   EXPECT_EQ(g.getDefaultValue(), 42);
   ASSERT_EQ(g.cellCount(), 12u);
-  for (std::size_t i = 0; i < g.cellCount(); ++i) EXPECT_EQ(g.data()[i], 42);
+  for (std::size_t i = 0; i < g.cellCount(); ++i)
+    EXPECT_EQ(g.data()[i], 42);
 }
 
 TEST(Costmap2DCoords, IndexIsRowMajor)
@@ -201,7 +205,8 @@ TEST(Costmap2DWindows, ResizeMapReallocatesWithDefault)
   EXPECT_DOUBLE_EQ(g.getOriginX(), 1.0);
   EXPECT_DOUBLE_EQ(g.getOriginY(), -2.0);
   ASSERT_EQ(g.cellCount(), 12u);
-  for (std::size_t i = 0; i < g.cellCount(); ++i) EXPECT_EQ(g.getCost(static_cast<unsigned>(i)), 9);
+  for (std::size_t i = 0; i < g.cellCount(); ++i)
+    EXPECT_EQ(g.getCost(static_cast<unsigned>(i)), 9);
 }
 
 TEST(Costmap2DWindows, ResetMapsSetsEverythingToDefault)
@@ -209,7 +214,8 @@ TEST(Costmap2DWindows, ResetMapsSetsEverythingToDefault)
   Costmap2D g = numberedGrid(4, 4);
   g.setDefaultValue(255);
   g.resetMaps();
-  for (std::size_t i = 0; i < g.cellCount(); ++i) EXPECT_EQ(g.getCost(static_cast<unsigned>(i)), 255);
+  for (std::size_t i = 0; i < g.cellCount(); ++i)
+    EXPECT_EQ(g.getCost(static_cast<unsigned>(i)), 255);
 }
 
 TEST(Costmap2DWindows, ResetMapWindowOnlyTouchesWindow)
@@ -237,7 +243,8 @@ TEST(Costmap2DWindows, ResetMapClampsToGridAndIgnoresEmptyWindows)
   h.resetMap(0, 2, 4, 1);  // inverted in y
   h.resetMap(5, 0, 9, 3);  // entirely right of the grid
   for (unsigned int y = 0; y < 3; ++y)
-    for (unsigned int x = 0; x < 4; ++x) EXPECT_EQ(h.getCost(x, y), 1 + x + 10 * y);
+    for (unsigned int x = 0; x < 4; ++x)
+      EXPECT_EQ(h.getCost(x, y), 1 + x + 10 * y);
 }
 
 TEST(Costmap2DWindows, FillWindowWritesValue)
@@ -245,7 +252,8 @@ TEST(Costmap2DWindows, FillWindowWritesValue)
   Costmap2D g(5, 5, 1.0, 0, 0, 3);
   g.fillWindow(0, 3, 2, 5, 200);
   for (unsigned int y = 0; y < 5; ++y)
-    for (unsigned int x = 0; x < 5; ++x) EXPECT_EQ(g.getCost(x, y), (x < 2 && y >= 3) ? 200 : 3);
+    for (unsigned int x = 0; x < 5; ++x)
+      EXPECT_EQ(g.getCost(x, y), (x < 2 && y >= 3) ? 200 : 3);
 }
 
 TEST(Costmap2DWindows, CopyWindowCopiesToDestinationOffset)
@@ -267,7 +275,8 @@ TEST(Costmap2DWindows, CopyWindowWholeGridAndExactFit)
   const Costmap2D src = numberedGrid(3, 2);
   Costmap2D dst(3, 2, 1.0, 0, 0, 0);
   ASSERT_TRUE(dst.copyWindow(src, 0, 0, 3, 2, 0, 0));
-  for (unsigned int i = 0; i < 6; ++i) EXPECT_EQ(dst.getCost(i), src.getCost(i));
+  for (unsigned int i = 0; i < 6; ++i)
+    EXPECT_EQ(dst.getCost(i), src.getCost(i));
 
   Costmap2D dst2(5, 5, 1.0, 0, 0, 0);
   ASSERT_TRUE(dst2.copyWindow(src, 0, 0, 3, 2, 2, 3));  // touches the upper right corner exactly
@@ -280,7 +289,8 @@ TEST(Costmap2DWindows, CopyWindowRefusesWindowsThatDoNotFit)
   const Costmap2D src = numberedGrid(5, 4);
   Costmap2D dst(4, 4, 1.0, 0, 0, 250);
   const Costmap2D before = dst;
-  auto unchanged = [&]() {
+  auto unchanged = [&]()
+  {
     for (unsigned int i = 0; i < dst.cellCount(); ++i)
       if (dst.getCost(i) != before.getCost(i)) return false;
     return true;
@@ -367,26 +377,29 @@ TEST(Costmap2DOrigin, MixedDirectionsAndFractionalShiftSnaps)
   h.updateOrigin(0.4, 0.9);  // less than a cell: nothing moves
   EXPECT_DOUBLE_EQ(h.getOriginX(), 0.0);
   EXPECT_DOUBLE_EQ(h.getOriginY(), 0.0);
-  for (unsigned int i = 0; i < h.cellCount(); ++i) EXPECT_EQ(h.getCost(i), before.getCost(i));
+  for (unsigned int i = 0; i < h.cellCount(); ++i)
+    EXPECT_EQ(h.getCost(i), before.getCost(i));
 }
 
 TEST(Costmap2DOrigin, ShiftLargerThanTheMapClearsEverything)
 {
-  for (const auto& shift : std::vector<std::pair<double, double>>{{10.0, 0.0}, {-7.0, 0.0}, {0.0, 50.0},
-                                                                   {-100.0, -100.0}, {3.0, -4.0}})
+  for (const auto& shift :
+       std::vector<std::pair<double, double>>{{10.0, 0.0}, {-7.0, 0.0}, {0.0, 50.0}, {-100.0, -100.0}, {3.0, -4.0}})
   {
     Costmap2D g = numberedGrid(5, 4);
     g.setDefaultValue(255);
     g.updateOrigin(shift.first, shift.second);
     EXPECT_DOUBLE_EQ(g.getOriginX(), shift.first);
     EXPECT_DOUBLE_EQ(g.getOriginY(), shift.second);
-    for (unsigned int i = 0; i < g.cellCount(); ++i) EXPECT_EQ(g.getCost(i), 255) << shift.first << "," << shift.second;
+    for (unsigned int i = 0; i < g.cellCount(); ++i)
+      EXPECT_EQ(g.getCost(i), 255) << shift.first << "," << shift.second;
   }
 }
 
 TEST(Costmap2DOrigin, ManyShiftsMatchNaiveComputation)
 {
-  const std::vector<std::pair<int, int>> shifts = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}, {3, -2}, {-4, 3}, {4, 4}, {-5, -1}};
+  const std::vector<std::pair<int, int>> shifts = {{1, 0},  {0, 1},  {-1, 0}, {0, -1},
+                                                   {3, -2}, {-4, 3}, {4, 4},  {-5, -1}};
   for (const auto& s : shifts)
   {
     const Costmap2D before = numberedGrid(7, 6, 0.25, -0.5, 0.75);
@@ -417,7 +430,8 @@ TEST(Costmap2DPolygons, OutlineOfTriangleIsConnectedAndHitsVertices)
   const std::vector<MapLocation> poly = {{2, 2}, {12, 5}, {4, 11}};
   g.polygonOutlineCells(poly, cells);
   const auto s = toSet(cells);
-  for (const auto& v : poly) EXPECT_EQ(s.count({static_cast<int>(v.x), static_cast<int>(v.y)}), 1u);
+  for (const auto& v : poly)
+    EXPECT_EQ(s.count({static_cast<int>(v.x), static_cast<int>(v.y)}), 1u);
   for (std::size_t k = 1; k < cells.size(); ++k)
   {
     const Cell a{static_cast<int>(cells[k - 1].x), static_cast<int>(cells[k - 1].y)};
@@ -442,7 +456,8 @@ TEST(Costmap2DPolygons, ConvexFillRectangle)
   g.convexFillCells({{1, 1}, {4, 1}, {4, 3}, {1, 3}}, cells);
   std::set<Cell> expected;
   for (int x = 1; x <= 4; ++x)
-    for (int y = 1; y <= 3; ++y) expected.emplace(x, y);
+    for (int y = 1; y <= 3; ++y)
+      expected.emplace(x, y);
   EXPECT_EQ(toSet(cells), expected);
   EXPECT_EQ(cells.size(), expected.size());  // no duplicates
 }
@@ -454,7 +469,8 @@ TEST(Costmap2DPolygons, ConvexFillTriangle)
   g.convexFillCells({{0, 0}, {4, 0}, {0, 4}}, cells);
   std::set<Cell> expected;
   for (int x = 0; x <= 4; ++x)
-    for (int y = 0; x + y <= 4; ++y) expected.emplace(x, y);
+    for (int y = 0; x + y <= 4; ++y)
+      expected.emplace(x, y);
   EXPECT_EQ(toSet(cells), expected);
   EXPECT_EQ(cells.size(), 15u);
 }
@@ -467,7 +483,8 @@ TEST(Costmap2DPolygons, ConvexFillContainsOutlineAndIsColumnConvex)
   g.polygonOutlineCells(poly, outline);
   g.convexFillCells(poly, fill);
   const auto f = toSet(fill), o = toSet(outline);
-  for (const auto& c : o) EXPECT_EQ(f.count(c), 1u);
+  for (const auto& c : o)
+    EXPECT_EQ(f.count(c), 1u);
   // Every filled column is one contiguous span bounded by outline cells.
   for (int x = 0; x < 30; ++x)
   {
@@ -505,10 +522,12 @@ TEST(Costmap2DPolygons, SetConvexPolygonCostRefusesVertexOutside)
   Costmap2D g(10, 10, 0.5, 0.0, 0.0, 0);
   const std::vector<Eigen::Vector2d> poly = {{0.6, 0.6}, {5.1, 0.6}, {2.1, 1.6}};  // 5.1 > 5.0: outside
   EXPECT_FALSE(g.setConvexPolygonCost(poly, 254));
-  for (unsigned int i = 0; i < g.cellCount(); ++i) EXPECT_EQ(g.getCost(i), 0);
+  for (unsigned int i = 0; i < g.cellCount(); ++i)
+    EXPECT_EQ(g.getCost(i), 0);
   const std::vector<Eigen::Vector2d> neg = {{-0.1, 0.6}, {2.0, 0.6}, {2.1, 1.6}};
   EXPECT_FALSE(g.setConvexPolygonCost(neg, 254));
-  for (unsigned int i = 0; i < g.cellCount(); ++i) EXPECT_EQ(g.getCost(i), 0);
+  for (unsigned int i = 0; i < g.cellCount(); ++i)
+    EXPECT_EQ(g.getCost(i), 0);
 }
 
 // ---------------------------------------------------------------- raytraceLine and walkLine
@@ -550,7 +569,7 @@ TEST(Costmap2DRaytrace, SameStartAndEndVisitsNothing)
 TEST(Costmap2DRaytrace, GeneralLinesAreConnectedAndStopBeforeTheEnd)
 {
   Costmap2D g(40, 40, 1.0, 0, 0);
-  const std::vector<std::pair<Cell, Cell>> lines = {{{3, 7}, {31, 12}},  {{31, 12}, {3, 7}}, {{20, 20}, {2, 39}},
+  const std::vector<std::pair<Cell, Cell>> lines = {{{3, 7}, {31, 12}},  {{31, 12}, {3, 7}},  {{20, 20}, {2, 39}},
                                                     {{0, 39}, {39, 0}},  {{17, 4}, {18, 35}}, {{10, 10}, {11, 10}},
                                                     {{39, 39}, {0, 30}}, {{5, 5}, {5, 6}}};
   for (const auto& l : lines)
@@ -562,7 +581,8 @@ TEST(Costmap2DRaytrace, GeneralLinesAreConnectedAndStopBeforeTheEnd)
     EXPECT_EQ(cells.front(), a);
     EXPECT_TRUE(adjacent8(cells.back(), b));
     EXPECT_EQ(std::count(cells.begin(), cells.end(), b), 0);
-    for (std::size_t k = 1; k < cells.size(); ++k) EXPECT_TRUE(adjacent8(cells[k - 1], cells[k]));
+    for (std::size_t k = 1; k < cells.size(); ++k)
+      EXPECT_TRUE(adjacent8(cells[k - 1], cells[k]));
     // Each visited cell lies within half a cell of the ideal line (Bresenham's guarantee, minor axis).
     for (const auto& c : cells)
     {
@@ -586,7 +606,8 @@ TEST(Costmap2DRaytrace, MaxLengthStopsEarly)
   const auto diag = raytrace(g, 0, 0, 6, 6, 3);
   ASSERT_EQ(diag.size(), expected);
   EXPECT_EQ(diag, (std::vector<Cell>{{0, 0}, {1, 1}}));
-  for (const auto& c : diag) EXPECT_LE(std::hypot(c.first, c.second), 3.0);
+  for (const auto& c : diag)
+    EXPECT_LE(std::hypot(c.first, c.second), 3.0);
 }
 
 TEST(Costmap2DRaytrace, MinLengthSkipsTheStart)
@@ -613,8 +634,8 @@ TEST(Costmap2DWalkLine, IncludesBothEnds)
 
 TEST(Costmap2DWalkLine, GeneralLinesAreConnected)
 {
-  const std::vector<std::pair<Cell, Cell>> lines = {{{0, 0}, {7, 3}}, {{7, 3}, {0, 0}}, {{-3, 5}, {4, -9}},
-                                                    {{2, 2}, {2, -6}}, {{10, 1}, {-10, 2}}};
+  const std::vector<std::pair<Cell, Cell>> lines = {
+      {{0, 0}, {7, 3}}, {{7, 3}, {0, 0}}, {{-3, 5}, {4, -9}}, {{2, 2}, {2, -6}}, {{10, 1}, {-10, 2}}};
   for (const auto& l : lines)
   {
     const auto cells = walk(l.first.first, l.first.second, l.second.first, l.second.second);
@@ -622,6 +643,7 @@ TEST(Costmap2DWalkLine, GeneralLinesAreConnected)
     ASSERT_EQ(static_cast<int>(cells.size()), major + 1);
     EXPECT_EQ(cells.front(), l.first);
     EXPECT_EQ(cells.back(), l.second);
-    for (std::size_t k = 1; k < cells.size(); ++k) EXPECT_TRUE(adjacent8(cells[k - 1], cells[k]));
+    for (std::size_t k = 1; k < cells.size(); ++k)
+      EXPECT_TRUE(adjacent8(cells[k - 1], cells[k]));
   }
 }

@@ -30,7 +30,10 @@ public:
   {
     useExtraBounds(x0, y0, x1, y1);
   }
-  void updateCosts(Costmap2D& master, int i0, int j0, int i1, int j1) override { updateWithMax(master, i0, j0, i1, j1); }
+  void updateCosts(Costmap2D& master, int i0, int j0, int i1, int j1) override
+  {
+    updateWithMax(master, i0, j0, i1, j1);
+  }
   void reset() override { costmap_.resetMaps(); }
   bool isClearable() override { return clearable_; }
 
@@ -76,9 +79,9 @@ TEST(CostmapClearing, AroundTheRobotKeepsTheSquare)
   Rig r;
   EXPECT_EQ(clearClearableLayersAround(r.lc, 10.5, 10.5, 3.0), 1);
   r.lc.updateMap(10.5, 10.5, 0.0);
-  EXPECT_EQ(r.lc.getCostmap().getCost(1, 1), FREE_SPACE);          // outside the 3 m square: cleared
-  EXPECT_EQ(r.lc.getCostmap().getCost(10, 10), LETHAL_OBSTACLE);   // inside: kept
-  EXPECT_EQ(r.lc.getCostmap().getCost(18, 18), LETHAL_OBSTACLE);   // not clearable: kept
+  EXPECT_EQ(r.lc.getCostmap().getCost(1, 1), FREE_SPACE);         // outside the 3 m square: cleared
+  EXPECT_EQ(r.lc.getCostmap().getCost(10, 10), LETHAL_OBSTACLE);  // inside: kept
+  EXPECT_EQ(r.lc.getCostmap().getCost(18, 18), LETHAL_OBSTACLE);  // not clearable: kept
   // The square is [9, 12) around (10.5, 10.5): cells 9..12 kept, 8 and 13 cleared.
   r.sensor->mark(8, 10);
   r.sensor->mark(9, 10);

@@ -63,7 +63,8 @@ OccupancyGridData makeMask(uint32_t w, uint32_t h, double res, double ox, double
   m.origin_y = oy;
   m.origin_yaw = yaw;
   m.data.resize(static_cast<std::size_t>(w) * h);
-  for (std::size_t k = 0; k < m.data.size(); ++k) m.data[k] = static_cast<int8_t>(k % 7 == 3 ? -1 : k % 100 + 1);
+  for (std::size_t k = 0; k < m.data.size(); ++k)
+    m.data[k] = static_cast<int8_t>(k % 7 == 3 ? -1 : k % 100 + 1);
   return m;
 }
 
@@ -76,8 +77,8 @@ std::shared_ptr<const OccupancyGridData> share(const OccupancyGridData& m)
 /// global frame -> mask frame (to_mask) -> relative to the mask origin, rotated by -origin_yaw ->
 /// divided by the mask resolution -> truncated. *ambiguous is set when the point lies within 1e-6
 /// cells of a mask cell edge (then either neighbour would be right).
-std::optional<int8_t> naiveValue(const Costmap2D& master, unsigned int i, unsigned int j,
-                                 const OccupancyGridData& mask, const Transform2D& to_mask, bool* ambiguous)
+std::optional<int8_t> naiveValue(const Costmap2D& master, unsigned int i, unsigned int j, const OccupancyGridData& mask,
+                                 const Transform2D& to_mask, bool* ambiguous)
 {
   const double wx = master.getOriginX() + (i + 0.5) * master.getResolution();
   const double wy = master.getOriginY() + (j + 0.5) * master.getResolution();
@@ -125,8 +126,10 @@ void expectRowsMatchNaive(const MaskMapping& m, const Costmap2D& master, const C
   std::vector<int16_t> source(mask.data.begin(), mask.data.end());
   std::vector<int16_t> scratch;
   m.forEachRow(copy, source.data(), mask.width, mask.height, static_cast<int16_t>(kSentinel), scratch,
-               [](uint8_t* cells, const int16_t* values, std::size_t n) {
-                 for (std::size_t k = 0; k < n; ++k) cells[k] = static_cast<uint8_t>(values[k]);
+               [](uint8_t* cells, const int16_t* values, std::size_t n)
+               {
+                 for (std::size_t k = 0; k < n; ++k)
+                   cells[k] = static_cast<uint8_t>(values[k]);
                });
   SCOPED_TRACE("forEachRow");
   expectMatchesNaive(copy, w, mask, to_mask);
@@ -144,8 +147,10 @@ void expectByteRowsMatchNaive(const MaskMapping& m, const Costmap2D& master, con
     Costmap2D copy = master;
     copy.fillWindow(0, 0, copy.getSizeInCellsX(), copy.getSizeInCellsY(), kSentinel);
     m.forEachRow(copy, source.data(), mask.width, mask.height, kSentinel, scratch,
-                 [](uint8_t* cells, const uint8_t* values, std::size_t n) {
-                   for (std::size_t k = 0; k < n; ++k) cells[k] = values[k];
+                 [](uint8_t* cells, const uint8_t* values, std::size_t n)
+                 {
+                   for (std::size_t k = 0; k < n; ++k)
+                     cells[k] = values[k];
                  });
     SCOPED_TRACE("forEachRow, bytes, pass " + std::to_string(pass));
     expectMatchesNaive(copy, w, mask, to_mask);
@@ -336,7 +341,7 @@ TEST(CostmapFilterBase, UpdatedWindowAfterMaskChangeThroughLayeredCostmap)
   r.filter->setMask(share(makeMask(2, 2, 1.0, 10.25, 10.25)));
   r.lc.updateMap(0, 0, 0);
   w = r.lc.getUpdatedBounds();
-  EXPECT_EQ(w.x0, 2);   // the old mask's extent ...
+  EXPECT_EQ(w.x0, 2);  // the old mask's extent ...
   EXPECT_EQ(w.y0, 3);
   EXPECT_EQ(w.xn, 13);  // ... united with the new one, [10.25, 12.25]: cells up to 12
   EXPECT_EQ(w.yn, 13);
@@ -409,7 +414,8 @@ TEST(CostmapFilterBase, ToggleOffThenNewMaskClearsTheOldMasksArea)
   r.filter->setMask(share(makeMask(2, 2, 1.0, 8.0, 8.0)));
   r.lc.updateMap(0, 0, 0);
   const Costmap2D& g = r.lc.getCostmap();
-  for (unsigned int i = 0; i < g.cellCount(); ++i) EXPECT_EQ(g.getCost(i), 0) << i;
+  for (unsigned int i = 0; i < g.cellCount(); ++i)
+    EXPECT_EQ(g.getCost(i), 0) << i;
 }
 
 // ---------------------------------------------------------------- transforms
@@ -434,7 +440,8 @@ TEST(CostmapFilterBase, MissingTransformWritesNothingAndReportsBothFrames)
   Costmap2D master(10, 10, 1.0, 0.0, 0.0, kSentinel);
   r.filter->updateCosts(master, 0, 0, 10, 10);
   EXPECT_EQ(r.filter->process_calls, 0);
-  for (unsigned int i = 0; i < master.cellCount(); ++i) EXPECT_EQ(master.getCost(i), kSentinel);
+  for (unsigned int i = 0; i < master.cellCount(); ++i)
+    EXPECT_EQ(master.getCost(i), kSentinel);
 
   // Once the transform exists, the filter works again.
   r.ctx->transforms[{"odom", "map"}] = Transform2D{};
@@ -458,7 +465,8 @@ TEST(CostmapFilterBase, NoMaskOrDisabledWritesNothing)
   EXPECT_EQ(r.filter->pose_calls, 0);
   r.filter->updateCosts(master, 0, 0, 6, 6);
   EXPECT_EQ(r.filter->process_calls, 0);
-  for (unsigned int i = 0; i < master.cellCount(); ++i) EXPECT_EQ(master.getCost(i), kSentinel);
+  for (unsigned int i = 0; i < master.cellCount(); ++i)
+    EXPECT_EQ(master.getCost(i), kSentinel);
 }
 
 TEST(CostmapFilterBase, TransformedMaskMatchesNaiveAndWindowIsClamped)
@@ -636,8 +644,8 @@ TEST(MaskMappingTest, RotatedTransformAndMask)
 TEST(MaskMappingTest, MaskEntirelyOutsideTheWindowTouchesNothing)
 {
   Costmap2D master(8, 8, 1.0, 0.0, 0.0, kSentinel);
-  for (const auto& mask : {makeMask(3, 3, 1.0, 50.0, 0.0), makeMask(3, 3, 0.3, -20.0, 2.0),
-                           makeMask(3, 3, 0.3, 2.0, 40.0, 0.7)})
+  for (const auto& mask :
+       {makeMask(3, 3, 1.0, 50.0, 0.0), makeMask(3, 3, 0.3, -20.0, 2.0), makeMask(3, 3, 0.3, 2.0, 40.0, 0.7)})
   {
     MaskMapping m;
     m.build(master, CellWindow{0, 0, 8, 8}, mask, Transform2D{});
@@ -645,7 +653,8 @@ TEST(MaskMappingTest, MaskEntirelyOutsideTheWindowTouchesNothing)
     m.forEach(master, mask, [&](uint8_t&, int8_t) { ++calls; });
     EXPECT_EQ(calls, 0);
   }
-  for (unsigned int i = 0; i < master.cellCount(); ++i) EXPECT_EQ(master.getCost(i), kSentinel);
+  for (unsigned int i = 0; i < master.cellCount(); ++i)
+    EXPECT_EQ(master.getCost(i), kSentinel);
 }
 
 TEST(MaskMappingTest, MaskValueAtMatchesNaive)

@@ -36,12 +36,18 @@ constexpr uint8_t U = 255;  // NO_INFORMATION, spelled out independently of the 
 // The rules, written from the header comments.
 uint8_t ruleMax(uint8_t own, uint8_t master)
 {
-  if (own == U) return master;      // an unknown own cell changes nothing
-  if (master == U) return own;      // an unknown master takes the own cost
-  return std::max(own, master);     // otherwise the higher one
+  if (own == U) return master;   // an unknown own cell changes nothing
+  if (master == U) return own;   // an unknown master takes the own cost
+  return std::max(own, master);  // otherwise the higher one
 }
-uint8_t ruleTrueOverwrite(uint8_t own, uint8_t) { return own; }
-uint8_t ruleOverwrite(uint8_t own, uint8_t master) { return own == U ? master : own; }
+uint8_t ruleTrueOverwrite(uint8_t own, uint8_t)
+{
+  return own;
+}
+uint8_t ruleOverwrite(uint8_t own, uint8_t master)
+{
+  return own == U ? master : own;
+}
 uint8_t ruleAddition(uint8_t own, uint8_t master)
 {
   if (own == U) return master;
@@ -72,7 +78,8 @@ struct MergeFixture
     Costmap2D& own = layer->costmap();
     own.resizeMap(10, 9, 0.5, 0.0, 0.0);
     for (unsigned int y = 0; y < 9; ++y)
-      for (unsigned int x = 0; x < 10; ++x) own.setCost(x, y, static_cast<uint8_t>((x + y) % 3 == 0 ? 254 : (x % 2 ? 100 : 0)));
+      for (unsigned int x = 0; x < 10; ++x)
+        own.setCost(x, y, static_cast<uint8_t>((x + y) % 3 == 0 ? 254 : (x % 2 ? 100 : 0)));
     for (int a = 0; a < 6; ++a)
       for (int b = 0; b < 6; ++b)
       {
@@ -89,7 +96,8 @@ struct MergeFixture
       for (unsigned int x = 0; x < 10; ++x)
       {
         const bool inside = x >= 2 && x < 8 && y >= 1 && y < 7;
-        const uint8_t expected = inside ? rule(layer->costmap().getCost(x, y), before.getCost(x, y)) : before.getCost(x, y);
+        const uint8_t expected =
+            inside ? rule(layer->costmap().getCost(x, y), before.getCost(x, y)) : before.getCost(x, y);
         EXPECT_EQ(static_cast<int>(master.getCost(x, y)), static_cast<int>(expected))
             << "cell " << x << "," << y << " own " << int(layer->costmap().getCost(x, y)) << " master "
             << int(before.getCost(x, y));
@@ -131,7 +139,8 @@ TEST(CostmapLayerMerge, UpdateWithMaxWithoutUnknownOverwriteAllCombinations)
 TEST(CostmapLayerMerge, SpotValuesWrittenOut)
 {
   // A few combinations spelled out literally, so that a mistake shared by rule and code still shows.
-  auto one = [](MergeFn merge, uint8_t own, uint8_t master) {
+  auto one = [](MergeFn merge, uint8_t own, uint8_t master)
+  {
     MergeTestLayer layer;
     layer.costmap().resizeMap(1, 1, 1.0, 0, 0);
     layer.costmap().setCost(0, 0, own);
@@ -174,14 +183,16 @@ TEST(CostmapLayerMerge, EmptyOrInvertedWindowChangesNothing)
   f.layer->updateWithTrueOverwrite(f.master, 6, 7, 2, 1);
   f.layer->updateWithTrueOverwrite(f.master, 20, 20, 30, 30);
   f.layer->updateWithMax(f.master, -10, -10, -1, -1);
-  for (unsigned int i = 0; i < f.master.cellCount(); ++i) EXPECT_EQ(f.master.getCost(i), before.getCost(i));
+  for (unsigned int i = 0; i < f.master.cellCount(); ++i)
+    EXPECT_EQ(f.master.getCost(i), before.getCost(i));
 }
 
 TEST(CostmapLayerMerge, OwnGridSmallerThanMasterMergesSharedCellsOnly)
 {
   MergeTestLayer layer;
   layer.costmap().resizeMap(3, 2, 1.0, 0, 0);
-  for (unsigned int i = 0; i < 6; ++i) layer.costmap().setCost(i % 3, i / 3, static_cast<uint8_t>(10 + i));
+  for (unsigned int i = 0; i < 6; ++i)
+    layer.costmap().setCost(i % 3, i / 3, static_cast<uint8_t>(10 + i));
   Costmap2D master(5, 4, 1.0, 0, 0, 1);
   layer.updateWithTrueOverwrite(master, 0, 0, 5, 4);
   for (unsigned int y = 0; y < 4; ++y)

@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
 #include <functional>
+#include <random>
 #include <stdexcept>
 #include <string>
-#include <cstdint>
-#include <random>
 #include <vector>
 
 #include "costmap_layers/core/distance_transform.hpp"
@@ -57,7 +57,8 @@ std::vector<uint32_t> banded(const std::vector<uint8_t>& grid, int w, int h, Sou
 {
   std::vector<uint32_t> out(static_cast<std::size_t>(w) * h, kFarSquaredDistance);
   int expected_y = win.y0;
-  auto sink = [&](int y, const T* d) {
+  auto sink = [&](int y, const T* d)
+  {
     EXPECT_EQ(y, expected_y++);
     for (int x = win.x0; x < win.x1; ++x)
     {
@@ -73,7 +74,10 @@ std::vector<uint32_t> banded(const std::vector<uint8_t>& grid, int w, int h, Sou
   return out;
 }
 
-uint32_t capped(uint32_t d, uint32_t cap_sq) { return d > cap_sq ? kFarSquaredDistance : d; }
+uint32_t capped(uint32_t d, uint32_t cap_sq)
+{
+  return d > cap_sq ? kFarSquaredDistance : d;
+}
 }  // namespace
 
 TEST(DistanceTransform, SingleSourceIsExact)
@@ -95,7 +99,8 @@ TEST(DistanceTransform, NoSourceIsFar)
   std::vector<uint32_t> out(12, 0);
   DistanceTransformScratch scratch;
   squaredDistanceTransform(g.data(), 4, 3, out.data(), scratch);
-  for (uint32_t v : out) EXPECT_EQ(v, kFarSquaredDistance);
+  for (uint32_t v : out)
+    EXPECT_EQ(v, kFarSquaredDistance);
 }
 
 TEST(DistanceTransform, EmptyGridDoesNothing)
@@ -125,7 +130,8 @@ TEST(DistanceTransform, ExactMatchesBruteForceOnRandomGrids)
     // With a cap.
     const uint32_t cap_sq = static_cast<uint32_t>(rng() % 50);
     squaredDistanceTransform(grid.data(), w, h, w, src, out.data(), w, cap_sq, scratch);
-    for (std::size_t i = 0; i < out.size(); ++i) ASSERT_EQ(out[i], capped(ref[i], cap_sq));
+    for (std::size_t i = 0; i < out.size(); ++i)
+      ASSERT_EQ(out[i], capped(ref[i], cap_sq));
   }
 }
 
@@ -137,7 +143,8 @@ TEST(DistanceTransform, ExactWorksOnSubWindowWithStrides)
   const int x0 = 5, y0 = 7, w = 31, h = 22;
   std::vector<uint8_t> sub(static_cast<std::size_t>(w) * h);
   for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) sub[y * w + x] = grid[(y0 + y) * W + x0 + x];
+    for (int x = 0; x < w; ++x)
+      sub[y * w + x] = grid[(y0 + y) * W + x0 + x];
   const SourceRange src{254, 254};
   const auto ref = bruteForce(sub, w, h, src);
   const int out_stride = 37;
@@ -147,8 +154,10 @@ TEST(DistanceTransform, ExactWorksOnSubWindowWithStrides)
                            scratch);
   for (int y = 0; y < h; ++y)
   {
-    for (int x = 0; x < w; ++x) ASSERT_EQ(out[y * out_stride + x], ref[y * w + x]);
-    for (int x = w; x < out_stride; ++x) ASSERT_EQ(out[y * out_stride + x], 12345u);  // untouched
+    for (int x = 0; x < w; ++x)
+      ASSERT_EQ(out[y * out_stride + x], ref[y * w + x]);
+    for (int x = w; x < out_stride; ++x)
+      ASSERT_EQ(out[y * out_stride + x], 12345u);  // untouched
   }
 }
 
@@ -212,10 +221,10 @@ TEST_P(BandedTest, LargestCapsAreExact)
   g[10 * w + 3] = 254;
   const auto ref = bruteForce(g, w, h, SourceRange{254, 254});
   DistanceTransformScratch scratch;
-  const auto out8 = banded<uint8_t>(g, w, h, SourceRange{254, 254}, kMaxBandedCap8, DistanceWindow{0, 0, w, h},
-                                    scratch);
-  const auto out16 = banded<uint16_t>(g, w, h, SourceRange{254, 254}, kMaxBandedCap16,
-                                      DistanceWindow{0, 0, w, h}, scratch);
+  const auto out8 =
+      banded<uint8_t>(g, w, h, SourceRange{254, 254}, kMaxBandedCap8, DistanceWindow{0, 0, w, h}, scratch);
+  const auto out16 =
+      banded<uint16_t>(g, w, h, SourceRange{254, 254}, kMaxBandedCap16, DistanceWindow{0, 0, w, h}, scratch);
   for (std::size_t i = 0; i < ref.size(); ++i)
   {
     ASSERT_EQ(out8[i], capped(ref[i], kMaxBandedCap8 * kMaxBandedCap8));
@@ -224,9 +233,8 @@ TEST_P(BandedTest, LargestCapsAreExact)
 }
 
 INSTANTIATE_TEST_SUITE_P(Kernels, BandedTest, ::testing::Values(true, false),
-                         [](const ::testing::TestParamInfo<bool>& info) {
-                           return info.param ? std::string("Dispatched") : std::string("Portable");
-                         });
+                         [](const ::testing::TestParamInfo<bool>& info)
+                         { return info.param ? std::string("Dispatched") : std::string("Portable"); });
 
 TEST(DistanceTransform, DispatchedAndPortableAgreeOnLargeGrid)
 {
@@ -299,7 +307,8 @@ protected:
 std::vector<std::string> kernelNames()
 {
   std::vector<std::string> names;
-  for (const char* k : distanceTransformKernels()) names.emplace_back(k);
+  for (const char* k : distanceTransformKernels())
+    names.emplace_back(k);
   return names;
 }
 }  // namespace
@@ -367,8 +376,7 @@ TEST_P(CostMergeTest, AgreesWithPortableOnLargeGridWithStride)
   const CostMergeRule rule{255, 253};
   DistanceTransformScratch scratch;
   auto mine = grid;
-  cappedCostMerge8(mine.data(), w, h, stride, SourceRange{254, 255}, kMaxBandedCap8, win, costs.data(), rule,
-                   scratch);
+  cappedCostMerge8(mine.data(), w, h, stride, SourceRange{254, 255}, kMaxBandedCap8, win, costs.data(), rule, scratch);
   ASSERT_TRUE(setDistanceTransformKernel("portable"));
   auto portable = grid;
   cappedCostMerge8(portable.data(), w, h, stride, SourceRange{254, 255}, kMaxBandedCap8, win, costs.data(), rule,
@@ -408,7 +416,8 @@ TEST_P(CostMergeTest, CostRowsMatchBruteForceAndLeaveTheGridAlone)
     const auto d = bruteForce(tight, w, h, src);
     std::vector<int> calls(static_cast<std::size_t>(h), 0);
     cappedCostRows8(cells.data(), w, h, stride, src, cap, win, costs.data(), scratch,
-                    [&](int y, const uint8_t* row) {
+                    [&](int y, const uint8_t* row)
+                    {
                       ASSERT_GE(y, y0);
                       ASSERT_LT(y, y1);
                       ++calls[static_cast<std::size_t>(y)];
@@ -420,7 +429,8 @@ TEST_P(CostMergeTest, CostRowsMatchBruteForceAndLeaveTheGridAlone)
                                                          << cap << " grid " << w << "x" << h;
                       }
                     });
-    for (int y = 0; y < h; ++y) ASSERT_EQ(calls[static_cast<std::size_t>(y)], y >= y0 && y < y1 ? 1 : 0) << y;
+    for (int y = 0; y < h; ++y)
+      ASSERT_EQ(calls[static_cast<std::size_t>(y)], y >= y0 && y < y1 ? 1 : 0) << y;
   }
   // Runs of identical rows (whose costs are reused) between rows that differ only in their last or
   // first column.
@@ -445,7 +455,9 @@ TEST_P(CostMergeTest, CostRowsMatchBruteForceAndLeaveTheGridAlone)
       const auto costs = randomCosts(rng, cap);
       int rows = 0;
       cappedCostRows8(grid.data(), w, h, w, SourceRange{254, 254}, cap, DistanceWindow{0, 0, w, h}, costs.data(),
-                      scratch, [&](int y, const uint8_t* row) {
+                      scratch,
+                      [&](int y, const uint8_t* row)
+                      {
                         ++rows;
                         for (int x = 0; x < w; ++x)
                         {
@@ -466,7 +478,8 @@ TEST_P(CostMergeTest, CostRowsMatchBruteForceAndLeaveTheGridAlone)
     {
       uint8_t* row = grid.data() + static_cast<std::size_t>(y) * w;
       if (y % 23 < 15)
-        for (int x = 7; x < w; x += 97) row[x] = 254;
+        for (int x = 7; x < w; x += 97)
+          row[x] = 254;
       if (y % 23 == 9) row[w - 1] = 254;
       if (y % 61 == 5) std::fill(row, row + w, uint8_t{254});
     }
@@ -476,7 +489,9 @@ TEST_P(CostMergeTest, CostRowsMatchBruteForceAndLeaveTheGridAlone)
                      costs.data(), CostMergeRule{255, 255}, scratch);
     int rows = 0;
     cappedCostRows8(grid.data(), w, h, w, SourceRange{254, 254}, kMaxBandedCap8, DistanceWindow{0, 0, w, h},
-                    costs.data(), scratch, [&](int y, const uint8_t* row) {
+                    costs.data(), scratch,
+                    [&](int y, const uint8_t* row)
+                    {
                       ++rows;
                       for (int x = 0; x < w; ++x)
                       {
@@ -499,7 +514,8 @@ TEST_P(CostMergeTest, CostRowsMatchBruteForceAndLeaveTheGridAlone)
 }
 
 INSTANTIATE_TEST_SUITE_P(Kernels, CostMergeTest, ::testing::ValuesIn(kernelNames()),
-                         [](const ::testing::TestParamInfo<std::string>& info) {
+                         [](const ::testing::TestParamInfo<std::string>& info)
+                         {
                            std::string name = info.param;
                            for (char& ch : name)
                              if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';

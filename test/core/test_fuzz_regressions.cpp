@@ -28,7 +28,8 @@ TEST(FuzzRegressions, RollingWindowFollowsAFarAwayPoseWithoutIntOverflow)
   EXPECT_LT(grid.getOriginX(), -1e307);
   EXPECT_GT(grid.getOriginY(), 1e299);
   for (unsigned y = 0; y < 10; ++y)
-    for (unsigned x = 0; x < 10; ++x) EXPECT_EQ(grid.getCost(x, y), 7) << "no cell is kept after so far a move";
+    for (unsigned x = 0; x < 10; ++x)
+      EXPECT_EQ(grid.getCost(x, y), 7) << "no cell is kept after so far a move";
   // Back near the start: again a move of more than a grid, nothing kept, nothing overflows.
   grid.updateOrigin(0.0, 0.0);
   EXPECT_EQ(grid.getCost(3, 3), 7);

@@ -102,10 +102,10 @@ TEST(GradientLayerParams, InvalidValuesThrowNamingTheParameter)
 {
   LayeredCostmap lc("map", false, false);
   const std::vector<std::pair<std::string, ParamValue>> bad = {
-      {"gradient_size", ParamValue::makeInt(-1)},        {"gradient_size", ParamValue::makeDouble(2.5)},
-      {"gradient_size", ParamValue::makeString("20")},   {"gradient_factor", ParamValue::makeInt(255)},
-      {"gradient_factor", ParamValue::makeInt(-3)},      {"gradient_factor", ParamValue::makeBool(true)},
-      {"enabled", ParamValue::makeString("yes")},        {"enabled", ParamValue::makeInt(2)},
+      {"gradient_size", ParamValue::makeInt(-1)},      {"gradient_size", ParamValue::makeDouble(2.5)},
+      {"gradient_size", ParamValue::makeString("20")}, {"gradient_factor", ParamValue::makeInt(255)},
+      {"gradient_factor", ParamValue::makeInt(-3)},    {"gradient_factor", ParamValue::makeBool(true)},
+      {"enabled", ParamValue::makeString("yes")},      {"enabled", ParamValue::makeInt(2)},
   };
   for (const auto& b : bad)
   {
@@ -244,9 +244,10 @@ TEST(GradientLayerCosts, WindowIsClampedToTheGrid)
   layer->updateCosts(g, -10, -3, 100, 2);  // clamped to [0, 30) x [0, 2)
   expectRamp(g, 0, 0, 30, 2, 20, 10, 77);
   Costmap2D h(10, 10, 1.0, 0, 0, 77);
-  layer->updateCosts(h, 5, 5, 5, 9);  // empty
+  layer->updateCosts(h, 5, 5, 5, 9);     // empty
   layer->updateCosts(h, 20, 0, 30, 10);  // outside
-  for (unsigned int i = 0; i < h.cellCount(); ++i) EXPECT_EQ(h.getCost(i), 77);
+  for (unsigned int i = 0; i < h.cellCount(); ++i)
+    EXPECT_EQ(h.getCost(i), 77);
 }
 
 TEST(GradientLayerCosts, CustomSizeAndFactorIncludingWrap)
@@ -259,10 +260,10 @@ TEST(GradientLayerCosts, CustomSizeAndFactorIncludingWrap)
   Costmap2D g(45, 3, 1.0, 0, 0, 0);
   layer->updateCosts(g, 2, 0, 43, 3);
   expectRamp(g, 2, 0, 43, 3, 15, 20, 0);
-  EXPECT_EQ(g.getCost(2 + 12, 0), 14);           // 254 - 240
-  EXPECT_EQ(g.getCost(2 + 13, 0), 256 - 6);      // -6 stored in an unsigned char
-  EXPECT_EQ(g.getCost(2 + 16, 0), 256 - 66);     // k = 16 = size + 1 is the last of the ramp
-  EXPECT_EQ(g.getCost(2 + 17, 0), 254);          // restarted at k = 0
+  EXPECT_EQ(g.getCost(2 + 12, 0), 14);        // 254 - 240
+  EXPECT_EQ(g.getCost(2 + 13, 0), 256 - 6);   // -6 stored in an unsigned char
+  EXPECT_EQ(g.getCost(2 + 16, 0), 256 - 66);  // k = 16 = size + 1 is the last of the ramp
+  EXPECT_EQ(g.getCost(2 + 17, 0), 254);       // restarted at k = 0
 
   auto zero = makeGradient(lc, withParam("gradient_size", ParamValue::makeInt(0)));
   Costmap2D z(6, 1, 1.0, 0, 0, 0);
@@ -276,7 +277,8 @@ TEST(GradientLayerCosts, CustomSizeAndFactorIncludingWrap)
 TEST(GradientLayerCosts, GradientCostMatchesFormula)
 {
   for (int f : {0, 1, 10, 20, 127, 254})
-    for (int k = 0; k < 40; ++k) EXPECT_EQ(gradientCost(k, f), expectedCost(k, f)) << k << " " << f;
+    for (int k = 0; k < 40; ++k)
+      EXPECT_EQ(gradientCost(k, f), expectedCost(k, f)) << k << " " << f;
 }
 
 TEST(GradientLayerCosts, ThroughLayeredCostmap)

@@ -68,7 +68,10 @@ public:
   }
 };
 
-Footprint square(double half) { return {{-half, -half}, {half, -half}, {half, half}, {-half, half}}; }
+Footprint square(double half)
+{
+  return {{-half, -half}, {half, -half}, {half, half}, {-half, half}};
+}
 
 ParamValue inflationParams(double radius, double factor, bool inflate_unknown = false, bool around = false)
 {
@@ -85,7 +88,7 @@ struct Rig
 {
   Rig(unsigned w, unsigned h, double res, const ParamValue& params, double inscribed, bool track_unknown = false,
       uint8_t fill = FREE_SPACE)
-    : lc("map", false, track_unknown)
+      : lc("map", false, track_unknown)
   {
     lc.resizeMap(w, h, res, 0.0, 0.0);
     ctx = std::make_shared<FakeContext>(params);
@@ -117,9 +120,8 @@ void naiveInflate(const Costmap2D& base, Costmap2D& out, const InflationConfig& 
   const double res = base.getResolution();
   const int cap = static_cast<int>(std::ceil(cfg.inflation_radius / res));
   if (cap <= 0) return;
-  auto is_source = [&](uint8_t c) {
-    return c == LETHAL_OBSTACLE || (cfg.inflate_around_unknown && c == NO_INFORMATION);
-  };
+  auto is_source = [&](uint8_t c)
+  { return c == LETHAL_OBSTACLE || (cfg.inflate_around_unknown && c == NO_INFORMATION); };
   for (int y = y0; y < y1; ++y)
     for (int x = x0; x < x1; ++x)
     {
@@ -131,8 +133,7 @@ void naiveInflate(const Costmap2D& base, Costmap2D& out, const InflationConfig& 
           best = std::min(best, static_cast<long>((sx - x) * (sx - x) + (sy - y) * (sy - y)));
         }
       if (best > static_cast<long>(cap) * cap) continue;
-      const uint8_t cost =
-          inflationCost(std::sqrt(static_cast<double>(best)), res, inscribed, cfg.cost_scaling_factor);
+      const uint8_t cost = inflationCost(std::sqrt(static_cast<double>(best)), res, inscribed, cfg.cost_scaling_factor);
       const uint8_t old_cost = base.getCost(static_cast<unsigned>(x), static_cast<unsigned>(y));
       uint8_t result;
       if (old_cost == NO_INFORMATION)
@@ -159,8 +160,8 @@ Costmap2D naiveFull(const Costmap2D& base, const InflationConfig& cfg, double in
   for (unsigned y = 0; y < a.getSizeInCellsY(); ++y)
     for (unsigned x = 0; x < a.getSizeInCellsX(); ++x)
       if (a.getCost(x, y) != b.getCost(x, y))
-        return ::testing::AssertionFailure() << "cell (" << x << ", " << y << "): " << int(a.getCost(x, y))
-                                             << " vs " << int(b.getCost(x, y));
+        return ::testing::AssertionFailure()
+               << "cell (" << x << ", " << y << "): " << int(a.getCost(x, y)) << " vs " << int(b.getCost(x, y));
   return ::testing::AssertionSuccess();
 }
 }  // namespace
@@ -388,7 +389,8 @@ TEST(InflationLayer, LargeSquareIsExactAlongEveryEdge)
   LayeredCostmap lc("map", false, false);
   lc.resizeMap(size, size, res, 0.0, 0.0);
   auto below = std::make_shared<FunctionLayer>();
-  below->fn = [&](Costmap2D& m, int x0, int y0, int x1, int y1) {
+  below->fn = [&](Costmap2D& m, int x0, int y0, int x1, int y1)
+  {
     const int a = std::max<int>(x0, lo), b = std::min<int>(x1, hi);
     if (a >= b) return;
     for (int y = std::max<int>(y0, lo); y < std::min<int>(y1, hi); ++y)
@@ -488,7 +490,8 @@ namespace
 std::vector<std::string> inflationKernels()
 {
   std::vector<std::string> names;
-  for (const char* k : distanceTransformKernels()) names.emplace_back(k);
+  for (const char* k : distanceTransformKernels())
+    names.emplace_back(k);
   return names;
 }
 }  // namespace
@@ -525,8 +528,7 @@ TEST_P(InflationReference, FullAndPartialUpdatesEqualNaiveRecomputation)
       ASSERT_FALSE(win.empty());
       const int cap = rig.inflation->cellInflationRadius();
       EXPECT_LE(win.xn - win.x0, 6 + 2 * cap + 2);  // only the changed window padded by the radius
-      ASSERT_TRUE(
-          sameCells(rig.lc.getCostmap(), naiveFull(rig.marks->costmap(), rig.inflation->config(), inscribed)))
+      ASSERT_TRUE(sameCells(rig.lc.getCostmap(), naiveFull(rig.marks->costmap(), rig.inflation->config(), inscribed)))
           << "partial, case " << i << " step " << step;
     }
   }
@@ -539,7 +541,8 @@ TEST_P(InflationReference, RollingWindowEqualsNaive)
   std::mt19937 rng(seed(99));
   std::uniform_real_distribution<double> u(-8.0, 8.0);
   std::vector<std::pair<double, double>> obstacles;
-  for (int k = 0; k < 150; ++k) obstacles.emplace_back(u(rng), u(rng));
+  for (int k = 0; k < 150; ++k)
+    obstacles.emplace_back(u(rng), u(rng));
   for (int variant = 0; variant < 3; ++variant)
   {
     const double res = variant == 0 ? 0.05 : 0.1;
@@ -548,7 +551,8 @@ TEST_P(InflationReference, RollingWindowEqualsNaive)
     lc.resizeMap(120, 90, res, 0.0, 0.0);
     Costmap2D base;
     auto below = std::make_shared<FunctionLayer>();
-    below->fn = [&](Costmap2D& m, int x0, int y0, int x1, int y1) {
+    below->fn = [&](Costmap2D& m, int x0, int y0, int x1, int y1)
+    {
       for (const auto& o : obstacles)
       {
         unsigned mx, my;
@@ -574,7 +578,8 @@ TEST_P(InflationReference, RollingWindowEqualsNaive)
 }
 
 INSTANTIATE_TEST_SUITE_P(Kernels, InflationReference, ::testing::ValuesIn(inflationKernels()),
-                         [](const ::testing::TestParamInfo<std::string>& info) {
+                         [](const ::testing::TestParamInfo<std::string>& info)
+                         {
                            std::string name = info.param;
                            for (char& ch : name)
                              if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';

@@ -71,7 +71,8 @@ TEST(KeepoutFilter, CostOfMaskValues)
   EXPECT_EQ(keepoutCost(127), 0);
   EXPECT_EQ(keepoutCost(-2), 0);
   EXPECT_EQ(keepoutCost(-128), 0);
-  for (int v = 1; v <= 100; ++v) EXPECT_EQ(keepoutCost(static_cast<int8_t>(v)), std::lround(v * 254.0 / 100.0)) << v;
+  for (int v = 1; v <= 100; ++v)
+    EXPECT_EQ(keepoutCost(static_cast<int8_t>(v)), std::lround(v * 254.0 / 100.0)) << v;
 }
 
 TEST(KeepoutFilter, MergeRule)
@@ -94,7 +95,7 @@ TEST(KeepoutFilter, LethalMaskInsideTheUpdateWindowOnly)
   r.setMask(makeMask(3, 3, 1.0, 3.0, 3.0, 100));  // cells 3..5 x 3..5 of the master
   Costmap2D master(10, 10, 1.0, 0.0, 0.0, 0);
   const Costmap2D before = master;
-  r.filter->updateCosts(master, 2, 2, 5, 5);  // window [2, 5) x [2, 5)
+  r.filter->updateCosts(master, 2, 2, 5, 5);    // window [2, 5) x [2, 5)
   expectOnly(master, before, 3, 3, 5, 5, 254);  // exactly (3..4, 3..4)
   const Costmap2D after_first = master;
   r.filter->updateCosts(master, 5, 5, 6, 6);
@@ -153,7 +154,8 @@ TEST(KeepoutFilter, FreeAndUnknownMaskValuesWriteNothing)
     Costmap2D master(10, 10, 1.0, 0.0, 0.0, 0);
     std::mt19937 rng(v + 5);
     for (unsigned j = 0; j < 10; ++j)
-      for (unsigned i = 0; i < 10; ++i) master.setCost(i, j, static_cast<uint8_t>(rng() % 256));
+      for (unsigned i = 0; i < 10; ++i)
+        master.setCost(i, j, static_cast<uint8_t>(rng() % 256));
     const Costmap2D before = master;
     r.filter->updateCosts(master, 0, 0, 10, 10);
     expectOnly(master, before, 0, 0, 0, 0, 0);
@@ -190,7 +192,8 @@ TEST(KeepoutFilter, MaskOfAnotherResolution)
       const double x = 2.5 + (i + 0.5) * 0.25, y = 2.5 + (j + 0.5) * 0.25;
       int expected = 0;
       if (x >= 3.0 && x < 5.0 && y >= 3.0 && y < 4.0)
-        expected = keepoutCost(m.data[static_cast<std::size_t>((y - 3.0) / 0.5) * 4 + static_cast<std::size_t>((x - 3.0) / 0.5)]);
+        expected = keepoutCost(
+            m.data[static_cast<std::size_t>((y - 3.0) / 0.5) * 4 + static_cast<std::size_t>((x - 3.0) / 0.5)]);
       EXPECT_EQ(master.getCost(i, j), expected) << i << "," << j;
     }
   EXPECT_EQ(master.getCost(3, 3), 254);  // (3.375, 3.375): mask cell (0, 0)
@@ -213,8 +216,7 @@ TEST(KeepoutFilter, InvalidValuesSkippedAndWarnedOnce)
   EXPECT_EQ(master.getCost(4, 3), 254);
   ASSERT_EQ(r.ctx->reports.size(), 1u);
   EXPECT_EQ(r.ctx->reports[0].severity, Severity::Warn);
-  EXPECT_NE(r.ctx->reports[0].message.find("3 values outside -1..100"), std::string::npos)
-      << r.ctx->reports[0].message;
+  EXPECT_NE(r.ctx->reports[0].message.find("3 values outside -1..100"), std::string::npos) << r.ctx->reports[0].message;
   EXPECT_NE(r.ctx->reports[0].message.find("keepout"), std::string::npos);
   r.setMask(m);  // again: no second warning
   r.filter->updateCosts(master, 0, 0, 10, 10);
@@ -235,7 +237,8 @@ TEST(KeepoutFilter, ThroughALayeredCostmapAndToggle)
   r.ctx->toggle(false);
   r.lc.updateMap(0, 0, 0);
   for (unsigned j = 0; j < 10; ++j)
-    for (unsigned i = 0; i < 10; ++i) EXPECT_EQ(r.lc.getCostmap().getCost(i, j), 0) << i << "," << j;
+    for (unsigned i = 0; i < 10; ++i)
+      EXPECT_EQ(r.lc.getCostmap().getCost(i, j), 0) << i << "," << j;
   r.ctx->toggle(true);
   r.lc.updateMap(0, 0, 0);
   EXPECT_EQ(r.lc.getCostmap().getCost(4, 4), 254);

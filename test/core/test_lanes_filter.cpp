@@ -36,7 +36,10 @@ OccupancyGridData makeMask(uint32_t w, uint32_t h, double res, int8_t fill, doub
   return m;
 }
 
-int8_t& at(OccupancyGridData& m, int x, int y) { return m.data[static_cast<std::size_t>(y) * m.width + x]; }
+int8_t& at(OccupancyGridData& m, int x, int y)
+{
+  return m.data[static_cast<std::size_t>(y) * m.width + x];
+}
 
 struct Params
 {
@@ -136,7 +139,8 @@ TEST(LanesFilterConfig, DefaultsParsingAndBadValues)
   EXPECT_EQ(c.cost_profile, LaneCostProfile::Exponential);
   EXPECT_EQ(c.decay, 4.0);
 
-  auto expectThrows = [](const char* name, ParamValue v) {
+  auto expectThrows = [](const char* name, ParamValue v)
+  {
     ParamValue p = ParamValue::makeMap();
     p.set(name, std::move(v));
     try
@@ -167,7 +171,7 @@ TEST(LanesFilterFormula, LinearByHand)
 {
   const LanesFilterConfig c = configOf({0.5, 1, "linear", 10.0});
   const double r = 0.05;
-  EXPECT_EQ(lanesForbiddenCost(c, 0.05, r), 1);    // the border: border_cost
+  EXPECT_EQ(lanesForbiddenCost(c, 0.05, r), 1);     // the border: border_cost
   EXPECT_EQ(lanesForbiddenCost(c, 0.275, r), 127);  // half way: 1 + 252 / 2 = 127
   EXPECT_EQ(lanesForbiddenCost(c, 0.45, r), 225);   // 1 + 252 * 0.4 / 0.45 = 225
   EXPECT_EQ(lanesForbiddenCost(c, 0.4999, r), 253);
@@ -230,7 +234,8 @@ OccupancyGridData straightLane()
 {
   OccupancyGridData m = makeMask(40, 24, 0.05, 100);
   for (int y = 0; y < 24; ++y)
-    for (int x = 10; x <= 13; ++x) at(m, x, y) = 0;
+    for (int x = 10; x <= 13; ++x)
+      at(m, x, y) = 0;
   return m;
 }
 
@@ -241,7 +246,8 @@ void checkStraightLaneProfile(const Params& p)
   const OccupancyGridData m = straightLane();
   Costmap2D master = masterFor(m, 0);
   for (int y = 0; y < 24; ++y)
-    for (int x = 10; x <= 13; ++x) master.setCost(x, y, static_cast<uint8_t>(x * 3));  // others' costs
+    for (int x = 10; x <= 13; ++x)
+      master.setCost(x, y, static_cast<uint8_t>(x * 3));  // others' costs
   rig.apply(m, master);
   const double r = 0.05;
   for (int y = 0; y < 24; ++y)
@@ -307,7 +313,8 @@ TEST(LanesFilter, StraightLaneValuesSpotChecked)
   Costmap2D master = masterFor(m, 0);
   rig.apply(m, master);
   const int expected[] = {1, 29, 57, 85, 113, 141, 169, 197, 225, 254, 254};  // dx = 1 .. 10, 10+
-  for (int dx = 1; dx <= 9; ++dx) EXPECT_EQ(master.getCost(13 + dx, 5), expected[dx - 1]) << dx;
+  for (int dx = 1; dx <= 9; ++dx)
+    EXPECT_EQ(master.getCost(13 + dx, 5), expected[dx - 1]) << dx;
   EXPECT_EQ(master.getCost(13 + 10, 5), 254);
   EXPECT_EQ(master.getCost(39, 5), 254);
   EXPECT_EQ(master.getCost(0, 5), 254);  // 10 cells to the left of column 10
@@ -323,7 +330,8 @@ TEST(LanesFilter, DiagonalNeighboursOfALaneCostALittleMore)
   Costmap2D master = masterFor(m, 0);
   rig.apply(m, master);
   EXPECT_EQ(master.getCost(10, 10), 0);
-  for (const auto& n : {std::pair<int, int>{9, 10}, {11, 10}, {10, 9}, {10, 11}}) EXPECT_EQ(master.getCost(n.first, n.second), 1);
+  for (const auto& n : {std::pair<int, int>{9, 10}, {11, 10}, {10, 9}, {10, 11}})
+    EXPECT_EQ(master.getCost(n.first, n.second), 1);
   const int diag = master.getCost(11, 11);
   EXPECT_EQ(diag, static_cast<int>(std::lround(1 + 252 * (0.05 * std::sqrt(2.0) - 0.05) / 0.45)));  // 12
   EXPECT_GT(diag, 1);
@@ -340,17 +348,21 @@ TEST(LanesFilter, UnknownAndSoftCellsAndNoLanes)
   Rig rig;
   OccupancyGridData m = straightLane();
   for (int y = 0; y < 6; ++y)
-    for (int x = 0; x < 40; ++x) at(m, x, y) = -1;  // rows 0..5: no opinion (lane cells too)
-  for (int x = 0; x < 40; ++x) at(m, x, 20) = static_cast<int8_t>(x % 2 ? 50 : 99);  // row 20: soft
+    for (int x = 0; x < 40; ++x)
+      at(m, x, y) = -1;  // rows 0..5: no opinion (lane cells too)
+  for (int x = 0; x < 40; ++x)
+    at(m, x, 20) = static_cast<int8_t>(x % 2 ? 50 : 99);  // row 20: soft
   at(m, 30, 21) = 1;
   Costmap2D master = masterFor(m, 0);
   for (unsigned j = 0; j < 24; ++j)
-    for (unsigned i = 0; i < 40; ++i) master.setCost(i, j, static_cast<uint8_t>((i * 7 + j) % 200));
+    for (unsigned i = 0; i < 40; ++i)
+      master.setCost(i, j, static_cast<uint8_t>((i * 7 + j) % 200));
   const Costmap2D before = master;
   rig.apply(m, master);
   for (unsigned i = 0; i < 40; ++i)
   {
-    for (unsigned j = 0; j < 6; ++j) EXPECT_EQ(master.getCost(i, j), before.getCost(i, j)) << i << "," << j;
+    for (unsigned j = 0; j < 6; ++j)
+      EXPECT_EQ(master.getCost(i, j), before.getCost(i, j)) << i << "," << j;
     const int soft = i % 2 ? 127 : 251;
     EXPECT_EQ(master.getCost(i, 20), std::max<int>(soft, before.getCost(i, 20))) << i;
   }
@@ -461,8 +473,8 @@ TEST(LanesFilter, DiagonalLaneMatchesBruteForce8BitBand)
 
 TEST(LanesFilter, DiagonalLaneMatchesBruteForce16BitBand)
 {
-  checkAgainstBruteForce({1.3, 1, "linear", 10.0}, 0.1);  // cap 13
-  checkAgainstBruteForce({2.0, 7, "exponential", 2.0}, 0.1);  // cap 20
+  checkAgainstBruteForce({1.3, 1, "linear", 10.0}, 0.1);            // cap 13
+  checkAgainstBruteForce({2.0, 7, "exponential", 2.0}, 0.1);        // cap 20
   checkAgainstBruteForce({2.35, 1, "linear", 2.0}, 0.05, 120, 90);  // cap 47
 }
 
@@ -470,7 +482,7 @@ TEST(LanesFilter, DiagonalLaneMatchesBruteForceFullTransform)
 {
   checkAgainstBruteForce({3.5, 1, "linear", 10.0}, 0.06, 140, 110);  // cap 59: lookup table
   checkAgainstBruteForce({3.5, 1, "exponential", 1.5}, 0.06, 140, 110);
-  checkAgainstBruteForce({300.0, 1, "linear", 10.0}, 0.1);      // q = 9e6: per-cell costs
+  checkAgainstBruteForce({300.0, 1, "linear", 10.0}, 0.1);  // q = 9e6: per-cell costs
 }
 
 // ---------------------------------------------------------------- mapping, recomputation, reports
@@ -479,7 +491,7 @@ TEST(LanesFilter, SampledAtMasterCellCentres)
 {
   Rig rig;
   const OccupancyGridData m = diagonalLane(0.05);  // origin (-1.3, 0.7)
-  Costmap2D mask_grid = masterFor(m, 0);  // the costs on the mask grid itself
+  Costmap2D mask_grid = masterFor(m, 0);           // the costs on the mask grid itself
   Rig direct;
   direct.apply(m, mask_grid);
   Costmap2D master(30, 20, 0.13, -1.61, 0.52, 0);  // coarser, shifted
@@ -528,7 +540,8 @@ TEST(LanesFilter, CostsAreComputedOnlyForANewMask)
   EXPECT_EQ(rig.filter->costComputations(), 1u);
   // A new mask: once more, whatever the number of updates after it.
   OccupancyGridData n = straightLane();
-  for (int y = 0; y < 24; ++y) at(n, 30, y) = 0;  // a second lane
+  for (int y = 0; y < 24; ++y)
+    at(n, 30, y) = 0;  // a second lane
   Costmap2D g = masterFor(n, 0);
   rig.apply(n, g);
   rig.filter->updateCosts(g, 0, 0, 40, 24);
@@ -607,7 +620,8 @@ TEST(LanesFilter, FinishKernelsMatchTheDefinition)
               continue;
             }
             EXPECT_EQ(got, invalid);
-            for (std::size_t k = 0; k < n; ++k) ASSERT_EQ(out[k], expected[k]) << "cell " << k << " value " << int{mask[k]};
+            for (std::size_t k = 0; k < n; ++k)
+              ASSERT_EQ(out[k], expected[k]) << "cell " << k << " value " << int{mask[k]};
             for (std::size_t k = 0; k < buf.size(); ++k)
               if (k < offset || k >= offset + n)
               {
@@ -668,7 +682,8 @@ TEST(LanesFilter, ReconfigureChangesTheBorderAndRecomputes)
   // Every tunable parameter is described, with the parse function's defaults and the current values.
   const auto specs = r.filter->tunableParameters(Params{0.5, 1, "linear", 10.0}.value());
   std::vector<std::string> names;
-  for (const auto& s : specs) names.push_back(s.name);
+  for (const auto& s : specs)
+    names.push_back(s.name);
   EXPECT_EQ(names, (std::vector<std::string>{"enabled", "lane_border_width", "border_cost", "cost_profile", "decay"}));
   EXPECT_DOUBLE_EQ(specs[1].default_value.asDouble(), 0.5);
 

@@ -97,7 +97,8 @@ void growToAll(double* a, double* b, double* c, double* d)
 /// Bounds that grow to include the box [x0, x1] x [y0, y1].
 std::function<void(double*, double*, double*, double*)> growTo(double x0, double y0, double x1, double y1)
 {
-  return [=](double* a, double* b, double* c, double* d) {
+  return [=](double* a, double* b, double* c, double* d)
+  {
     *a = std::min(*a, x0);
     *b = std::min(*b, y0);
     *c = std::max(*c, x1);
@@ -244,7 +245,8 @@ TEST(LayeredCostmapUpdate, DisabledLayersAreNeverCalled)
   a->bounds_fn = growToAll;
   c->setEnabled(false);
   b->bounds_fn = growToAll;
-  for (int cycle = 0; cycle < 2; ++cycle) h.lc.updateMap(0, 0, 0);
+  for (int cycle = 0; cycle < 2; ++cycle)
+    h.lc.updateMap(0, 0, 0);
   EXPECT_EQ(h.of("b"), EventLog{"b:init"});
   for (const std::string name : {"b", "c", "g"})
   {
@@ -272,12 +274,15 @@ TEST(LayeredCostmapUpdate, FiltersRunOnACombinedCopyThatIsNotFedBack)
   auto reader = h.plugin("reader");
   auto plus = h.filter("plus");
   writer->bounds_fn = growToAll;
-  writer->costs_fn = [](Costmap2D& m, int x0, int y0, int xn, int yn) {
+  writer->costs_fn = [](Costmap2D& m, int x0, int y0, int xn, int yn)
+  {
     for (int y = y0; y < yn; ++y)
-      for (int x = x0; x < xn; ++x) m.setCost(x, y, 10);
+      for (int x = x0; x < xn; ++x)
+        m.setCost(x, y, 10);
   };
   std::vector<int> reader_saw;  // what a later plugin (inflation-like) reads from the master grid
-  reader->costs_fn = [&](Costmap2D& m, int x0, int y0, int xn, int yn) {
+  reader->costs_fn = [&](Costmap2D& m, int x0, int y0, int xn, int yn)
+  {
     int lo = 255, hi = 0;
     for (int y = y0; y < yn; ++y)
       for (int x = x0; x < xn; ++x)
@@ -287,15 +292,18 @@ TEST(LayeredCostmapUpdate, FiltersRunOnACombinedCopyThatIsNotFedBack)
       }
     reader_saw.push_back(lo == hi ? lo : -1);
   };
-  plus->costs_fn = [](Costmap2D& m, int x0, int y0, int xn, int yn) {
+  plus->costs_fn = [](Costmap2D& m, int x0, int y0, int xn, int yn)
+  {
     for (int y = y0; y < yn; ++y)
-      for (int x = x0; x < xn; ++x) m.setCost(x, y, static_cast<uint8_t>(m.getCost(x, y) + 1));
+      for (int x = x0; x < xn; ++x)
+        m.setCost(x, y, static_cast<uint8_t>(m.getCost(x, y) + 1));
   };
   for (int cycle = 0; cycle < 4; ++cycle)
   {
     h.lc.updateMap(0, 0, 0);
     const Costmap2D& out = h.lc.getCostmap();
-    for (unsigned int i = 0; i < out.cellCount(); ++i) ASSERT_EQ(out.getCost(i), 11) << "cycle " << cycle;
+    for (unsigned int i = 0; i < out.cellCount(); ++i)
+      ASSERT_EQ(out.getCost(i), 11) << "cycle " << cycle;
   }
   EXPECT_EQ(reader_saw, (std::vector<int>{10, 10, 10, 10}));
   // Plugins write into the primary grid, filters into the grid getCostmap() returns, and they differ.
@@ -312,19 +320,24 @@ TEST(LayeredCostmapUpdate, PartialWindowWithFiltersDoesNotAccumulate)
   auto writer = h.plugin("writer");
   auto plus = h.filter("plus");
   int cycle = 0;
-  writer->bounds_fn = [&](double* a, double* b, double* c, double* d) {
+  writer->bounds_fn = [&](double* a, double* b, double* c, double* d)
+  {
     if (cycle == 0)
       growToAll(a, b, c, d);
     else
       growTo(2.5, 0.5, 4.5, 2.5)(a, b, c, d);  // cells [2, 5) x [0, 3)
   };
-  writer->costs_fn = [](Costmap2D& m, int x0, int y0, int xn, int yn) {
+  writer->costs_fn = [](Costmap2D& m, int x0, int y0, int xn, int yn)
+  {
     for (int y = y0; y < yn; ++y)
-      for (int x = x0; x < xn; ++x) m.setCost(x, y, 50);
+      for (int x = x0; x < xn; ++x)
+        m.setCost(x, y, 50);
   };
-  plus->costs_fn = [](Costmap2D& m, int x0, int y0, int xn, int yn) {
+  plus->costs_fn = [](Costmap2D& m, int x0, int y0, int xn, int yn)
+  {
     for (int y = y0; y < yn; ++y)
-      for (int x = x0; x < xn; ++x) m.setCost(x, y, static_cast<uint8_t>(m.getCost(x, y) + 1));
+      for (int x = x0; x < xn; ++x)
+        m.setCost(x, y, static_cast<uint8_t>(m.getCost(x, y) + 1));
   };
   for (cycle = 0; cycle < 5; ++cycle)
   {
@@ -335,7 +348,8 @@ TEST(LayeredCostmapUpdate, PartialWindowWithFiltersDoesNotAccumulate)
       EXPECT_EQ(h.lc.getUpdatedBounds().xn, 5);
       EXPECT_EQ(h.lc.getUpdatedBounds().yn, 3);
     }
-    for (unsigned int i = 0; i < h.lc.getCostmap().cellCount(); ++i) ASSERT_EQ(h.lc.getCostmap().getCost(i), 51);
+    for (unsigned int i = 0; i < h.lc.getCostmap().cellCount(); ++i)
+      ASSERT_EQ(h.lc.getCostmap().getCost(i), 51);
   }
 }
 
@@ -454,7 +468,8 @@ TEST(LayeredCostmapBounds, ShrinkingBoundsIsIgnored)
   auto shrinker = h.plugin("shrinker");
   auto c = h.plugin("c");
   a->bounds_fn = growTo(2.0, 2.0, 5.0, 5.0);
-  shrinker->bounds_fn = [](double* x0, double* y0, double* x1, double* y1) {
+  shrinker->bounds_fn = [](double* x0, double* y0, double* x1, double* y1)
+  {
     *x0 = 3.0;
     *y0 = 4.0;
     *x1 = 4.0;
@@ -470,7 +485,8 @@ TEST(LayeredCostmapBounds, ShrinkingBoundsIsIgnored)
   EXPECT_EQ(w.yn, 6);
 
   // Shrinking one side while growing another never loses the earlier bounds.
-  shrinker->bounds_fn = [](double* x0, double*, double* x1, double*) {
+  shrinker->bounds_fn = [](double* x0, double*, double* x1, double*)
+  {
     *x0 = 3.0;
     *x1 = 8.0;
   };
@@ -518,7 +534,7 @@ TEST(LayeredCostmapRolling, KeepsOverlappingCellsAndMovesFilterGridToo)
 {
   Harness h(true, false);
   h.lc.resizeMap(10, 10, 1.0, 0.0, 0.0);
-  auto f = h.filter("f");  // a filter means getCostmap() is the combined copy
+  auto f = h.filter("f");         // a filter means getCostmap() is the combined copy
   h.lc.updateMap(5.0, 5.0, 0.0);  // origin stays (0, 0)
   EXPECT_DOUBLE_EQ(h.lc.getCostmap().getOriginX(), 0.0);
   h.lc.getCostmap().setCost(6, 3, 123);
@@ -566,7 +582,8 @@ TEST(LayeredCostmapMisc, ResizeMapCallsMatchSizeOnEveryLayer)
   EXPECT_DOUBLE_EQ(g.getOriginY(), 0.4);
   EXPECT_TRUE(h.lc.isSizeLocked());
   EXPECT_TRUE(h.lc.isTrackingUnknown());
-  for (unsigned int i = 0; i < g.cellCount(); ++i) EXPECT_EQ(g.getCost(i), NO_INFORMATION);
+  for (unsigned int i = 0; i < g.cellCount(); ++i)
+    EXPECT_EQ(g.getCost(i), NO_INFORMATION);
   h.lc.resizeMap(2, 2, 1.0, 0, 0);
   EXPECT_FALSE(h.lc.isSizeLocked());
 }

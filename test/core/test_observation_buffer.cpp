@@ -51,7 +51,7 @@ TEST(ObservationBuffer, PersistenceDropsOldObservations)
   ObservationBuffer b("cloud", c, 0);
   b.add(obs(10 * kSec), 10 * kSec);
   b.add(obs(10 * kSec + kSec / 2), 10 * kSec + kSec / 2);
-  EXPECT_EQ(fetch(b, 11 * kSec), 2u);            // ages 1.0 and 0.5: both kept
+  EXPECT_EQ(fetch(b, 11 * kSec), 2u);             // ages 1.0 and 0.5: both kept
   EXPECT_EQ(fetch(b, 11 * kSec + kSec / 4), 1u);  // 1.25 s old: dropped
   EXPECT_EQ(fetch(b, 12 * kSec), 0u);
   b.add(obs(20 * kSec), 15 * kSec);  // stamped in the future: fresh
@@ -96,10 +96,14 @@ TEST(ObservationBuffer, ConcurrentAddAndGet)
   ObservationBuffer b("cloud", c, 0);
   std::atomic<bool> stop{false};
   std::atomic<uint64_t> now{kSec};
-  std::thread producer([&] {
-    while (!stop) b.add(obs(now.load()), now.load());
-  });
-  while (b.size() == 0) std::this_thread::yield();
+  std::thread producer(
+      [&]
+      {
+        while (!stop)
+          b.add(obs(now.load()), now.load());
+      });
+  while (b.size() == 0)
+    std::this_thread::yield();
   std::size_t seen = 0;
   for (int i = 0; i < 2000; ++i)
   {

@@ -32,7 +32,8 @@ OccupancyGridData staticMap()
   m.data.assign(100, 0);
   const int cells[][2] = {{7, 0}, {8, 0}, {9, 0}, {7, 1}, {8, 1}, {9, 1}, {3, 2}, {4, 2}, {5, 2}, {4, 5},
                           {7, 5}, {8, 5}, {9, 5}, {4, 6}, {7, 6}, {8, 6}, {9, 6}, {7, 7}, {8, 7}, {9, 7}};
-  for (const auto& c : cells) m.data[static_cast<std::size_t>(c[1] * 10 + c[0])] = 100;
+  for (const auto& c : cells)
+    m.data[static_cast<std::size_t>(c[1] * 10 + c[0])] = 100;
   return m;
 }
 
@@ -45,17 +46,20 @@ ParamValue obstacleParams(std::initializer_list<std::pair<const char*, ParamValu
                              {"clearing", B(true)},
                              {"obstacle_max_range", D(100.0)},
                              {"raytrace_max_range", D(100.0)}});
-  for (const auto& it : source_extra) src.set(it.first, it.second);
+  for (const auto& it : source_extra)
+    src.set(it.first, it.second);
   ParamValue p = paramMap({{"observation_sources", S("cloud")}});
   p.set("cloud", src);
-  for (const auto& it : layer_extra) p.set(it.first, it.second);
+  for (const auto& it : layer_extra)
+    p.set(it.first, it.second);
   return p;
 }
 
 int count(const Costmap2D& c, uint8_t v)
 {
   int n = 0;
-  for (std::size_t k = 0; k < c.cellCount(); ++k) n += c.data()[k] == v;
+  for (std::size_t k = 0; k < c.cellCount(); ++k)
+    n += c.data()[k] == v;
   return n;
 }
 
@@ -63,7 +67,7 @@ struct Rig
 {
   Rig(ParamValue params, bool with_static, bool track_unknown = false, bool rolling = false, unsigned size = 10,
       double res = 1.0, double ox = 0.0, double oy = 0.0)
-    : lc("map", rolling, track_unknown)
+      : lc("map", rolling, track_unknown)
   {
     lc.resizeMap(size, size, res, ox, oy);
     if (with_static)
@@ -83,7 +87,8 @@ struct Rig
   void cloud(const std::vector<XYZ>& pts, const SensorPose& pose, uint64_t stamp = 0)
   {
     std::vector<XYZ> local;
-    for (const XYZ& p : pts) local.push_back({p.x - pose.origin_x, p.y - pose.origin_y, p.z - pose.origin_z});
+    for (const XYZ& p : pts)
+      local.push_back({p.x - pose.origin_x, p.y - pose.origin_y, p.z - pose.origin_z});
     ASSERT_EQ(ctx->publishCloud("cloud", makeCloud(local, false, false, stamp), pose), 1);
   }
   void update(double x = 0, double y = 0, double yaw = 0) { lc.updateMap(x, y, yaw); }
@@ -108,8 +113,11 @@ TEST(ObstacleConfig, DefaultsAndSources)
   EXPECT_FALSE(parseObstacleConfig(ParamReader(ParamValue::makeMap(), "o"), false).track_unknown_space);
 
   ParamValue p = paramMap({{"observation_sources", S("  scan   cam ")}});
-  p.set("scan", paramMap({{"data_type", S("LaserScan")}, {"obstacle_range", D(4.0)}, {"raytrace_range", D(5.0)},
-                          {"sensor_frame", S("laser_link")}, {"inf_is_valid", B(true)}}));
+  p.set("scan", paramMap({{"data_type", S("LaserScan")},
+                          {"obstacle_range", D(4.0)},
+                          {"raytrace_range", D(5.0)},
+                          {"sensor_frame", S("laser_link")},
+                          {"inf_is_valid", B(true)}}));
   const ObstacleConfig c = parseObstacleConfig(ParamReader(p, "o"), false);
   ASSERT_EQ(c.sources.size(), 2u);
   const ObservationSourceConfig& scan = c.sources[0];
@@ -152,14 +160,15 @@ TEST(ObstacleConfig, RejectsBadValues)
   bad(paramMap({{"observation_sources", I(3)}}));
   bad(paramMap({{"observation_sources", S("a a")}}));
   bad(paramMap({{"observation_sources", S("a")}, {"a", S("not a map")}}));
-  auto bad_source = [&](const char* key, ParamValue v) {
+  auto bad_source = [&](const char* key, ParamValue v)
+  {
     ParamValue p = paramMap({{"observation_sources", S("a")}});
     p.set("a", paramMap({{key, v}}));
     bad(p);
   };
   bad_source("data_type", S("PointCloud"));
   bad_source("obstacle_max_range", D(-1.0));
-  bad_source("raytrace_min_range", D(5.0));  // above raytrace_max_range 3.0
+  bad_source("raytrace_min_range", D(5.0));   // above raytrace_max_range 3.0
   bad_source("min_obstacle_height", D(3.0));  // above max_obstacle_height 2.0
   bad_source("expected_update_rate", D(-0.1));
   bad_source("observation_persistence", D(std::nan("")));
@@ -218,7 +227,8 @@ TEST(ObstacleLayer, ReRaytracingClearsTheDiagonal)
   rig.update();
   const int after = count(rig.master(), LETHAL_OBSTACLE);
   ASSERT_EQ(after, 21);
-  for (unsigned i = 0; i < 10; ++i) rig.layer->costmap().setCost(i, i, LETHAL_OBSTACLE);
+  for (unsigned i = 0; i < 10; ++i)
+    rig.layer->costmap().setCost(i, i, LETHAL_OBSTACLE);
   rig.update();
   EXPECT_EQ(count(rig.master(), LETHAL_OBSTACLE), 21);
   EXPECT_EQ(count(rig.master(), FREE_SPACE), 79);
@@ -236,7 +246,8 @@ TEST(ObstacleLayer, WaveInterferenceWithUnknownSpace)
   EXPECT_EQ(count(rig.master(), LETHAL_OBSTACLE), 3);
   EXPECT_EQ(count(rig.master(), FREE_SPACE), 5);
   EXPECT_EQ(count(rig.master(), NO_INFORMATION), 92);
-  for (unsigned i : {0u, 1u, 2u, 4u, 6u}) EXPECT_EQ(rig.master().getCost(i, i), FREE_SPACE) << i;
+  for (unsigned i : {0u, 1u, 2u, 4u, 6u})
+    EXPECT_EQ(rig.master().getCost(i, i), FREE_SPACE) << i;
 }
 
 // costmap_2d's testZThreshold, for the layer's limit and for the source's.
@@ -267,7 +278,8 @@ TEST(ObstacleLayer, HeightLimits)
 // Obstacle ranges at 0.1 m: max and min are inclusive 3-D distances, points beyond are skipped (not cut).
 TEST(ObstacleLayer, ObstacleRangesAtFineResolution)
 {
-  auto lethalAfter = [](double max_range, double min_range, XYZ p) {
+  auto lethalAfter = [](double max_range, double min_range, XYZ p)
+  {
     Rig rig(obstacleParams({}, {{"obstacle_max_range", D(max_range)}, {"obstacle_min_range", D(min_range)}}), false,
             false, false, 40, 0.1, -2.0, -2.0);
     rig.cloud({p}, poseAt(0, 0, 0));
@@ -280,7 +292,7 @@ TEST(ObstacleLayer, ObstacleRangesAtFineResolution)
   EXPECT_EQ(lethalAfter(0.72, 0.0, {0.79, 0.0, 0.0}), 0);
   EXPECT_EQ(lethalAfter(0.72, 0.0, {0.7, 0.0, 0.0}), 1);
   // The distance is 3-D: 0.6 m ahead but 0.8 m below the sensor is 1.0 m away.
-  EXPECT_EQ(lethalAfter(0.9, 0.0, {0.6, 0.0, 0.0}) , 1);
+  EXPECT_EQ(lethalAfter(0.9, 0.0, {0.6, 0.0, 0.0}), 1);
   Rig rig(obstacleParams({}, {{"obstacle_max_range", D(0.9)}}), false, false, false, 40, 0.1, -2.0, -2.0);
   rig.cloud({{0.6, 0.0, 0.0}}, poseAt(0, 0, 0.8));
   rig.update();
@@ -293,8 +305,10 @@ TEST(ObstacleLayer, RaytraceRangesCutRays)
   Rig rig(obstacleParams({}, {{"raytrace_max_range", D(3.0)}, {"marking", B(false)}}), false, true);
   rig.cloud({{8.5, 5.5, 0.5}}, poseAt(0.5, 5.5, 0.5));
   rig.update();
-  for (unsigned x = 0; x < 3; ++x) EXPECT_EQ(rig.master().getCost(x, 5), FREE_SPACE) << x;
-  for (unsigned x = 4; x < 10; ++x) EXPECT_EQ(rig.master().getCost(x, 5), NO_INFORMATION) << x;
+  for (unsigned x = 0; x < 3; ++x)
+    EXPECT_EQ(rig.master().getCost(x, 5), FREE_SPACE) << x;
+  for (unsigned x = 4; x < 10; ++x)
+    EXPECT_EQ(rig.master().getCost(x, 5), NO_INFORMATION) << x;
   EXPECT_EQ(count(rig.master(), FREE_SPACE), 3);
 
   // raytrace_min_range 2: the first two cells stay unknown.
@@ -311,14 +325,18 @@ TEST(ObstacleLayer, RaytraceRangesCutRays)
   Rig out(obstacleParams({}, {{"marking", B(false)}}), false, true);
   out.cloud({{25.5, 5.5, 0.5}}, poseAt(0.5, 5.5, 0.5));
   out.update();
-  for (unsigned x = 0; x < 9; ++x) EXPECT_EQ(out.master().getCost(x, 5), FREE_SPACE) << x;
+  for (unsigned x = 0; x < 9; ++x)
+    EXPECT_EQ(out.master().getCost(x, 5), FREE_SPACE) << x;
 }
 
 TEST(ObstacleLayer, LaserScanMarksAndClearsAndInfClearsOnly)
 {
   ParamValue p = paramMap({{"observation_sources", S("scan")}});
-  p.set("scan", paramMap({{"data_type", S("LaserScan")}, {"clearing", B(true)}, {"inf_is_valid", B(true)},
-                          {"obstacle_max_range", D(10.0)}, {"raytrace_max_range", D(10.0)}}));
+  p.set("scan", paramMap({{"data_type", S("LaserScan")},
+                          {"clearing", B(true)},
+                          {"inf_is_valid", B(true)},
+                          {"obstacle_max_range", D(10.0)},
+                          {"raytrace_max_range", D(10.0)}}));
   Rig rig(p, false, true);
   // Three beams at -90, 0, +90 degrees from (5.5, 5.5): right wall hit at 3 m, the other two see nothing.
   LaserScanData scan = makeScan(3, -1.5707964f, 1.5707964f, 3.0f, 0.1f, 4.0f);
@@ -328,7 +346,7 @@ TEST(ObstacleLayer, LaserScanMarksAndClearsAndInfClearsOnly)
   rig.update(5.5, 5.5);
   EXPECT_EQ(rig.master().getCost(8, 5), LETHAL_OBSTACLE);
   EXPECT_EQ(rig.master().getCost(6, 5), FREE_SPACE);
-  EXPECT_EQ(rig.master().getCost(5, 3), FREE_SPACE);  // cleared by the inf beam (to 4 m: y = 1.5)
+  EXPECT_EQ(rig.master().getCost(5, 3), FREE_SPACE);      // cleared by the inf beam (to 4 m: y = 1.5)
   EXPECT_EQ(rig.master().getCost(5, 1), NO_INFORMATION);  // its end cell is not cleared nor marked
   EXPECT_EQ(count(rig.master(), LETHAL_OBSTACLE), 1);
   EXPECT_EQ(rig.master().getCost(5, 7), NO_INFORMATION);  // the NaN beam did nothing
@@ -397,7 +415,7 @@ TEST(ObstacleLayer, RollingWindowKeepsObstaclesInPlace)
   rig.update(5.0, 5.0);  // origin (0, 0)
   EXPECT_EQ(rig.master().getCost(6, 5), LETHAL_OBSTACLE);
   rig.ctx->now_ns = 3'000'000'000;  // the observation expired: only the grid remembers it
-  rig.update(7.0, 4.0);  // origin (2, -1)
+  rig.update(7.0, 4.0);             // origin (2, -1)
   EXPECT_EQ(rig.layer->buffer(0).size(), 0u);
   EXPECT_DOUBLE_EQ(rig.layer->costmap().getOriginX(), 2.0);
   EXPECT_DOUBLE_EQ(rig.layer->costmap().getOriginY(), -1.0);
@@ -411,8 +429,8 @@ TEST(ObstacleLayer, RollingWindowKeepsObstaclesInPlace)
 
 TEST(ObstacleLayer, PersistenceAndKeepDistance)
 {
-  Rig rig(obstacleParams({}, {{"clearing", B(false)}, {"observation_persistence", D(1.0)},
-                              {"observation_keep_distance", D(2.0)}}),
+  Rig rig(obstacleParams(
+              {}, {{"clearing", B(false)}, {"observation_persistence", D(1.0)}, {"observation_keep_distance", D(2.0)}}),
           false, true);
   rig.ctx->now_ns = 1'000'000'000;
   rig.cloud({{1.5, 1.5, 0.5}}, poseAt(0.5, 0.5, 0.5), 1'000'000'000);
@@ -502,11 +520,14 @@ TEST(ObstacleLayer, ReadingsFromAnotherThread)
   // The producer delivers a fixed number of readings while the updates run; the updates go on until
   // it is done, so both sides really overlap whatever the scheduler does.
   std::atomic<bool> done{false};
-  std::thread producer([&] {
-    const PointCloud2Data c = makeCloud({{3.0, 3.0, 0.0}, {6.0, 2.0, 0.0}, {2.0, 8.0, 0.0}});  // sensor frame
-    for (int k = 0; k < 300; ++k) rig.ctx->publishCloud("cloud", c, poseAt(0.5, 0.5, 0.5));
-    done = true;
-  });
+  std::thread producer(
+      [&]
+      {
+        const PointCloud2Data c = makeCloud({{3.0, 3.0, 0.0}, {6.0, 2.0, 0.0}, {2.0, 8.0, 0.0}});  // sensor frame
+        for (int k = 0; k < 300; ++k)
+          rig.ctx->publishCloud("cloud", c, poseAt(0.5, 0.5, 0.5));
+        done = true;
+      });
   int updates = 0;
   while (!done || updates < 50)
   {

@@ -17,12 +17,30 @@ using namespace costmap_layers;
 
 namespace
 {
-ParamValue str(const std::string& s) { return ParamValue::makeString(s); }
-ParamValue num(double d) { return ParamValue::makeDouble(d); }
-ParamValue integer(int64_t i) { return ParamValue::makeInt(i); }
-ParamValue boolean(bool b) { return ParamValue::makeBool(b); }
-ParamValue list(std::vector<ParamValue> v) { return ParamValue::makeList(std::move(v)); }
-ParamValue point(double x, double y) { return list({num(x), num(y)}); }
+ParamValue str(const std::string& s)
+{
+  return ParamValue::makeString(s);
+}
+ParamValue num(double d)
+{
+  return ParamValue::makeDouble(d);
+}
+ParamValue integer(int64_t i)
+{
+  return ParamValue::makeInt(i);
+}
+ParamValue boolean(bool b)
+{
+  return ParamValue::makeBool(b);
+}
+ParamValue list(std::vector<ParamValue> v)
+{
+  return ParamValue::makeList(std::move(v));
+}
+ParamValue point(double x, double y)
+{
+  return list({num(x), num(y)});
+}
 
 ParamValue one(const std::string& key, ParamValue v)
 {
@@ -47,7 +65,10 @@ std::string errorOf(Fn&& fn)
   return "";
 }
 
-bool contains(const std::string& text, const std::string& needle) { return text.find(needle) != std::string::npos; }
+bool contains(const std::string& text, const std::string& needle)
+{
+  return text.find(needle) != std::string::npos;
+}
 
 ParamValue namedType(const std::string& name, const std::string& type)
 {
@@ -146,7 +167,8 @@ TEST(ParamValueTest, ToStringAndTypeNames)
   m.set("s", str("v"));
   EXPECT_EQ(m.toString(), "{k: 1, s: \"v\"}");
   std::vector<ParamValue> many;
-  for (int i = 0; i < 10; ++i) many.push_back(integer(i));
+  for (int i = 0; i < 10; ++i)
+    many.push_back(integer(i));
   EXPECT_EQ(list(many).toString(), "[0, 1, 2, 3, 4, 5, 6, 7, ...]");
   EXPECT_STREQ(ParamValue::typeName(ParamValue::Type::Double), "double");
   EXPECT_STREQ(ParamValue::typeName(ParamValue::Type::Map), "map");
@@ -315,13 +337,20 @@ TEST(CostmapConfigTest, ValuesAreRead)
 TEST(CostmapConfigTest, InvalidValuesNameTheParameter)
 {
   const std::vector<std::pair<std::string, ParamValue>> bad = {
-      {"resolution", num(0.0)},           {"resolution", num(-0.05)},
-      {"resolution", num(std::nan(""))},  {"width", num(0.01)},  // smaller than one cell
-      {"height", num(-1.0)},              {"width", num(1e9)},
-      {"global_frame", str("")},          {"robot_base_frame", str("")},
-      {"global_frame", integer(3)},       {"rolling_window", str("yes")},
-      {"update_frequency", num(-1.0)},    {"transform_tolerance", num(std::numeric_limits<double>::infinity())},
-      {"origin_x", num(1e8)},             {"track_unknown_space", integer(2)},
+      {"resolution", num(0.0)},
+      {"resolution", num(-0.05)},
+      {"resolution", num(std::nan(""))},
+      {"width", num(0.01)},  // smaller than one cell
+      {"height", num(-1.0)},
+      {"width", num(1e9)},
+      {"global_frame", str("")},
+      {"robot_base_frame", str("")},
+      {"global_frame", integer(3)},
+      {"rolling_window", str("yes")},
+      {"update_frequency", num(-1.0)},
+      {"transform_tolerance", num(std::numeric_limits<double>::infinity())},
+      {"origin_x", num(1e8)},
+      {"track_unknown_space", integer(2)},
   };
   for (const auto& b : bad)
   {
@@ -483,8 +512,8 @@ TEST(PluginListsTest, MalformedListsThrow)
   }
   cases.push_back({"empty name", one("plugins", list({namedType("", "x/Y")})), "empty name"});
   cases.push_back({"empty type", one("plugins", list({namedType("a", "")})), "empty type"});
-  cases.push_back({"duplicate plugin", one("plugins", list({namedType("a", "x/Y"), namedType("a", "x/Z")})),
-                   "used twice"});
+  cases.push_back(
+      {"duplicate plugin", one("plugins", list({namedType("a", "x/Y"), namedType("a", "x/Z")})), "used twice"});
   {
     ParamValue p = ParamValue::makeMap();
     p.set("plugins", list({namedType("same", "x/Y")}));
@@ -594,14 +623,14 @@ TEST(FootprintTest, EmptyStringOrListMeansRobotRadius)
 TEST(FootprintTest, InvalidFootprintsThrowNamingFootprint)
 {
   const std::vector<ParamValue> bad = {
-      str("[[1, 2], [3, 4]]"),                     // two points
-      str("[[1, 2, 3], [3, 4], [5, 6]]"),          // three numbers in a point
-      str("[[1, 2], [3, 4], [5, 6]"),              // unbalanced
-      str("[[1, 2], [3, 4], [5, nan]]"),           // not finite
-      str("[[1, 2], [3, x], [5, 6]]"),             // not a number
-      str("[[[1, 2]], [3, 4], [5, 6]]"),           // too deep
-      str("[1, 2, 3, 4, 5, 6]"),                   // not in pairs
-      list({point(1, 2), point(3, 4)}),            // two points
+      str("[[1, 2], [3, 4]]"),             // two points
+      str("[[1, 2, 3], [3, 4], [5, 6]]"),  // three numbers in a point
+      str("[[1, 2], [3, 4], [5, 6]"),      // unbalanced
+      str("[[1, 2], [3, 4], [5, nan]]"),   // not finite
+      str("[[1, 2], [3, x], [5, 6]]"),     // not a number
+      str("[[[1, 2]], [3, 4], [5, 6]]"),   // too deep
+      str("[1, 2, 3, 4, 5, 6]"),           // not in pairs
+      list({point(1, 2), point(3, 4)}),    // two points
       list({point(1, 2), point(3, 4), list({num(5)})}),
       list({point(1, 2), point(3, 4), list({num(5), str("6")})}),
       list({point(1, 2), point(3, 4), num(5)}),

@@ -182,7 +182,7 @@ TEST(RangeSensorLayer, FixedRangersUseInfinities)
   rig.range(r, 2.0, 5.0);
   rig.update();
   EXPECT_EQ(rig.at(4, 5), 254);  // detected at min_range
-  r.range = 1.5f;                 // not +-inf: rejected
+  r.range = 1.5f;                // not +-inf: rejected
   EXPECT_FALSE(rig.layer->addRange(r, poseAt(2, 5, 0)).empty());
   EXPECT_EQ(rig.ctx->countReports("fixed-distance"), 1);
   r.range = std::numeric_limits<float>::infinity();  // nothing in view: clears
@@ -209,7 +209,8 @@ TEST(RangeSensorLayer, MalformedReadingsAreRejected)
   rig.update();
   EXPECT_EQ(rig.ctx->countReports("too far"), 1);
   EXPECT_EQ(rig.ctx->countReports("rejected"), 3);
-  for (unsigned k = 0; k < 100; ++k) EXPECT_EQ(rig.layer->costmap().getCost(k), 127) << k;
+  for (unsigned k = 0; k < 100; ++k)
+    EXPECT_EQ(rig.layer->costmap().getCost(k), 127) << k;
 }
 
 TEST(RangeSensorLayer, NoReadingsTimeout)

@@ -149,7 +149,8 @@ TEST(PointCloud2Parsing, SkipsNonFinitePointsAndHonoursRowPadding)
 TEST(PointCloud2Parsing, RejectsHostileLayouts)
 {
   const PointCloud2Data good = makeCloud({{1, 2, 3}, {4, 5, 6}});
-  auto error = [](const PointCloud2Data& c) {
+  auto error = [](const PointCloud2Data& c)
+  {
     std::vector<Point3f> pts;
     const ParseResult r = pointCloud2ToPoints(c, pts);
     EXPECT_TRUE(r.ok() || pts.empty());
@@ -167,7 +168,8 @@ TEST(PointCloud2Parsing, RejectsHostileLayouts)
   c.height = 0xFFFFFFFFu;
   c.row_step = 0xFFFFFFFFu;
   c.point_step = 1;
-  c.fields = {{"x", 0, PointFieldData::FLOAT32, 1}, {"y", 0, PointFieldData::FLOAT32, 1}, {"z", 0, PointFieldData::FLOAT32, 1}};
+  c.fields = {
+      {"x", 0, PointFieldData::FLOAT32, 1}, {"y", 0, PointFieldData::FLOAT32, 1}, {"z", 0, PointFieldData::FLOAT32, 1}};
   EXPECT_FALSE(error(c).empty());  // fields do not fit in 1 byte
   c.point_step = 4;
   EXPECT_FALSE(error(c).empty());  // width * point_step overflows 32 bits: above row_step

@@ -32,24 +32,33 @@ OccupancyGridData makeMask(const std::string& frame = "map")
   m.height = 11;
   m.resolution = 1.0;
   m.data.resize(110);
-  for (int k = 0; k < 100; ++k) m.data[static_cast<std::size_t>(k)] = static_cast<int8_t>(k + 1);
-  for (int k = 100; k < 110; ++k) m.data[static_cast<std::size_t>(k)] = static_cast<int8_t>(k < 105 ? 0 : -1);
+  for (int k = 0; k < 100; ++k)
+    m.data[static_cast<std::size_t>(k)] = static_cast<int8_t>(k + 1);
+  for (int k = 100; k < 110; ++k)
+    m.data[static_cast<std::size_t>(k)] = static_cast<int8_t>(k < 105 ? 0 : -1);
   return m;
 }
 
 /// Centre of the test mask's cell holding area id `id` (1..100).
-std::pair<double, double> centreOf(int id) { return {(id - 1) % 10 + 0.5, (id - 1) / 10 + 0.5}; }
-constexpr double kFreeX = 2.5, kFreeY = 10.5;     // a 0 cell
+std::pair<double, double> centreOf(int id)
+{
+  return {(id - 1) % 10 + 0.5, (id - 1) / 10 + 0.5};
+}
+constexpr double kFreeX = 2.5, kFreeY = 10.5;        // a 0 cell
 constexpr double kUnknownX = 7.5, kUnknownY = 10.5;  // a -1 cell
 
 /// Limit of area id in the test features: id * 0.01 m/s (all different, all below the default).
-double limitOf(int id) { return id * 0.01; }
+double limitOf(int id)
+{
+  return id * 0.01;
+}
 
 SpeedLimitsData allLimits()
 {
   SpeedLimitsData s;
   s.frame_id = "map";
-  for (uint32_t id = 1; id <= 100; ++id) s.limits.push_back({id, limitOf(static_cast<int>(id))});
+  for (uint32_t id = 1; id <= 100; ++id)
+    s.limits.push_back({id, limitOf(static_cast<int>(id))});
   return s;
 }
 
@@ -117,7 +126,8 @@ TEST(SpeedFilterConfig, DefaultsAndParsing)
 
 TEST(SpeedFilterConfig, BadValuesAreRefused)
 {
-  auto expectThrows = [](const char* name, ParamValue v, const char* needle) {
+  auto expectThrows = [](const char* name, ParamValue v, const char* needle)
+  {
     ParamValue p = ParamValue::makeMap();
     p.set(name, std::move(v));
     try
@@ -180,7 +190,8 @@ TEST(SpeedFilter, SubscribesAdvertisesAndWritesNothing)
   Costmap2D master(12, 12, 1.0, 0.0, 0.0, 17);
   r.filter->updateCosts(master, 0, 0, 12, 12);
   for (unsigned j = 0; j < 12; ++j)
-    for (unsigned i = 0; i < 12; ++i) ASSERT_EQ(master.getCost(i, j), 17);
+    for (unsigned i = 0; i < 12; ++i)
+      ASSERT_EQ(master.getCost(i, j), 17);
 
   // nav2 mode needs no features.
   ParamValue q = params();
@@ -237,7 +248,8 @@ TEST(SpeedFilter, FreeCellsAndOutsideGiveTheDefaultAndUnknownKeepsTheLast)
   }
   // Every -1 cell keeps what was published last, whatever it was.
   EXPECT_EQ(r.atArea(42), 1u);
-  for (int i = 5; i < 10; ++i) EXPECT_EQ(r.at(i + 0.5, kUnknownY), 0u);
+  for (int i = 5; i < 10; ++i)
+    EXPECT_EQ(r.at(i + 0.5, kUnknownY), 0u);
   EXPECT_DOUBLE_EQ(r.last(), limitOf(42));
   EXPECT_EQ(r.at(kFreeX, kFreeY), 1u);
   EXPECT_EQ(r.at(kUnknownX, kUnknownY), 0u);
@@ -383,7 +395,8 @@ TEST(SpeedFilter, PercentMode)
   Rig r(p);
   r.ctx->publishGrid(GridKind::Mask, makeMask());
   SpeedLimitsData s;
-  for (uint32_t id = 1; id <= 100; ++id) s.limits.push_back({id, static_cast<double>(id)});  // id %
+  for (uint32_t id = 1; id <= 100; ++id)
+    s.limits.push_back({id, static_cast<double>(id)});  // id %
   EXPECT_EQ(r.filter->setSpeedLimits(s), 0u);
   for (int id = 1; id <= 100; ++id)
   {
@@ -400,13 +413,8 @@ TEST(SpeedFilter, BadFeaturesAreRejectedPerEntry)
   Rig r;
   r.ctx->publishGrid(GridKind::Mask, makeMask());
   SpeedLimitsData s;
-  s.limits = {{1, 0.5},
-              {2, std::nan("")},
-              {3, -0.1},
-              {4, std::numeric_limits<double>::infinity()},
-              {0, 0.3},
-              {101, 0.3},
-              {5, 0.0},  // 0 m/s is valid (it means "no limit")
+  s.limits = {{1, 0.5}, {2, std::nan("")}, {3, -0.1}, {4, std::numeric_limits<double>::infinity()},
+              {0, 0.3}, {101, 0.3},        {5, 0.0},  // 0 m/s is valid (it means "no limit")
               {6, 1.25}};
   EXPECT_EQ(r.filter->setSpeedLimits(s), 5u);
   ASSERT_EQ(r.ctx->reports.size(), 5u);
@@ -497,7 +505,8 @@ TEST(SpeedFilter, UnknownIdsAreNoAreaWarnedOncePerId)
   EXPECT_EQ(r.ctx->countReports("area 13 "), 1);
   EXPECT_EQ(r.ctx->countReports("area 14 "), 1);
   EXPECT_EQ(r.ctx->countReports("area 1 "), 0);
-  for (const auto& rep : r.ctx->reports) EXPECT_EQ(rep.severity, Severity::Warn);
+  for (const auto& rep : r.ctx->reports)
+    EXPECT_EQ(rep.severity, Severity::Warn);
   EXPECT_DOUBLE_EQ(r.last(), kDefault);
   // A new message that still lacks area 13: warned again, once.
   r.ctx->publishSpeedLimits(s);
@@ -549,11 +558,15 @@ TEST(SpeedFilter, FeaturesFromAnotherThread)
   Rig r;
   r.ctx->publishGrid(GridKind::Mask, makeMask());
   std::atomic<bool> stop{false};
-  std::thread writer([&] {
-    SpeedLimitsData a = allLimits(), b = allLimits();
-    for (auto& e : b.limits) e.max_speed *= 2.0;
-    for (int k = 0; !stop; ++k) r.filter->setSpeedLimits(k % 2 ? a : b);
-  });
+  std::thread writer(
+      [&]
+      {
+        SpeedLimitsData a = allLimits(), b = allLimits();
+        for (auto& e : b.limits)
+          e.max_speed *= 2.0;
+        for (int k = 0; !stop; ++k)
+          r.filter->setSpeedLimits(k % 2 ? a : b);
+      });
   for (int k = 0; k < 2000; ++k)
   {
     r.atArea(k % 100 + 1);
@@ -615,7 +628,8 @@ TEST(SpeedFilterNav2, LimitsNotAboveZeroMeanNoLimit)
       else
         EXPECT_DOUBLE_EQ(r.last(), l) << v;
     }
-  for (int v = 1; v <= 4; ++v) EXPECT_EQ(r.ctx->countReports("mask value " + std::to_string(v) + " gives"), 1) << v;
+  for (int v = 1; v <= 4; ++v)
+    EXPECT_EQ(r.ctx->countReports("mask value " + std::to_string(v) + " gives"), 1) << v;
   EXPECT_EQ(r.ctx->reports.size(), 5u);  // v = 5 gives 0 (or within rounding of it)
 }
 

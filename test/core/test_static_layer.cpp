@@ -32,7 +32,10 @@ OccupancyGridData makeMap(uint32_t w, uint32_t h, double res, double ox, double 
   return m;
 }
 
-void setCell(OccupancyGridData& m, uint32_t x, uint32_t y, int8_t v) { m.data[static_cast<std::size_t>(y) * m.width + x] = v; }
+void setCell(OccupancyGridData& m, uint32_t x, uint32_t y, int8_t v)
+{
+  m.data[static_cast<std::size_t>(y) * m.width + x] = v;
+}
 
 /// Writes one value over the whole window, below the static layer.
 class FillLayer : public Layer
@@ -51,7 +54,7 @@ struct Rig
 {
   explicit Rig(ParamValue params = ParamValue::makeMap(), bool rolling = false, bool track_unknown = false,
                std::string global = "map")
-    : lc(global, rolling, track_unknown)
+      : lc(global, rolling, track_unknown)
   {
     lc.resizeMap(10, 10, 1.0, 0.0, 0.0);
     ctx = std::make_shared<FakeContext>(std::move(params), global);
@@ -71,7 +74,8 @@ struct Rig
 ParamValue params(std::initializer_list<std::pair<const char*, ParamValue>> items)
 {
   ParamValue p = ParamValue::makeMap();
-  for (const auto& it : items) p.set(it.first, it.second);
+  for (const auto& it : items)
+    p.set(it.first, it.second);
   return p;
 }
 }  // namespace
@@ -185,9 +189,9 @@ TEST(StaticLayer, TrackUnknownSpaceAndTrinaryAndThreshold)
     EXPECT_EQ(rig.at(2, 2), FREE_SPACE);
   }
   {
-    Rig rig(params({{"lethal_cost_threshold", ParamValue::makeInt(65)},
-                    {"trinary_costmap", ParamValue::makeBool(false)}}),
-            false, false);
+    Rig rig(
+        params({{"lethal_cost_threshold", ParamValue::makeInt(65)}, {"trinary_costmap", ParamValue::makeBool(false)}}),
+        false, false);
     EXPECT_FALSE(rig.layer->config().track_unknown_space);  // the costmap's
     rig.publish(m);
     rig.update();
@@ -357,7 +361,8 @@ TEST(StaticLayer, RollingWindowSamplesMapThroughTransform)
   rig.ctx->transforms[{"map", "odom"}] = odom_from_map.inverse();
   OccupancyGridData m = makeMap(40, 40, 0.25, -5.1, -4.91, 0, "map");
   for (uint32_t y = 0; y < 40; ++y)
-    for (uint32_t x = 0; x < 40; ++x) setCell(m, x, y, static_cast<int8_t>((x * 7 + y * 3) % 5 == 0 ? 100 : 0));
+    for (uint32_t x = 0; x < 40; ++x)
+      setCell(m, x, y, static_cast<int8_t>((x * 7 + y * 3) % 5 == 0 ? 100 : 0));
   setCell(m, 0, 0, -1);
   rig.publish(m);
   rig.update(2.0, 1.0);  // the window is [-3, 7) x [-4, 6) in odom
@@ -379,8 +384,7 @@ TEST(StaticLayer, RollingWindowSamplesMapThroughTransform)
       }
       ++inside;
       const int8_t v = m.data[unsigned(gy) * 40 + unsigned(gx)];
-      EXPECT_EQ(c.getCost(i, j), v == 100 ? LETHAL_OBSTACLE : (v == -1 ? NO_INFORMATION : FREE_SPACE))
-          << i << "," << j;
+      EXPECT_EQ(c.getCost(i, j), v == 100 ? LETHAL_OBSTACLE : (v == -1 ? NO_INFORMATION : FREE_SPACE)) << i << "," << j;
     }
   EXPECT_GT(inside, 100);
   // Without the transform: reported, nothing drawn.
@@ -396,21 +400,25 @@ TEST(StaticLayer, MapsFromAnotherThread)
   Rig rig;
   std::atomic<bool> stop{false};
   std::atomic<int> published{0};
-  std::thread publisher([&] {
-    int k = 0;
-    while (!stop || k < 50)
-    {
-      OccupancyGridData m = makeMap(10, 10, 1.0, 0, 0);
-      setCell(m, static_cast<uint32_t>(k % 10), 0, 100);
-      rig.publish(m);
-      published = ++k;
-    }
-  });
-  for (int i = 0; i < 200 || published < 50; ++i) rig.update();
+  std::thread publisher(
+      [&]
+      {
+        int k = 0;
+        while (!stop || k < 50)
+        {
+          OccupancyGridData m = makeMap(10, 10, 1.0, 0, 0);
+          setCell(m, static_cast<uint32_t>(k % 10), 0, 100);
+          rig.publish(m);
+          published = ++k;
+        }
+      });
+  for (int i = 0; i < 200 || published < 50; ++i)
+    rig.update();
   stop = true;
   publisher.join();
   rig.update();
   int lethal = 0;
-  for (unsigned x = 0; x < 10; ++x) lethal += rig.at(x, 0) == LETHAL_OBSTACLE;
+  for (unsigned x = 0; x < 10; ++x)
+    lethal += rig.at(x, 0) == LETHAL_OBSTACLE;
   EXPECT_EQ(lethal, 1);
 }

@@ -27,14 +27,16 @@ ParamValue voxelParams(std::initializer_list<std::pair<const char*, ParamValue>>
                              {"max_obstacle_height", D(5.0)}});
   ParamValue p = paramMap({{"observation_sources", S("cloud")}, {"max_obstacle_height", D(5.0)}});
   p.set("cloud", src);
-  for (const auto& it : layer_extra) p.set(it.first, it.second);
+  for (const auto& it : layer_extra)
+    p.set(it.first, it.second);
   return p;
 }
 
 int count(const Costmap2D& c, uint8_t v)
 {
   int n = 0;
-  for (std::size_t k = 0; k < c.cellCount(); ++k) n += c.data()[k] == v;
+  for (std::size_t k = 0; k < c.cellCount(); ++k)
+    n += c.data()[k] == v;
   return n;
 }
 
@@ -52,7 +54,8 @@ struct Rig
   void cloud(const std::vector<XYZ>& pts, XYZ o)
   {
     std::vector<XYZ> local;
-    for (const XYZ& p : pts) local.push_back({p.x - o.x, p.y - o.y, p.z - o.z});
+    for (const XYZ& p : pts)
+      local.push_back({p.x - o.x, p.y - o.y, p.z - o.z});
     ASSERT_EQ(ctx->publishCloud("cloud", makeCloud(local), poseAt(o.x, o.y, o.z)), 1);
   }
   void update(double x = 0, double y = 0) { lc.updateMap(x, y, 0); }
@@ -90,7 +93,8 @@ TEST(VoxelConfig, DefaultsFollowCostmap2dAndRejectsBadValues)
   EXPECT_THROW(layer->initialize(&lc, "v", std::make_shared<FakeContext>(paramMap({{"z_voxels", I(20)}}))),
                std::invalid_argument);
   auto ok = std::make_shared<VoxelLayer>();
-  ok->initialize(&lc, "v", std::make_shared<FakeContext>(paramMap({{"z_voxels", I(16)}, {"combination_method", I(0)}})));
+  ok->initialize(&lc, "v",
+                 std::make_shared<FakeContext>(paramMap({{"z_voxels", I(16)}, {"combination_method", I(0)}})));
   EXPECT_EQ(ok->voxels().sizeZ(), 16u);
   EXPECT_EQ(ok->config().combination_method, 0);
 }
@@ -106,7 +110,7 @@ TEST(VoxelGrid, BitsCountsAndThresholds)
   EXPECT_EQ(VoxelGrid::unknownCount(g.column(1, 1)), 10u);
   EXPECT_EQ(g.getVoxel(1, 1, 3), VoxelStatus::Unknown);
   EXPECT_EQ(g.getVoxel(9, 1, 3), VoxelStatus::Unknown);  // outside
-  EXPECT_FALSE(g.markVoxel(1, 1, 3, 1));  // one marked, threshold 1: not yet
+  EXPECT_FALSE(g.markVoxel(1, 1, 3, 1));                 // one marked, threshold 1: not yet
   EXPECT_EQ(g.getVoxel(1, 1, 3), VoxelStatus::Marked);
   EXPECT_TRUE(g.markVoxel(1, 1, 4, 1));
   EXPECT_EQ(VoxelGrid::markedCount(g.column(1, 1)), 2u);
@@ -135,7 +139,8 @@ TEST(VoxelGrid, ShiftKeepsSharedColumns)
   EXPECT_EQ(g.getVoxel(3, 2, 1), VoxelStatus::Unknown);
   int marked = 0;
   for (unsigned y = 0; y < 5; ++y)
-    for (unsigned x = 0; x < 5; ++x) marked += VoxelGrid::markedCount(g.column(x, y));
+    for (unsigned x = 0; x < 5; ++x)
+      marked += VoxelGrid::markedCount(g.column(x, y));
   EXPECT_EQ(marked, 1);
   g.shift(10, 0);
   EXPECT_EQ(g.getVoxel(1, 3, 1), VoxelStatus::Unknown);
@@ -160,7 +165,8 @@ TEST(VoxelGrid, WalkLineExcludesTheEndVoxelAndStaysInside)
   EXPECT_TRUE(seen.empty());
   g.walkLine(at, 0.0, 0.0, 0.0, 9.999, 9.999, 7.999);
   EXPECT_FALSE(seen.empty());
-  for (const auto& s : seen) EXPECT_TRUE(s[0] < 10 && s[1] < 10 && s[2] < 8);
+  for (const auto& s : seen)
+    EXPECT_TRUE(s[0] < 10 && s[1] < 10 && s[2] < 8);
 }
 
 TEST(VoxelLayer, MarksIn3D)
@@ -184,7 +190,8 @@ TEST(VoxelLayer, ClearsOnlyTheVoxelsARayCrosses)
   rig.cloud({{5.5, 5.5, 0.3}}, {0.5, 5.5, 0.3});
   rig.update();
   ASSERT_EQ(rig.master().getCost(5, 5), LETHAL_OBSTACLE);
-  for (unsigned x = 0; x < 5; ++x) EXPECT_EQ(rig.master().getCost(x, 5), FREE_SPACE) << x;
+  for (unsigned x = 0; x < 5; ++x)
+    EXPECT_EQ(rig.master().getCost(x, 5), FREE_SPACE) << x;
 
   // A ray at 1.5 m passes over the obstacle: it stays.
   rig.cloud({{9.5, 5.5, 1.5}}, {0.5, 5.5, 1.5});
@@ -211,7 +218,8 @@ TEST(VoxelLayer, UnknownThresholdDecidesClearedCells)
     rig.cloud({{6.5, 5.5, 0.3}}, {0.5, 5.5, 0.3});
     rig.update();
     const uint8_t expected = threshold == 8 ? NO_INFORMATION : FREE_SPACE;
-    for (unsigned x = 0; x < 6; ++x) EXPECT_EQ(rig.layer->costmap().getCost(x, 5), expected) << threshold << " " << x;
+    for (unsigned x = 0; x < 6; ++x)
+      EXPECT_EQ(rig.layer->costmap().getCost(x, 5), expected) << threshold << " " << x;
   }
 }
 

@@ -15,14 +15,14 @@
 #include "fake_context.hpp"
 #include "fuzz_decoder.hpp"
 
-#define FUZZ_CHECK(cond, what)                                                                         \
-  do                                                                                                   \
-  {                                                                                                    \
-    if (!(cond))                                                                                       \
-    {                                                                                                  \
+#define FUZZ_CHECK(cond, what)                                                                            \
+  do                                                                                                      \
+  {                                                                                                       \
+    if (!(cond))                                                                                          \
+    {                                                                                                     \
       std::fprintf(stderr, "fuzz invariant failed at %s:%d: %s (%s)\n", __FILE__, __LINE__, #cond, what); \
-      std::abort();                                                                                    \
-    }                                                                                                  \
+      std::abort();                                                                                       \
+    }                                                                                                     \
   } while (0)
 
 namespace costmap_layers_fuzz
@@ -42,7 +42,8 @@ public:
   void publishUpdate(const OccupancyGridUpdateData& u)
   {
     auto shared = std::make_shared<const OccupancyGridUpdateData>(u);
-    for (auto& cb : update_subs) cb(shared);
+    for (auto& cb : update_subs)
+      cb(shared);
   }
   std::vector<GridUpdateCallback> update_subs;
 };
@@ -104,7 +105,8 @@ inline SensorPose decodeSensorPose(FuzzDecoder& in)
   if (n < 1e-6)
     q[0] = q[1] = q[2] = 0, q[3] = 1;
   else
-    for (double& v : q) v /= n;
+    for (double& v : q)
+      v /= n;
   SensorPose p;
   p.to_global = Transform3D::fromQuaternion(tx, ty, tz, q[0], q[1], q[2], q[3]);
   p.origin_x = tx, p.origin_y = ty, p.origin_z = tz;

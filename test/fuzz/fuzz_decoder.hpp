@@ -92,7 +92,8 @@ public:
   {
     const std::size_t len = u8() % (max_len + 1);
     std::string s;
-    for (std::size_t k = 0; k < len && !empty(); ++k) s.push_back(static_cast<char>(u8()));
+    for (std::size_t k = 0; k < len && !empty(); ++k)
+      s.push_back(static_cast<char>(u8()));
     return s;
   }
 

@@ -35,12 +35,15 @@ LaserScanData decodeScan(FuzzDecoder& in)
   // Ranges: a pattern of up to 8 values repeated over the beams (keeps inputs short), or one value per
   // beam when the flag says so.
   if (in.flag())
-    for (uint32_t k = 0; k < take && !in.empty(); ++k) s.ranges.push_back(in.real32());
+    for (uint32_t k = 0; k < take && !in.empty(); ++k)
+      s.ranges.push_back(in.real32());
   else
   {
     std::vector<float> pattern(in.small(1, 8));
-    for (float& v : pattern) v = in.real32();
-    for (uint32_t k = 0; k < take; ++k) s.ranges.push_back(pattern[k % pattern.size()]);
+    for (float& v : pattern)
+      v = in.real32();
+    for (uint32_t k = 0; k < take; ++k)
+      s.ranges.push_back(pattern[k % pattern.size()]);
   }
   s.intensities.assign(in.small(0, 3) == 0 ? s.ranges.size() : in.small(0, 4), 1.0f);
   return s;

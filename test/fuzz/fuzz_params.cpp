@@ -83,7 +83,8 @@ void run(const std::string& text)
   FUZZ_CHECK(config.sizeInCellsX() >= 1 && config.sizeInCellsY() >= 1, "at least one cell a side");
   const Footprint footprint = config.footprint.padded();
   FUZZ_CHECK(footprint.size() >= 3, "a footprint has at least 3 vertices");
-  for (const auto& v : footprint) FUZZ_CHECK(std::isfinite(v.x()) && std::isfinite(v.y()), "finite footprint");
+  for (const auto& v : footprint)
+    FUZZ_CHECK(std::isfinite(v.x()) && std::isfinite(v.y()), "finite footprint");
   if (!lists_ok) return;
 
   LayeredCostmap lc(config.global_frame, config.rolling_window, config.track_unknown_space);
@@ -92,10 +93,12 @@ void run(const std::string& text)
     lc.resizeMap(config.sizeInCellsX(), config.sizeInCellsY(), config.resolution, config.origin_x, config.origin_y);
   else
     lc.resizeMap(16, 16, config.resolution, config.origin_x, config.origin_y);
-  loadPlugins(lc, lists, createLayer, [&](const PluginSpec& spec) {
-    const ParamValue* sub = ns->find(spec.name);
-    return std::make_shared<FuzzContext>(sub ? *sub : ParamValue::makeMap(), config.global_frame);
-  });
+  loadPlugins(lc, lists, createLayer,
+              [&](const PluginSpec& spec)
+              {
+                const ParamValue* sub = ns->find(spec.name);
+                return std::make_shared<FuzzContext>(sub ? *sub : ParamValue::makeMap(), config.global_frame);
+              });
   lc.setFootprint(footprint);
   lc.updateMap(config.origin_x, config.origin_y, 0.0);
 }

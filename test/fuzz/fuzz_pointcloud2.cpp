@@ -51,7 +51,8 @@ PointCloud2Data decodeCloud(FuzzDecoder& in)
   if (n > (1u << 18)) n = in.u8();  // an unaffordable length is still a mismatch, just a cheaper one
   const std::vector<uint8_t> src = in.bytes(static_cast<std::size_t>(n < 4096 ? n : 4096));
   c.data.resize(static_cast<std::size_t>(n));
-  for (std::size_t k = 0; k < c.data.size(); ++k) c.data[k] = src.empty() ? 0 : src[k % src.size()];
+  for (std::size_t k = 0; k < c.data.size(); ++k)
+    c.data[k] = src.empty() ? 0 : src[k % src.size()];
   return c;
 }
 }  // namespace

@@ -37,7 +37,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
   const uint8_t bits = in.u8();
   const bool rolling = bits & 1;
   ParamValue params = ParamValue::makeMap();
-  params.set("topics", bits & 2 ? ParamValue::makeString("sonar") : ParamValue::makeList({ParamValue::makeString("sonar")}));
+  params.set("topics",
+             bits & 2 ? ParamValue::makeString("sonar") : ParamValue::makeList({ParamValue::makeString("sonar")}));
   params.set("phi", ParamValue::makeDouble(in.real()));
   params.set("inflate_cone", ParamValue::makeDouble(in.u8() / 255.0));
   params.set("clear_threshold", ParamValue::makeDouble(in.u8() / 255.0));

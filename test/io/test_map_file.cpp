@@ -564,21 +564,26 @@ uint32_t crc32Of(const std::string& bytes)
   for (unsigned char b : bytes)
   {
     c ^= b;
-    for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
+    for (int k = 0; k < 8; ++k)
+      c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
   }
   return c ^ 0xFFFFFFFFu;
 }
 
 std::string pngChunk(const std::string& type, const std::string& data)
 {
-  auto be32 = [](uint32_t v) {
+  auto be32 = [](uint32_t v)
+  {
     return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8),
                        static_cast<char>(v)};
   };
   return be32(static_cast<uint32_t>(data.size())) + type + data + be32(crc32Of(type + data));
 }
 
-std::vector<uint8_t> bytesOf(const std::string& s) { return std::vector<uint8_t>(s.begin(), s.end()); }
+std::vector<uint8_t> bytesOf(const std::string& s)
+{
+  return std::vector<uint8_t>(s.begin(), s.end());
+}
 }  // namespace
 
 // A 30-byte PNM whose header says 25102 x 25102 colour pixels made the reader allocate 1.9 GB for the
@@ -588,8 +593,8 @@ TEST(MapFileFuzzRegressions, PnmHeaderPromisingAHugeImageIsRefusedBeforeAllocati
 {
   MapFileInfo info;
   info.resolution = 0.05;
-  for (const char* text : {"P3 25102 25102 255 0 0 0\n", "P6 99999 99999 255\n\x01\x02\x03",
-                           "P5 100000 100000 65535\n\x01\x02"})
+  for (const char* text :
+       {"P3 25102 25102 255 0 0 0\n", "P6 99999 99999 255\n\x01\x02\x03", "P5 100000 100000 65535\n\x01\x02"})
   {
     try
     {
@@ -608,9 +613,19 @@ TEST(MapFileFuzzRegressions, PnmHeaderPromisingAHugeImageIsRefusedBeforeAllocati
 // decoder allocate 40 GB before libpng found the data missing.
 TEST(MapFileFuzzRegressions, PngHeaderPromisingAHugeImageIsRefusedBeforeAllocating)
 {
-  const std::string ihdr{0, 1, static_cast<char>(0x86), static_cast<char>(0xA0),  // width 100000
-                         0, 1, static_cast<char>(0x86), static_cast<char>(0xA0),  // height 100000
-                         8, 6, 0, 0, 0};                                           // 8-bit RGBA
+  const std::string ihdr{0,
+                         1,
+                         static_cast<char>(0x86),
+                         static_cast<char>(0xA0),  // width 100000
+                         0,
+                         1,
+                         static_cast<char>(0x86),
+                         static_cast<char>(0xA0),  // height 100000
+                         8,
+                         6,
+                         0,
+                         0,
+                         0};  // 8-bit RGBA
   const std::string png = std::string("\x89PNG\r\n\x1a\n", 8) + pngChunk("IHDR", ihdr) +
                           pngChunk("IDAT", std::string("\x78\x9c\x03\x00\x00\x00\x00\x01", 8)) + pngChunk("IEND", "");
   MapFileInfo info;
@@ -629,8 +644,9 @@ TEST(MapFileFuzzRegressions, PngHeaderPromisingAHugeImageIsRefusedBeforeAllocati
 // The in-memory entry points the fuzz target uses read exactly what the file functions read.
 TEST(MapFileFuzzRegressions, InMemoryDecodingMatchesTheFiles)
 {
-  const std::string yaml = "image: m.pgm\nresolution: 0.5\norigin: [1, 2, 0]\nnegate: 0\n"
-                           "occupied_thresh: 0.65\nfree_thresh: 0.196\nmode: scale\n";
+  const std::string yaml =
+      "image: m.pgm\nresolution: 0.5\norigin: [1, 2, 0]\nnegate: 0\n"
+      "occupied_thresh: 0.65\nfree_thresh: 0.196\nmode: scale\n";
   const MapFileInfo info = costmap_layers::io::parseMapFileInfo(yaml, "/maps/m.yaml");
   EXPECT_EQ(info.image_path, "/maps/m.pgm");
   EXPECT_EQ(info.mode, MapMode::Scale);

@@ -39,7 +39,10 @@ std::vector<uint8_t> rawCells(const std::string& path)
   return std::vector<uint8_t>(bytes.begin(), bytes.end());
 }
 
-std::string sharedMaps() { return std::string(COSTMAP_LAYERS_SOURCE_DIR) + "/../shared/maps"; }
+std::string sharedMaps()
+{
+  return std::string(COSTMAP_LAYERS_SOURCE_DIR) + "/../shared/maps";
+}
 }  // namespace
 
 TEST(CostmapTool, GradientOnGeneratedMapIsExact)
@@ -63,12 +66,14 @@ TEST(CostmapTool, GradientOnRealMapsIsExact)
     const std::string map = sharedMaps() + "/" + name + ".yaml";
     if (!std::filesystem::exists(map)) GTEST_SKIP() << "../shared/maps is absent";
     TempDir dir;
-    const std::string params = dir.write("params.yaml", kGradientParams + "gradient_layer: {gradient_size: 7, "
-                                                                          "gradient_factor: 30}\n");
+    const std::string params = dir.write("params.yaml", kGradientParams +
+                                                            "gradient_layer: {gradient_size: 7, "
+                                                            "gradient_factor: 30}\n");
     const ToolResult r = runTool({"--map", map, "--params", params, "--out-raw", dir.file("out.raw")}, dir);
     ASSERT_EQ(r.exit_code, 0) << name << ": " << r.err;
     const std::string json = r.lastLine();
-    const auto num = [&json](const std::string& key) {
+    const auto num = [&json](const std::string& key)
+    {
       const auto p = json.find("\"" + key + "\": ");
       return std::stod(json.substr(p + key.size() + 4));
     };
@@ -100,8 +105,8 @@ local_costmap:
     plugins: [{name: g, type: costmap_layers/GradientLayer}]
     g: {gradient_size: 2, gradient_factor: 100}
 )");
-  const ToolResult r = runTool({"--map", map, "--params", params, "--namespace", "local_costmap/costmap",
-                                "--out-raw", dir.file("out.raw"), "--out-png", dir.file("out.png")},
+  const ToolResult r = runTool({"--map", map, "--params", params, "--namespace", "local_costmap/costmap", "--out-raw",
+                                dir.file("out.raw"), "--out-png", dir.file("out.png")},
                                dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   // k = 0..3: 254, 154, 54, (254 - 300) % 255 = -46 -> 210 as an unsigned char.
@@ -127,19 +132,20 @@ plugins: [{name: g, type: costmap_layers/GradientLayer}]
 filters: [{name: keepout, type: costmap_layers/KeepoutFilter}]
 g: {gradient_factor: 0}
 )");
-  const ToolResult r = runTool(
-      {"--map", map, "--params", params, "--mask", "keepout=" + mask, "--out-raw", dir.file("out.raw")}, dir);
+  const ToolResult r =
+      runTool({"--map", map, "--params", params, "--mask", "keepout=" + mask, "--out-raw", dir.file("out.raw")}, dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto cells = rawCells(dir.file("out.raw"));
   ASSERT_EQ(cells.size(), 100u);
-  for (int k = 0; k < 100; ++k) EXPECT_EQ(cells[static_cast<std::size_t>(k)], 254) << k;  // gradient factor 0: all 254
+  for (int k = 0; k < 100; ++k)
+    EXPECT_EQ(cells[static_cast<std::size_t>(k)], 254) << k;  // gradient factor 0: all 254
   // Now with a gradient that leaves room to see the filter: factor 10 puts 214 at x = 4.
   dir.write("params.yaml", R"(
 plugins: [{name: g, type: costmap_layers/GradientLayer}]
 filters: [{name: keepout, type: costmap_layers/KeepoutFilter}]
 )");
-  const ToolResult r2 = runTool(
-      {"--map", map, "--params", params, "--mask", "keepout=" + mask, "--out-raw", dir.file("out.raw")}, dir);
+  const ToolResult r2 =
+      runTool({"--map", map, "--params", params, "--mask", "keepout=" + mask, "--out-raw", dir.file("out.raw")}, dir);
   ASSERT_EQ(r2.exit_code, 0) << r2.err;
   const auto cells2 = rawCells(dir.file("out.raw"));
   auto expected = expectedGradient(10, 10, 20, 10);
@@ -154,7 +160,9 @@ TEST(CostmapTool, BadInputGivesOneClearLineAndNonZeroExit)
   const std::string params = dir.write("params.yaml", kGradientParams);
   const std::string bad_yaml = dir.write("bad.yaml", "plugins: [ {name: a, type: \n  - : :\n");
   const std::string unknown = dir.write("unknown.yaml", "plugins: [{name: x, type: costmap_layers/NoSuchLayer}]\n");
-  const std::string bad_image = dir.write("bad_image.yaml", "image: nothing.pgm\nresolution: 0.1\norigin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n");
+  const std::string bad_image = dir.write(
+      "bad_image.yaml",
+      "image: nothing.pgm\nresolution: 0.1\norigin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n");
   dir.write("nothing.pgm", "P5\n10 10\n255\nabc");
 
   struct Case
@@ -272,7 +280,8 @@ inflation_layer: {inflation_radius: 0.55, cost_scaling_factor: 10.0}
                               << ", expected " << int(expected[first]) << ")";
     // The maps really exercise the rule: lethal, inscribed, graded and unknown cells all occur.
     std::size_t counts[4] = {0, 0, 0, 0};
-    for (uint8_t c : got) ++counts[c == 254 ? 0 : c == 253 ? 1 : (c > 0 && c < 253) ? 2 : c == 255 ? 3 : 0];
+    for (uint8_t c : got)
+      ++counts[c == 254 ? 0 : c == 253 ? 1 : (c > 0 && c < 253) ? 2 : c == 255 ? 3 : 0];
     EXPECT_GT(counts[1], 0u) << name;
     EXPECT_GT(counts[2], 0u) << name;
   }

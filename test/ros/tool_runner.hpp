@@ -32,7 +32,8 @@ struct ToolResult
 inline std::string shellQuote(const std::string& s)
 {
   std::string q = "'";
-  for (char c : s) q += (c == '\'') ? std::string("'\\''") : std::string(1, c);
+  for (char c : s)
+    q += (c == '\'') ? std::string("'\\''") : std::string(1, c);
   return q + "'";
 }
 
@@ -63,7 +64,8 @@ struct TempDir
 inline ToolResult runTool(const std::vector<std::string>& args, const TempDir& dir)
 {
   std::string cmd = shellQuote(COSTMAP_TOOL_PATH);
-  for (const auto& a : args) cmd += " " + shellQuote(a);
+  for (const auto& a : args)
+    cmd += " " + shellQuote(a);
   const std::string out_file = dir.file("stdout.txt"), err_file = dir.file("stderr.txt");
   cmd += " >" + shellQuote(out_file) + " 2>" + shellQuote(err_file);
   const int status = std::system(cmd.c_str());

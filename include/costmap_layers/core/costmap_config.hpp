@@ -24,7 +24,7 @@ struct CostmapConfig
   bool rolling_window = false;
   bool track_unknown_space = false;
   bool always_send_full_costmap = false;
-  double reset_distance = 3.0;       ///< [m] side of the square ~clear_around_robot keeps
+  double reset_distance = 3.0;  ///< [m] side of the square ~clear_around_robot keeps
   FootprintConfig footprint;
 
   unsigned int sizeInCellsX() const;

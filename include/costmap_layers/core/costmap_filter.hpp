@@ -125,8 +125,8 @@ protected:
                        const MaskMapping& mapping, double robot_x, double robot_y, double robot_yaw) = 0;
   /// Called every cycle with the mask in force and the transform, even when no cell is updated (what
   /// SpeedFilter needs). robot pose in the global frame [m, rad].
-  virtual void processPose(const OccupancyGridData& mask, const Transform2D& to_mask, double robot_x,
-                           double robot_y, double robot_yaw)
+  virtual void processPose(const OccupancyGridData& mask, const Transform2D& to_mask, double robot_x, double robot_y,
+                           double robot_yaw)
   {
     (void)mask, (void)to_mask, (void)robot_x, (void)robot_y, (void)robot_yaw;
   }
@@ -151,9 +151,9 @@ private:
   std::string mask_topic_;
   std::atomic<bool> filter_enabled_{true};
   mutable std::mutex mask_mutex_;
-  std::shared_ptr<const OccupancyGridData> mask_;          ///< guarded by mask_mutex_
-  std::shared_ptr<const OccupancyGridData> pending_old_;   ///< the mask replaced since the last bounds
-  bool mask_changed_ = false;                              ///< guarded by mask_mutex_
+  std::shared_ptr<const OccupancyGridData> mask_;         ///< guarded by mask_mutex_
+  std::shared_ptr<const OccupancyGridData> pending_old_;  ///< the mask replaced since the last bounds
+  bool mask_changed_ = false;                             ///< guarded by mask_mutex_
   std::shared_ptr<const OccupancyGridData> active_mask_;  ///< the mask of this cycle (update thread only)
   bool have_transform_ = false;
   double robot_x_ = 0, robot_y_ = 0, robot_yaw_ = 0;
@@ -176,8 +176,7 @@ void MaskMapping::forEachRow(Costmap2D& master, const T* source, uint32_t source
   {
     std::fill(scratch.begin(), scratch.begin() + cols_lo_, neutral);
     std::fill(scratch.begin() + cols_hi_, scratch.end(), neutral);
-    if constexpr (std::is_integral_v<T> && sizeof(T) == 1)
-      use_shuffle = chunk_width_ > 0 && byteShuffleAvailable();
+    if constexpr (std::is_integral_v<T> && sizeof(T) == 1) use_shuffle = chunk_width_ > 0 && byteShuffleAvailable();
   }
   int cached_row = -1;
   for (int j = window_.y0; j < window_.yn; ++j)
@@ -208,10 +207,12 @@ void MaskMapping::forEachRow(Costmap2D& master, const T* source, uint32_t source
         {
           const int32_t* cols = cols_.data();
           T* out = scratch.data();
-          for (int k = cols_lo_; k < cols_hi_; ++k) out[k] = mrow[cols[k]];
+          for (int k = cols_lo_; k < cols_hi_; ++k)
+            out[k] = mrow[cols[k]];
         }
         else
-          for (std::size_t k = 0; k < n; ++k) scratch[k] = cols_[k] >= 0 ? mrow[cols_[k]] : neutral;
+          for (std::size_t k = 0; k < n; ++k)
+            scratch[k] = cols_[k] >= 0 ? mrow[cols_[k]] : neutral;
         cached_row = my;
       }
       fn(row + window_.x0, scratch.data(), n);
@@ -282,7 +283,8 @@ void MaskMapping::forEach(Costmap2D& master, const OccupancyGridData& mask, Fn&&
       const int i0 = std::max(window_.x0, -offset_x_);
       const int i1 = std::min(window_.xn, mask_w - offset_x_);
       const int8_t* mrow = mdata + static_cast<std::size_t>(my) * mask_w + offset_x_;
-      for (int i = i0; i < i1; ++i) fn(row[i], mrow[i]);
+      for (int i = i0; i < i1; ++i)
+        fn(row[i], mrow[i]);
     }
     else if (axis_aligned_)
     {

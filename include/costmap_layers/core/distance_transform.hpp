@@ -31,10 +31,7 @@ struct SourceRange
 {
   uint8_t lo = 1;
   uint8_t hi = 255;
-  bool contains(uint8_t v) const
-  {
-    return static_cast<uint8_t>(v - lo) <= static_cast<uint8_t>(hi - lo);
-  }
+  bool contains(uint8_t v) const { return static_cast<uint8_t>(v - lo) <= static_cast<uint8_t>(hi - lo); }
 };
 
 /// Reported for cells without any source (or farther than the cap) by squaredDistanceTransform().
@@ -48,16 +45,16 @@ constexpr int kMaxBandedCap16 = 180;
 /// Buffers reused across calls; one per thread.
 struct DistanceTransformScratch
 {
-  std::vector<int64_t> row_f;    ///< per column: squared vertical distance, or -1 for none
-  std::vector<int32_t> env_s;    ///< envelope: apex columns
-  std::vector<int32_t> env_t;    ///< envelope: first column each parabola owns
-  std::vector<uint8_t> run;      ///< banded: running vertical distance of one row
-  std::vector<uint8_t> up;       ///< banded: upward vertical distances of the output rows
-  std::vector<uint8_t> row8;     ///< banded 8-bit: padded squared vertical distances of one row
-  std::vector<uint8_t> acc8;     ///< banded 8-bit: output row
-  std::vector<uint16_t> row16;   ///< banded 16-bit: padded squared vertical distances of one row
-  std::vector<uint16_t> acc16;   ///< banded 16-bit: output row
-  std::vector<uint8_t> merge_g;  ///< cost merge: one stripe of padded vertical-distance rows
+  std::vector<int64_t> row_f;      ///< per column: squared vertical distance, or -1 for none
+  std::vector<int32_t> env_s;      ///< envelope: apex columns
+  std::vector<int32_t> env_t;      ///< envelope: first column each parabola owns
+  std::vector<uint8_t> run;        ///< banded: running vertical distance of one row
+  std::vector<uint8_t> up;         ///< banded: upward vertical distances of the output rows
+  std::vector<uint8_t> row8;       ///< banded 8-bit: padded squared vertical distances of one row
+  std::vector<uint8_t> acc8;       ///< banded 8-bit: output row
+  std::vector<uint16_t> row16;     ///< banded 16-bit: padded squared vertical distances of one row
+  std::vector<uint16_t> acc16;     ///< banded 16-bit: output row
+  std::vector<uint8_t> merge_g;    ///< cost merge: one stripe of padded vertical-distance rows
   std::vector<uint8_t> merge_lut;  ///< cost merge: the per-offset 16-entry cost tables
   std::vector<uint8_t> merge_out;  ///< cost rows: the row handed to the sink
 };
@@ -68,8 +65,8 @@ struct DistanceTransformScratch
 /// @param out          first cell of the output; row y starts at out + y * out_stride
 /// @param max_sq_dist  cells whose squared distance exceeds this get kFarSquaredDistance
 /// Cells with no source at all also get kFarSquaredDistance. width, height >= 0.
-void squaredDistanceTransform(const uint8_t* grid, int width, int height, std::ptrdiff_t stride,
-                              SourceRange source, uint32_t* out, std::ptrdiff_t out_stride, uint32_t max_sq_dist,
+void squaredDistanceTransform(const uint8_t* grid, int width, int height, std::ptrdiff_t stride, SourceRange source,
+                              uint32_t* out, std::ptrdiff_t out_stride, uint32_t max_sq_dist,
                               DistanceTransformScratch& scratch);
 
 /// Convenience form for a dense 0/1 (zero / non-zero) mask, no cap.
@@ -96,14 +93,14 @@ using DistanceRowSink16 = std::function<void(int y, const uint16_t* sq_dist)>;
 /// std::invalid_argument). Sources outside `window` but within cap of it are taken into account (the
 /// grid is read only there); the window is clipped to the grid.
 /// @param grid  the whole grid, width x height, row y at grid + y * stride
-void cappedSquaredDistanceRows8(const uint8_t* grid, int width, int height, std::ptrdiff_t stride,
-                                SourceRange source, int cap, const DistanceWindow& window,
-                                DistanceTransformScratch& scratch, const DistanceRowSink8& sink);
+void cappedSquaredDistanceRows8(const uint8_t* grid, int width, int height, std::ptrdiff_t stride, SourceRange source,
+                                int cap, const DistanceWindow& window, DistanceTransformScratch& scratch,
+                                const DistanceRowSink8& sink);
 
 /// As cappedSquaredDistanceRows8, 16-bit lanes, cap in [0, kMaxBandedCap16] cells.
-void cappedSquaredDistanceRows16(const uint8_t* grid, int width, int height, std::ptrdiff_t stride,
-                                 SourceRange source, int cap, const DistanceWindow& window,
-                                 DistanceTransformScratch& scratch, const DistanceRowSink16& sink);
+void cappedSquaredDistanceRows16(const uint8_t* grid, int width, int height, std::ptrdiff_t stride, SourceRange source,
+                                 int cap, const DistanceWindow& window, DistanceTransformScratch& scratch,
+                                 const DistanceRowSink16& sink);
 
 /// How cappedCostMerge8() writes a cost c into a cell holding old:
 ///   old == special ? (c >= special_threshold ? c : special) : max(old, c).
@@ -135,9 +132,9 @@ using CostRowSink = std::function<void(int y, const uint8_t* costs)>;
 /// A row whose vertical distances equal those of the row handed over before it reuses that row's
 /// costs (straight lanes, open space) instead of running the row pass again.
 /// Same requirements on cost_by_sq_dist and cap (else std::invalid_argument).
-void cappedCostRows8(const uint8_t* grid, int width, int height, std::ptrdiff_t stride, SourceRange source,
-                     int cap, const DistanceWindow& window, const uint8_t* cost_by_sq_dist,
-                     DistanceTransformScratch& scratch, const CostRowSink& sink);
+void cappedCostRows8(const uint8_t* grid, int width, int height, std::ptrdiff_t stride, SourceRange source, int cap,
+                     const DistanceWindow& window, const uint8_t* cost_by_sq_dist, DistanceTransformScratch& scratch,
+                     const CostRowSink& sink);
 
 /// Whether the banded kernels may use a wider instruction set chosen at run time (SSE4.1, AVX2 or
 /// AVX-512BW on x86, NEON on AArch64). The default is true; false forces "portable".

@@ -29,8 +29,8 @@ Footprint transformFootprint(double x, double y, double yaw, const Footprint& fo
 /// Footprint settings with costmap_2d's names and defaults.
 struct FootprintConfig
 {
-  Footprint footprint;         ///< unpadded, robot frame [m]; empty means "use robot_radius"
-  double robot_radius = 0.46;  ///< [m]
+  Footprint footprint;              ///< unpadded, robot frame [m]; empty means "use robot_radius"
+  double robot_radius = 0.46;       ///< [m]
   double footprint_padding = 0.01;  ///< [m]
 
   /// The padded polygon the costmap uses.

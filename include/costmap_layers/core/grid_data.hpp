@@ -13,12 +13,12 @@ struct OccupancyGridData
 {
   std::string frame_id;
   uint64_t stamp_ns = 0;
-  uint32_t width = 0;        ///< [cells]
-  uint32_t height = 0;       ///< [cells]
-  double resolution = 0.0;   ///< [m/cell]
-  double origin_x = 0.0;     ///< [m] lower-left corner of cell (0,0)
-  double origin_y = 0.0;     ///< [m]
-  double origin_yaw = 0.0;   ///< [rad]
+  uint32_t width = 0;       ///< [cells]
+  uint32_t height = 0;      ///< [cells]
+  double resolution = 0.0;  ///< [m/cell]
+  double origin_x = 0.0;    ///< [m] lower-left corner of cell (0,0)
+  double origin_y = 0.0;    ///< [m]
+  double origin_yaw = 0.0;  ///< [rad]
   /// Row-major, row 0 = lowest y. -1 unknown, 0..100 occupancy (other values are invalid).
   std::vector<int8_t> data;
 };

@@ -17,9 +17,9 @@ class ParamReader;
 struct InflationConfig
 {
   bool enabled = true;
-  double inflation_radius = 0.55;     ///< [m]
-  double cost_scaling_factor = 10.0;  ///< [1/m]
-  bool inflate_unknown = false;       ///< an unknown cell takes any cost > 0, not only >= 253
+  double inflation_radius = 0.55;       ///< [m]
+  double cost_scaling_factor = 10.0;    ///< [1/m]
+  bool inflate_unknown = false;         ///< an unknown cell takes any cost > 0, not only >= 253
   bool inflate_around_unknown = false;  ///< unknown cells are sources like lethal ones
 };
 

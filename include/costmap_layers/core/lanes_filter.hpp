@@ -42,7 +42,11 @@ namespace costmap_layers
 {
 class ParamReader;
 
-enum class LaneCostProfile { Linear, Exponential };
+enum class LaneCostProfile
+{
+  Linear,
+  Exponential
+};
 
 struct LanesFilterConfig
 {

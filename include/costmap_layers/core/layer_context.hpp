@@ -16,10 +16,20 @@
 
 namespace costmap_layers
 {
-enum class Severity { Debug, Info, Warn, Error };
+enum class Severity
+{
+  Debug,
+  Info,
+  Warn,
+  Error
+};
 
 /// What a grid subscription is for, so that an offline host knows which file feeds it.
-enum class GridKind { Map, Mask };
+enum class GridKind
+{
+  Map,
+  Mask
+};
 
 using GridCallback = std::function<void(const std::shared_ptr<const OccupancyGridData>&)>;
 using GridUpdateCallback = std::function<void(const std::shared_ptr<const OccupancyGridUpdateData>&)>;
@@ -67,8 +77,8 @@ public:
   virtual void advertiseToggle(std::function<void(bool)> cb) = 0;
 
   /// The transform mapping points in source_frame into target_frame, or nullopt with *error set.
-  virtual std::optional<Transform2D> lookupTransform(const std::string& target_frame,
-                                                     const std::string& source_frame, std::string* error) = 0;
+  virtual std::optional<Transform2D> lookupTransform(const std::string& target_frame, const std::string& source_frame,
+                                                     std::string* error) = 0;
   /// Wall or simulated time [ns].
   virtual uint64_t nowNs() const = 0;
 

@@ -19,7 +19,7 @@ namespace costmap_layers
 struct Observation
 {
   double origin_x = 0, origin_y = 0, origin_z = 0;  ///< sensor origin [m], global frame
-  std::vector<Point3f> points;      ///< hits: rays clear up to them and they may be marked [m, global]
+  std::vector<Point3f> points;                      ///< hits: rays clear up to them and they may be marked [m, global]
   std::vector<Point3f> clear_only;  ///< no-return points (inf ranges): rays only, never marked [m, global]
   uint64_t stamp_ns = 0;            ///< when the reading was taken
   double obstacle_min_range = 0.0, obstacle_max_range = 2.5;  ///< [m] marking window from the origin

@@ -22,26 +22,30 @@ namespace costmap_layers
 {
 class ParamReader;
 
-enum class SensorDataType { LaserScan, PointCloud2 };
+enum class SensorDataType
+{
+  LaserScan,
+  PointCloud2
+};
 
 /// One entry of observation_sources, read from the sub-namespace named after it.
 struct ObservationSourceConfig
 {
   std::string name;
-  std::string topic;                    ///< default: the source name
-  std::string sensor_frame;             ///< "" = the reading's own frame
-  double observation_persistence = 0.0;  ///< [s] 0 = only the newest reading
-  double expected_update_rate = 0.0;    ///< [s] a period, see ObservationBufferConfig; 0 = unchecked
+  std::string topic;                                       ///< default: the source name
+  std::string sensor_frame;                                ///< "" = the reading's own frame
+  double observation_persistence = 0.0;                    ///< [s] 0 = only the newest reading
+  double expected_update_rate = 0.0;                       ///< [s] a period, see ObservationBufferConfig; 0 = unchecked
   SensorDataType data_type = SensorDataType::PointCloud2;  ///< "LaserScan" or "PointCloud2"
-  double min_obstacle_height = 0.0;     ///< [m] global z; points outside are dropped (also for clearing)
-  double max_obstacle_height = 2.0;     ///< [m]
-  bool inf_is_valid = false;            ///< LaserScan +inf = no return up to range_max (clears only)
+  double min_obstacle_height = 0.0;  ///< [m] global z; points outside are dropped (also for clearing)
+  double max_obstacle_height = 2.0;  ///< [m]
+  bool inf_is_valid = false;         ///< LaserScan +inf = no return up to range_max (clears only)
   bool marking = true;
   bool clearing = false;
-  double obstacle_min_range = 0.0;      ///< [m] 3-D distance from the sensor origin, inclusive
-  double obstacle_max_range = 2.5;      ///< [m] inclusive; the old name obstacle_range is accepted
-  double raytrace_min_range = 0.0;      ///< [m] cells nearer to the origin are not cleared
-  double raytrace_max_range = 3.0;      ///< [m] rays are cut there; the old name raytrace_range is accepted
+  double obstacle_min_range = 0.0;         ///< [m] 3-D distance from the sensor origin, inclusive
+  double obstacle_max_range = 2.5;         ///< [m] inclusive; the old name obstacle_range is accepted
+  double raytrace_min_range = 0.0;         ///< [m] cells nearer to the origin are not cleared
+  double raytrace_max_range = 3.0;         ///< [m] rays are cut there; the old name raytrace_range is accepted
   double observation_keep_distance = 0.0;  ///< [m] 0 = off, see ObservationBufferConfig
 };
 

@@ -19,7 +19,7 @@ struct ParamSpec
   ParamValue::Type type = ParamValue::Type::Null;  ///< Bool, Int, Double or String
   ParamValue default_value;
   ParamValue value;
-  double min = 0.0, max = 0.0;        ///< Int and Double only
+  double min = 0.0, max = 0.0;       ///< Int and Double only
   std::vector<std::string> choices;  ///< String choices, when limited
 };
 

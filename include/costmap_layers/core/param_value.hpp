@@ -13,7 +13,16 @@ namespace costmap_layers
 class ParamValue
 {
 public:
-  enum class Type { Null, Bool, Int, Double, String, List, Map };
+  enum class Type
+  {
+    Null,
+    Bool,
+    Int,
+    Double,
+    String,
+    List,
+    Map
+  };
 
   ParamValue() = default;
   static ParamValue makeBool(bool v);

@@ -48,8 +48,14 @@ double delta(double phi, double phi_v);
 /// cell size `resolution` [m] setting the width of the obstacle band (resolution * r).
 double sensorModel(double r, double phi, double theta, double max_angle, double phi_v, double resolution);
 /// Cost <-> probability: p = cost / 254, cost = (uint8) (p * 254).
-inline double toProbability(uint8_t cost) { return static_cast<double>(cost) / 254.0; }
-inline uint8_t toCost(double p) { return static_cast<uint8_t>(p * 254.0); }
+inline double toProbability(uint8_t cost)
+{
+  return static_cast<double>(cost) / 254.0;
+}
+inline uint8_t toCost(double p)
+{
+  return static_cast<uint8_t>(p * 254.0);
+}
 }  // namespace range_model
 
 class RangeSensorLayer : public CostmapLayer

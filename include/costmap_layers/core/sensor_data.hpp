@@ -49,7 +49,17 @@ struct LaserScanData
 /// sensor_msgs/PointField.
 struct PointFieldData
 {
-  enum : uint8_t { INT8 = 1, UINT8 = 2, INT16 = 3, UINT16 = 4, INT32 = 5, UINT32 = 6, FLOAT32 = 7, FLOAT64 = 8 };
+  enum : uint8_t
+  {
+    INT8 = 1,
+    UINT8 = 2,
+    INT16 = 3,
+    UINT16 = 4,
+    INT32 = 5,
+    UINT32 = 6,
+    FLOAT32 = 7,
+    FLOAT64 = 8
+  };
   std::string name;
   uint32_t offset = 0;
   uint8_t datatype = 0;
@@ -72,13 +82,17 @@ struct PointCloud2Data
 /// sensor_msgs/Range.
 struct RangeData
 {
-  enum : uint8_t { ULTRASOUND = 0, INFRARED = 1 };
+  enum : uint8_t
+  {
+    ULTRASOUND = 0,
+    INFRARED = 1
+  };
   std::string frame_id;
   uint64_t stamp_ns = 0;
   uint8_t radiation_type = ULTRASOUND;
-  float field_of_view = 0;          ///< [rad] full cone angle
+  float field_of_view = 0;             ///< [rad] full cone angle
   float min_range = 0, max_range = 0;  ///< [m]
-  float range = 0;                  ///< [m]
+  float range = 0;                     ///< [m]
 };
 
 /// Where a reading was taken: the transform from its frame into the global frame at its stamp, and the

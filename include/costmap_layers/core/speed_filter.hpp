@@ -51,7 +51,11 @@ namespace costmap_layers
 {
 class ParamReader;
 
-enum class SpeedMaskMode { AreaId, Nav2 };
+enum class SpeedMaskMode
+{
+  AreaId,
+  Nav2
+};
 
 struct SpeedFilterConfig
 {
@@ -79,10 +83,10 @@ struct SpeedLimitTable
 /// One problem found in a features message.
 struct SpeedLimitIssue
 {
-  bool error = true;     ///< true: the entry was dropped; false: a warning (duplicate id)
-  std::size_t index = 0; ///< index of the entry in the message
+  bool error = true;      ///< true: the entry was dropped; false: a warning (duplicate id)
+  std::size_t index = 0;  ///< index of the entry in the message
   uint32_t area_id = 0;
-  std::string message;   ///< one line, names the entry, its values and the rule
+  std::string message;  ///< one line, names the entry, its values and the rule
 };
 
 /// Checks a features message entry by entry (see the file comment) and converts percentages into
@@ -131,7 +135,7 @@ private:
   MaxSpeedPublisher publish_;
 
   mutable std::mutex limits_mutex_;
-  std::shared_ptr<const SpeedLimitTable> limits_;  ///< guarded by limits_mutex_
+  std::shared_ptr<const SpeedLimitTable> limits_;         ///< guarded by limits_mutex_
   std::shared_ptr<const SpeedLimitsData> last_features_;  ///< guarded by limits_mutex_
 
   // Update thread only.

@@ -91,7 +91,7 @@ private:
   std::mutex mutex_;
   std::shared_ptr<const OccupancyGridData> pending_map_;
   std::vector<PendingUpdate> pending_updates_;
-  bool accepted_any_ = false;           ///< a map was accepted (for first_map_only and updates)
+  bool accepted_any_ = false;  ///< a map was accepted (for first_map_only and updates)
   uint32_t latest_width_ = 0, latest_height_ = 0;
 
   // Update thread only.

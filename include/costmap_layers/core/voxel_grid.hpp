@@ -13,7 +13,12 @@
 
 namespace costmap_layers
 {
-enum class VoxelStatus { Free, Unknown, Marked };
+enum class VoxelStatus
+{
+  Free,
+  Unknown,
+  Marked
+};
 
 class VoxelGrid
 {
@@ -85,7 +90,8 @@ void VoxelGrid::walkLine(ActionType&& at, double x0, double y0, double z0, doubl
   if (!(x0 >= 0.0 && y0 >= 0.0 && z0 >= 0.0 && x0 < size_x_ && y0 < size_y_ && z0 < size_z_)) return;
   const unsigned int steps = static_cast<unsigned int>(std::ceil(longest));
   constexpr double kOne = 4294967296.0;  // 2^32
-  int64_t fx = static_cast<int64_t>(x0 * kOne), fy = static_cast<int64_t>(y0 * kOne), fz = static_cast<int64_t>(z0 * kOne);
+  int64_t fx = static_cast<int64_t>(x0 * kOne), fy = static_cast<int64_t>(y0 * kOne),
+          fz = static_cast<int64_t>(z0 * kOne);
   const int64_t sx = static_cast<int64_t>(dx / steps * kOne), sy = static_cast<int64_t>(dy / steps * kOne),
                 sz = static_cast<int64_t>(dz / steps * kOne);
   const int64_t ex = static_cast<int64_t>(std::floor(x1)), ey = static_cast<int64_t>(std::floor(y1)),

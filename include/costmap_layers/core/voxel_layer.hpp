@@ -12,11 +12,11 @@ namespace costmap_layers
 {
 struct VoxelConfig
 {
-  double origin_z = 0.0;          ///< [m] bottom of the lowest voxel (global z)
-  double z_resolution = 0.2;      ///< [m] voxel height (> 0)
-  int z_voxels = 10;              ///< levels per column, 1..16
-  int unknown_threshold = 15;     ///< 0..16: more unknown voxels than this make a cleared cell unknown
-  int mark_threshold = 0;         ///< 0..16: more marked voxels than this make the cell lethal
+  double origin_z = 0.0;           ///< [m] bottom of the lowest voxel (global z)
+  double z_resolution = 0.2;       ///< [m] voxel height (> 0)
+  int z_voxels = 10;               ///< levels per column, 1..16
+  int unknown_threshold = 15;      ///< 0..16: more unknown voxels than this make a cleared cell unknown
+  int mark_threshold = 0;          ///< 0..16: more marked voxels than this make the cell lethal
   bool publish_voxel_map = false;  ///< accepted for configuration compatibility; nothing is published yet
 };
 

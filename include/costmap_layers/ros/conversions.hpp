@@ -1,8 +1,8 @@
 // Conversions between messages and the core's plain types: the only place that knows both.
 #pragma once
 
-#include <map_msgs/OccupancyGridUpdate.h>
 #include <geometry_msgs/TransformStamped.h>
+#include <map_msgs/OccupancyGridUpdate.h>
 #include <nav_msgs/OccupancyGrid.h>
 #include <sensor_msgs/LaserScan.h>
 #include <sensor_msgs/PointCloud2.h>

@@ -7,8 +7,8 @@
 #include <tf2_ros/transform_listener.h>
 
 #include <atomic>
-#include <mutex>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 
@@ -65,7 +65,7 @@ private:
   std::vector<std::unique_ptr<LayerReconfigure>> reconfigure_;  ///< one dynamic_reconfigure server per layer
   ros::ServiceServer clear_srv_;
   ros::ServiceServer clear_around_srv_;
-  std::mutex update_mutex_;  ///< one update cycle or one clear request at a time
+  std::mutex update_mutex_;         ///< one update cycle or one clear request at a time
   double last_x_ = 0, last_y_ = 0;  ///< the robot position of the last update [m]
   std::atomic<bool> new_subscriber_{false};
   bool published_once_ = false;

@@ -52,8 +52,7 @@ public:
                           costmap_layers::SensorCallback<costmap_layers::LaserScanData> cb) override;
   void subscribePointCloud2(const std::string& topic, const std::string& sensor_frame,
                             costmap_layers::SensorCallback<costmap_layers::PointCloud2Data> cb) override;
-  void subscribeRange(const std::string& topic,
-                      costmap_layers::SensorCallback<costmap_layers::RangeData> cb) override;
+  void subscribeRange(const std::string& topic, costmap_layers::SensorCallback<costmap_layers::RangeData> cb) override;
   costmap_layers::MaxSpeedPublisher advertiseMaxSpeed(const std::string& topic) override;
   void advertiseToggle(std::function<void(bool)> cb) override;
   std::optional<costmap_layers::Transform2D> lookupTransform(const std::string& target_frame,
