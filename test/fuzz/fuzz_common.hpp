@@ -148,4 +148,27 @@ inline ParamValue sensorLayerParams(FuzzDecoder& in, const char* data_type, bool
   }
   return p;
 }
+
+/// The ObstacleLayer (or VoxelLayer) the sensor targets feed, initialised on lc with a 0.3 m round
+/// robot; nullptr when the fuzzed parameters are refused (std::invalid_argument ends the input).
+inline std::shared_ptr<ObstacleLayer> makeSensorLayer(LayeredCostmap& lc, const std::shared_ptr<FuzzContext>& ctx,
+                                                      bool voxel)
+{
+  std::shared_ptr<ObstacleLayer> layer;
+  if (voxel)
+    layer = std::make_shared<VoxelLayer>();
+  else
+    layer = std::make_shared<ObstacleLayer>();
+  try
+  {
+    layer->initialize(&lc, "obstacles", ctx);
+  }
+  catch (const std::invalid_argument&)
+  {
+    return nullptr;
+  }
+  lc.addPlugin(layer);
+  lc.setFootprint(makeFootprintFromRadius(0.3));
+  return layer;
+}
 }  // namespace costmap_layers_fuzz

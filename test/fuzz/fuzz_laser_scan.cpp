@@ -61,21 +61,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
   LayeredCostmap lc("map", rolling, (kind & 4) != 0);
   lc.resizeMap(g.w, g.h, g.res, g.ox, g.oy);
   auto ctx = std::make_shared<FuzzContext>(params);
-  std::shared_ptr<ObstacleLayer> layer;
-  if (voxel)
-    layer = std::make_shared<VoxelLayer>();
-  else
-    layer = std::make_shared<ObstacleLayer>();
-  try
-  {
-    layer->initialize(&lc, "obstacles", ctx);
-  }
-  catch (const std::invalid_argument&)
-  {
-    return 0;
-  }
-  lc.addPlugin(layer);
-  lc.setFootprint(makeFootprintFromRadius(0.3));
+  const std::shared_ptr<ObstacleLayer> layer = makeSensorLayer(lc, ctx, voxel);
+  if (!layer) return 0;
 
   for (int op = 0; op < 6 && !in.empty(); ++op)
   {
