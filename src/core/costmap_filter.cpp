@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "costmap_layers/core/param_reader.hpp"
+#include "costmap_layers/core/stamp_order.hpp"
 
 namespace costmap_layers
 {
@@ -166,7 +167,10 @@ std::string CostmapFilter::setMask(std::shared_ptr<const OccupancyGridData> mask
   if (!mask) return "no mask";
   std::string error = validateGrid(*mask);
   if (!error.empty()) return error;
+  const uint64_t now = context_ ? context_->nowNs() : UINT64_MAX;
   std::lock_guard<std::mutex> lock(mask_mutex_);
+  if (mask_ && isOutOfOrder(mask->stamp_ns, mask_->stamp_ns, now))
+    return outOfOrderError(mask->stamp_ns, mask_->stamp_ns, "mask");
   if (!mask_changed_) pending_old_ = mask_;
   mask_ = std::move(mask);
   mask_changed_ = true;

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "costmap_layers/core/param_reader.hpp"
+#include "costmap_layers/core/stamp_order.hpp"
 
 namespace costmap_layers
 {
@@ -94,9 +95,18 @@ void SpeedFilter::onInitializeFilter(const ParamReader& params)
 std::size_t SpeedFilter::setSpeedLimits(const SpeedLimitsData& limits)
 {
   SpeedFilterConfig config;
+  const uint64_t now = context_ ? context_->nowNs() : UINT64_MAX;
   {
     std::lock_guard<std::mutex> lock(limits_mutex_);
     config = config_;
+    if (last_features_ && isOutOfOrder(limits.stamp_ns, last_features_->stamp_ns, now))
+    {
+      const std::string error = outOfOrderError(limits.stamp_ns, last_features_->stamp_ns, "speed limits message");
+      if (context_)
+        context_->report(Severity::Error, "features_stamp",
+                         name_ + ": " + config.features_topic + ": rejected, keeping the previous limits: " + error);
+      return limits.limits.size();
+    }
     last_features_ = std::make_shared<const SpeedLimitsData>(limits);
   }
   std::vector<SpeedLimitIssue> issues;

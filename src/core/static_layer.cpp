@@ -8,6 +8,7 @@
 #include "costmap_layers/core/costmap_filter.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
 #include "costmap_layers/core/param_reader.hpp"
+#include "costmap_layers/core/stamp_order.hpp"
 
 namespace costmap_layers
 {
@@ -61,7 +62,7 @@ void StaticLayer::onInitialize()
                                        return;
                                      }
                                      applyUpdate(static_cast<uint32_t>(u->x), static_cast<uint32_t>(u->y), u->width,
-                                                 u->height, u->data);
+                                                 u->height, u->data, u->stamp_ns);
                                    });
 }
 
@@ -74,6 +75,12 @@ void StaticLayer::rebuildTable()
 std::string StaticLayer::setMap(std::shared_ptr<const OccupancyGridData> map)
 {
   std::string error = map ? validateGrid(*map) : std::string("no map");
+  const uint64_t now = context_ ? context_->nowNs() : UINT64_MAX;
+  if (error.empty())
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (isOutOfOrder(map->stamp_ns, map_stamp_ns_, now)) error = outOfOrderError(map->stamp_ns, map_stamp_ns_, "map");
+  }
   if (!error.empty())
   {
     // Throttled per field, so that each distinct problem is still reported once.
@@ -87,21 +94,25 @@ std::string StaticLayer::setMap(std::shared_ptr<const OccupancyGridData> map)
   pending_map_ = std::move(map);
   pending_updates_.clear();  // they referred to the previous map
   accepted_any_ = true;
+  map_stamp_ns_ = pending_map_->stamp_ns;
   latest_width_ = pending_map_->width;
   latest_height_ = pending_map_->height;
   return {};
 }
 
 std::string StaticLayer::applyUpdate(uint32_t x, uint32_t y, uint32_t width, uint32_t height,
-                                     const std::vector<int8_t>& data)
+                                     const std::vector<int8_t>& data, uint64_t stamp_ns)
 {
   std::ostringstream err;
+  const uint64_t now = context_ ? context_->nowNs() : UINT64_MAX;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (!config_.subscribe_to_updates)
       err << "subscribe_to_updates is false";
     else if (!accepted_any_)
       err << "no map yet";
+    else if (isOutOfOrder(stamp_ns, map_stamp_ns_, now))
+      err << outOfOrderError(stamp_ns, map_stamp_ns_, "map");
     else if (data.size() != static_cast<uint64_t>(width) * height)
       err << "data has " << data.size() << " values, expected width x height = " << width << "x" << height;
     else if (static_cast<uint64_t>(x) + width > latest_width_ || static_cast<uint64_t>(y) + height > latest_height_)
@@ -113,8 +124,10 @@ std::string StaticLayer::applyUpdate(uint32_t x, uint32_t y, uint32_t width, uin
       return {};
     }
   }
-  const std::string error = name_ + ": map update rejected: " + err.str();
-  context_->report(Severity::Error, "map_update", error);
+  const std::string why = err.str();
+  const std::string error = name_ + ": map update rejected: " + why;
+  // Throttled per field, so that each distinct problem is still reported once.
+  if (context_) context_->report(Severity::Error, "map_update/" + why.substr(0, why.find(' ')), error);
   return error;
 }
 

@@ -8,6 +8,7 @@
 #include <tf2_ros/message_filter.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "costmap_layers/MaxSpeed.h"
 #include "costmap_layers/SpeedLimits.h"
@@ -160,11 +161,32 @@ void RosLayerContext::subscribeSensor(const std::string& topic, const std::strin
   input->filter.registerFailureCallback(
       [=](const typename Msg::ConstPtr& msg, tf2_ros::filter_failure_reasons::FilterFailureReason reason)
       {
-        const char* why = reason == tf2_ros::filter_failure_reasons::EmptyFrameID ? "it has no frame_id"
-                                                                                  : "no transform arrived in time";
-        log->log(Severity::Warn, owner + topic + "/tf",
+        // Each reason is its own throttled report, so that a stale stamp does not hide a wrong frame.
+        std::string key = owner + topic + "/tf/", why;
+        const ros::Time stamp = msg->header.stamp;
+        const double behind = (ros::Time::now() - stamp).toSec();
+        char when[96];
+        std::snprintf(when, sizeof(when), "header.stamp %.3f s (%.3f s %s now)", stamp.toSec(), std::fabs(behind),
+                      behind >= 0.0 ? "before" : "after");
+        switch (reason)
+        {
+          case tf2_ros::filter_failure_reasons::EmptyFrameID:
+            key += "frame_id";
+            why = "header.frame_id is empty";
+            break;
+          case tf2_ros::filter_failure_reasons::OutTheBack:
+            key += "stamp";
+            why = std::string(when) + " is older than every transform tf keeps";
+            break;
+          default:
+            key += "wait";
+            why = std::string("no transform at ") + when + " arrived while " +
+                  std::to_string(FilteredInput<Msg>::kQueue) + " newer readings waited";
+            break;
+        }
+        log->log(Severity::Warn, key,
                  owner + ": dropped a reading on " + topic + ": cannot transform frame '" + msg->header.frame_id +
-                     "' into '" + global + "' (" + why + ")");
+                     "' into '" + global + "': " + why);
       });
   sensor_inputs_.push_back(input);
 }

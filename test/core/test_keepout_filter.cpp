@@ -243,3 +243,43 @@ TEST(KeepoutFilter, ThroughALayeredCostmapAndToggle)
   r.lc.updateMap(0, 0, 0);
   EXPECT_EQ(r.lc.getCostmap().getCost(4, 4), 254);
 }
+
+TEST(KeepoutFilter, OutOfOrderMaskIsDroppedAndThePreviousKept)
+{
+  Rig r;
+  r.ctx->now_ns = 100'000'000'000;
+  OccupancyGridData newer = makeMask(3, 3, 1.0, 3.0, 3.0, 100);
+  newer.stamp_ns = 50'000'000'000;
+  r.setMask(newer);
+  // A free mask stamped a second earlier (a replayed latched message): dropped, reported once per
+  // field, and the lethal mask still draws.
+  OccupancyGridData older = makeMask(3, 3, 1.0, 3.0, 3.0, 0);
+  older.stamp_ns = 49'000'000'000;
+  EXPECT_EQ(r.filter->setMask(std::make_shared<const OccupancyGridData>(older)),
+            "header.stamp 49.000 s is older than the mask in force (stamped 50.000 s): an out-of-order or "
+            "replayed message");
+  r.setMask(older);
+  ASSERT_EQ(r.ctx->reports.size(), 1u);
+  EXPECT_EQ(r.ctx->reports[0].key, "mask/header.stamp");
+  EXPECT_EQ(r.ctx->reports[0].severity, Severity::Error);
+  Costmap2D master(10, 10, 1.0, 0.0, 0.0, 0);
+  const Costmap2D before = master;
+  r.filter->updateCosts(master, 0, 0, 10, 10);
+  expectOnly(master, before, 3, 3, 6, 6, 254);
+
+  // The same stamp again (a mask server republishing) and an unstamped mask are accepted.
+  OccupancyGridData same = makeMask(3, 3, 1.0, 3.0, 3.0, 100);
+  same.stamp_ns = newer.stamp_ns;
+  EXPECT_EQ(r.filter->setMask(std::make_shared<const OccupancyGridData>(same)), "");
+  OccupancyGridData unstamped = makeMask(3, 3, 1.0, 3.0, 3.0, 100);
+  EXPECT_EQ(r.filter->setMask(std::make_shared<const OccupancyGridData>(unstamped)), "");
+
+  // After the clock went back below the stamp in force (a restarted simulation), older stamps are
+  // accepted, or no mask would ever be again.
+  newer.stamp_ns = 50'000'000'000;
+  EXPECT_EQ(r.filter->setMask(std::make_shared<const OccupancyGridData>(newer)), "");
+  r.ctx->now_ns = 10'000'000'000;
+  older.stamp_ns = 5'000'000'000;
+  EXPECT_EQ(r.filter->setMask(std::make_shared<const OccupancyGridData>(older)), "");
+  EXPECT_EQ(r.filter->getMask()->stamp_ns, older.stamp_ns);
+}

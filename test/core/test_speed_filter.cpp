@@ -661,3 +661,35 @@ TEST(SpeedFilterNav2, Percent)
   r.atArea(61);
   EXPECT_EQ(r.ctx->countReports("outside (0, 100]"), 50);
 }
+
+TEST(SpeedFilter, OutOfOrderFeaturesAreDroppedWhole)
+{
+  Rig r;
+  r.ctx->now_ns = 100'000'000'000;
+  r.ctx->publishGrid(GridKind::Mask, makeMask());
+  SpeedLimitsData good = allLimits();
+  good.stamp_ns = 50'000'000'000;
+  r.ctx->publishSpeedLimits(good);
+  ASSERT_EQ(r.atArea(5), 1u);
+  EXPECT_DOUBLE_EQ(r.last(), limitOf(5));
+
+  // Every limit 0.9 m/s, but stamped before the message in force: dropped whole.
+  SpeedLimitsData older = allLimits();
+  older.stamp_ns = 40'000'000'000;
+  for (auto& l : older.limits)
+    l.max_speed = 0.9;
+  EXPECT_EQ(r.filter->setSpeedLimits(older), older.limits.size());
+  ASSERT_EQ(r.atArea(6), 1u);
+  EXPECT_DOUBLE_EQ(r.last(), limitOf(6));
+  ASSERT_EQ(r.ctx->reports.size(), 1u);
+  EXPECT_EQ(r.ctx->reports[0].key, "features_stamp");
+  EXPECT_NE(r.ctx->reports[0].message.find("header.stamp 40.000 s is older than the speed limits message in force"),
+            std::string::npos)
+      << r.ctx->reports[0].message;
+
+  // After the clock went back (a restarted simulation) it is accepted.
+  r.ctx->now_ns = 10'000'000'000;
+  EXPECT_EQ(r.filter->setSpeedLimits(older), 0u);
+  ASSERT_EQ(r.atArea(7), 1u);
+  EXPECT_DOUBLE_EQ(r.last(), 0.9);
+}

@@ -422,3 +422,44 @@ TEST(StaticLayer, MapsFromAnotherThread)
     lethal += rig.at(x, 0) == LETHAL_OBSTACLE;
   EXPECT_EQ(lethal, 1);
 }
+
+TEST(StaticLayer, OutOfOrderMapsAndUpdatesAreDropped)
+{
+  Rig rig(params({{"subscribe_to_updates", ParamValue::makeBool(true)}}));
+  rig.ctx->now_ns = 100'000'000'000;
+  OccupancyGridData newer = makeMap(10, 10, 1.0, 0, 0);
+  setCell(newer, 2, 3, 100);
+  newer.stamp_ns = 50'000'000'000;
+  rig.publish(newer);
+  rig.update();
+  ASSERT_EQ(rig.at(2, 3), LETHAL_OBSTACLE);
+
+  // An all-free map stamped earlier than the one in force: dropped, the wall stays.
+  OccupancyGridData older = makeMap(10, 10, 1.0, 0, 0);
+  older.stamp_ns = 40'000'000'000;
+  rig.publish(older);
+  rig.update();
+  EXPECT_EQ(rig.at(2, 3), LETHAL_OBSTACLE);
+  ASSERT_EQ(rig.ctx->reports.size(), 1u);
+  EXPECT_EQ(rig.ctx->reports[0].key, "map/header.stamp");
+  EXPECT_NE(rig.ctx->reports[0].message.find("header.stamp 40.000 s is older than the map in force (stamped 50.000 s)"),
+            std::string::npos)
+      << rig.ctx->reports[0].message;
+
+  // An update made for an older map would be drawn on the wrong one: dropped.
+  EXPECT_NE(rig.layer->applyUpdate(2, 3, 1, 1, {0}, 40'000'000'000).find("header.stamp 40.000 s"), std::string::npos);
+  // Updates stamped with or after the map, or unstamped, apply.
+  EXPECT_EQ(rig.layer->applyUpdate(4, 4, 1, 1, {100}, 50'000'000'000), "");
+  EXPECT_EQ(rig.layer->applyUpdate(5, 5, 1, 1, {100}, 0), "");
+  rig.update();
+  EXPECT_EQ(rig.at(2, 3), LETHAL_OBSTACLE);
+  EXPECT_EQ(rig.at(4, 4), LETHAL_OBSTACLE);
+  EXPECT_EQ(rig.at(5, 5), LETHAL_OBSTACLE);
+
+  // The clock went back below the map's stamp (a restarted simulation): older stamps are accepted.
+  rig.ctx->now_ns = 10'000'000'000;
+  older.stamp_ns = 5'000'000'000;
+  rig.publish(older);
+  rig.update();
+  EXPECT_EQ(rig.at(2, 3), FREE_SPACE);
+}

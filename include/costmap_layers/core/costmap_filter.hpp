@@ -103,7 +103,8 @@ public:
   void updateCosts(Costmap2D& master_grid, int min_i, int min_j, int max_i, int max_j) final;
   bool isClearable() override { return false; }
 
-  /// Replaces the mask, unless it is invalid: then the previous mask stays and the reason is returned.
+  /// Replaces the mask, unless it is invalid or stamped before the mask in force (isOutOfOrder()): then
+  /// the previous mask stays and the reason is returned.
   /// Safe to call from another thread than the update loop.
   /// @return an empty string when accepted, else the error.
   std::string setMask(std::shared_ptr<const OccupancyGridData> mask);

@@ -100,7 +100,8 @@ public:
   const SpeedFilterConfig& config() const { return config_; }
 
   /// Checks and installs a features message (what the features_topic subscription calls). Bad entries
-  /// are reported through the context and dropped. Safe to call from any thread; takes effect at the
+  /// are reported through the context and dropped; a message stamped before the one in force
+  /// (isOutOfOrder()) is reported and dropped whole. Safe to call from any thread; takes effect at the
   /// next update cycle.
   /// @return the number of dropped entries
   std::size_t setSpeedLimits(const SpeedLimitsData& limits);

@@ -55,15 +55,19 @@ public:
 
   const StaticConfig& config() const { return config_; }
 
-  /// Hands over a new map; safe from any thread. A map failing validateGrid() is rejected and the
-  /// previous map stays. With first_map_only, maps after the first accepted one are ignored.
+  /// Hands over a new map; safe from any thread. A map failing validateGrid() or stamped before the map
+  /// in force (isOutOfOrder()) is rejected and the previous map stays. With first_map_only, maps after
+  /// the first accepted one are ignored.
   /// @return an empty string when accepted (or ignored), else the reason (also reported as an Error).
   std::string setMap(std::shared_ptr<const OccupancyGridData> map);
   /// A partial update of the latest map (map_msgs/OccupancyGridUpdate): width x height values, row-major,
   /// for the cells [x, x + width) x [y, y + height). Safe from any thread; applied on the next update.
-  /// Rejected (returned and reported) when subscribe_to_updates is off, before any map, when the data
-  /// size is not width * height or when the rectangle leaves the map.
-  std::string applyUpdate(uint32_t x, uint32_t y, uint32_t width, uint32_t height, const std::vector<int8_t>& data);
+  /// Rejected (returned and reported) when subscribe_to_updates is off, before any map, when it is
+  /// stamped before the map in force (it was meant for an older map), when the data size is not
+  /// width * height or when the rectangle leaves the map.
+  /// @param stamp_ns  the update's header.stamp [ns], 0 for none
+  std::string applyUpdate(uint32_t x, uint32_t y, uint32_t width, uint32_t height, const std::vector<int8_t>& data,
+                          uint64_t stamp_ns = 0);
 
   /// True once a map has been interpreted (on the update thread).
   bool mapReceived() const { return map_received_; }
@@ -93,6 +97,7 @@ private:
   std::vector<PendingUpdate> pending_updates_;
   bool accepted_any_ = false;  ///< a map was accepted (for first_map_only and updates)
   uint32_t latest_width_ = 0, latest_height_ = 0;
+  uint64_t map_stamp_ns_ = 0;  ///< header.stamp of the latest accepted map
 
   // Update thread only.
   bool map_received_ = false;

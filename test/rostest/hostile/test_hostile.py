@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Hostile input: for every input class the node reads (maps, masks, map updates, speed limits, laser
 scans, point clouds, ranges) the malformed variants (truncated, oversized, NaN/inf, negative or zero
-sizes, huge dimensions, wrong frames) are published while the node runs. It must keep running, the
+sizes, huge dimensions, wrong frames, stale stamps) are published while the node runs. It must keep running, the
 published costmap and /max_speed must keep their last good values, and each problem must be reported
 by an error that names the field and its value, throttled (not once per message)."""
 import math
@@ -36,6 +36,11 @@ def grid(width, height, resolution, data, frame="map", ox=0.0, oy=0.0):
     g.info.origin.orientation.w = 1.0
     g.data = data
     return g
+
+
+def stamped(msg, stamp):
+    msg.header.stamp = stamp
+    return msg
 
 
 def scan(**kw):
@@ -170,6 +175,7 @@ class HostileTest(unittest.TestCase):
 
         bad_features = SpeedLimits()
         bad_features.header.frame_id = "map"
+        bad_features.header.stamp = rospy.Time.now()
         bad_features.limits = [SpeedLimit(1, NAN), SpeedLimit(2, -1.0)]
         self.flood("/features", [bad_features])
 
@@ -179,6 +185,31 @@ class HostileTest(unittest.TestCase):
                               cloud(fields=[PointField("x", 100, PointField.FLOAT32, 1)]),
                               cloud(width=1000000000, row_step=12000000000 % (2 ** 32)), cloud(is_bigendian=True)])
         self.flood("/sonar", [sonar(range=NAN), sonar(field_of_view=-1.0), sonar(min_range=INF), sonar(max_range=NAN)])
+
+        # Stale stamps. Well-formed grids and speed limits stamped before the ones in force (a replayed
+        # latched message, an old publisher still running) would roll the costmap back if applied:
+        # a free map, free masks, an update that clears the rack, area 1 at 0.9 m/s.
+        old = rospy.Time(1.0)
+        self.flood("/map", [stamped(grid(10, 10, 0.05, [0] * 100), old)], repeat=2)
+        self.flood("/keepout_filter_mask", [stamped(grid(10, 10, 0.05, [0] * 100), old)], repeat=2)
+        self.flood("/speed_filter_mask", [stamped(grid(10, 10, 0.05, [0] * 100), old)], repeat=2)
+        stale_update = OccupancyGridUpdate()
+        stale_update.header.frame_id = "map"
+        stale_update.x, stale_update.y, stale_update.width, stale_update.height = 158, 144, 5, 5  # the rack
+        stale_update.data = [0] * 25
+        self.flood("/map_updates", [stamped(stale_update, old)], repeat=2)
+        stale_features = SpeedLimits()
+        stale_features.header.frame_id = "map"
+        stale_features.limits = [SpeedLimit(1, 0.9)]
+        self.flood("/features", [stamped(stale_features, old)], repeat=2)
+        # Sensor readings from an hour ago are older than any transform tf keeps; readings from an hour
+        # ahead wait for tf until newer ones push them out of the queue (so more than 10 are sent).
+        # Either would mark 2 m ahead of the robot if it were used.
+        hour = rospy.Duration(3600)
+        self.flood("/scan", [stamped(scan(ranges=[2.0] * 3), rospy.Time.now() - hour)], repeat=3)
+        self.flood("/scan", [stamped(scan(ranges=[2.0] * 3), rospy.Time.now() + hour)], repeat=12)
+        self.flood("/cloud", [stamped(cloud(), rospy.Time.now() - hour)], repeat=3)
+        self.flood("/sonar", [stamped(sonar(), rospy.Time.now() + hour)], repeat=12)
         rospy.sleep(2.0)
 
         # Still running: it answers a service and keeps publishing.
@@ -196,6 +227,8 @@ class HostileTest(unittest.TestCase):
             self.assertEqual(self.grid.at(x, y), 100)
         with self.lock:
             self.assertEqual(self.speeds[len(self.good_speeds):], [], "/max_speed changed")
+        ahead = int(1.5 / self.grid.resolution) * w + int(7.0 / self.grid.resolution)  # 2 m ahead of the robot
+        self.assertEqual(now[ahead], self.good_grid[ahead], "a stale reading was marked")
 
         # Each problem was named, with the field and the value.
         expectations = [
@@ -210,6 +243,15 @@ class HostileTest(unittest.TestCase):
             ("angle_increment",),
             ("point_step",),
             ("Range",),
+            ("map on /map rejected", "header.stamp 1.000 s is older than the map in force"),
+            ("mask on /keepout_filter_mask rejected", "older than the mask in force"),
+            ("mask on /speed_filter_mask rejected", "older than the mask in force"),
+            ("map update rejected: header.stamp 1.000 s is older than the map in force",),
+            ("/features", "header.stamp 1.000 s is older than the speed limits message in force"),
+            ("/scan", "before now) is older than every transform tf keeps"),
+            ("/cloud", "before now) is older than every transform tf keeps"),
+            ("/scan", "no transform at header.stamp", "after now) arrived while 10 newer readings waited"),
+            ("/sonar", "no transform at header.stamp", "after now) arrived while 10 newer readings waited"),
         ]
         for needles in expectations:
             self.assertTrue(self.wait_said(*needles, timeout=5.0), "no error names %s; got:\n%s" % (
