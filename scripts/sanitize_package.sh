@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# The whole package (libraries, plugins, node, tool, tests) built with sanitizers in its own workspace
+# folders, then tested:
+#   scripts/sanitize_package.sh                 ASan + UBSan: every unit test (core, io) and the tool's
+#                                               tests (they run the real, instrumented costmap_tool)
+#   SANITIZE=thread scripts/sanitize_package.sh TSan: the node-level rostests, with the node's
+#                                               callbacks on spinner threads while its update loop runs
+#   ROSTESTS="hostile filters" ...              TSan: only these rostests
+# Either run fails when a test fails or when a sanitizer reports anything that test/tsan.supp does
+# not suppress. The reports are kept in build_<kind>/reports/.
+set -euo pipefail
+source "$(dirname "$0")/common.sh"
+bash "$ROOT/scripts/install_deps.sh"
+SAN="${SANITIZE:-address,undefined}"
+case "$SAN" in
+  thread) KIND=tsan ;;
+  address,undefined | address) KIND=asan ;;
+  *) echo "sanitize_package.sh: SANITIZE must be 'address,undefined' or 'thread', not '$SAN'" >&2; exit 2 ;;
+esac
+BUILD_BASE="$ROOT/build_$KIND"
+INSTALL_BASE="$ROOT/install_$KIND"
+REPORTS="$BUILD_BASE/reports"
+cd "$ROOT"
+colcon --log-base "$ROOT/log" build --base-paths "$ROOT" --build-base "$BUILD_BASE" --install-base "$INSTALL_BASE" \
+  --event-handlers console_cohesion- --cmake-args -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCOSTMAP_LAYERS_SANITIZE="$SAN" -DCATKIN_ENABLE_TESTING=ON
+rm -rf "$REPORTS" "$BUILD_BASE/costmap_layers/test_results"
+mkdir -p "$REPORTS"
+export ROS_HOME="$BUILD_BASE/ros_home"
+# Every instrumented process writes its reports to REPORTS/<kind>.<pid> instead of stderr, so a
+# report from a node that roslaunch started is not lost in a log file nobody reads.
+export ASAN_OPTIONS="detect_leaks=1:log_path=$REPORTS/asan"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:log_path=$REPORTS/ubsan"
+export LSAN_OPTIONS="suppressions=$ROOT/test/lsan.supp"
+export TSAN_OPTIONS="suppressions=$ROOT/test/tsan.supp:print_suppressions=1:second_deadlock_stack=1:history_size=4:log_path=$REPORTS/tsan"
+
+if [ "$KIND" = asan ]; then
+  tests_regex='gtest_test_(core|io|ros)$'
+else
+  names="${ROSTESTS:-hostile filters sensors speed_limiter reconfigure plugin_loading}"
+  tests_regex="rostest_test_rostest_($(echo "$names" | tr ' ' '|'))_"
+fi
+set +e
+colcon --log-base "$ROOT/log" test --base-paths "$ROOT" --build-base "$BUILD_BASE" --install-base "$INSTALL_BASE" \
+  --event-handlers console_cohesion+ --return-code-on-test-failure --ctest-args -R "$tests_regex"
+test_rc=$?
+colcon test-result --test-result-base "$BUILD_BASE" --verbose
+result_rc=$?
+set -e
+ran=$(find "$BUILD_BASE/costmap_layers/test_results" -name '*.xml' | wc -l)
+# A file holds a report when a sanitizer warned; TSan also writes the suppressions it matched.
+report_pattern='WARNING: ThreadSanitizer|ERROR: AddressSanitizer|ERROR: LeakSanitizer|runtime error:'
+reported=$(grep -l -E "$report_pattern" -r "$REPORTS" || true)
+reports=$({ grep -h -c -E "$report_pattern" -r "$REPORTS" || true; } | awk '{n += $1} END {print n + 0}')
+for f in $reported; do
+  echo "=== $f"
+  head -n 100 "$f"
+done
+if [ "$KIND" = tsan ]; then
+  echo "suppressed (test/tsan.supp), summed over every process:"
+  { grep -h -E '^ *[0-9]+ (race|deadlock|thread|mutex|signal|called_from_lib):' -r "$REPORTS" || true; } \
+    | awk '{n[$2] += $1} END {for (k in n) printf "  %6d %s\n", n[k], k}' | sort -k2
+fi
+echo "sanitize_package.sh ($SAN): $ran test result files, $reports sanitizer reports, colcon test rc=$test_rc"
+if [ "$ran" -eq 0 ] || [ "$reports" -ne 0 ] || [ "$test_rc" -ne 0 ] || [ "$result_rc" -ne 0 ]; then
+  echo "sanitize_package.sh: FAILED" >&2
+  exit 1
+fi
+echo "sanitize_package.sh: passed, no sanitizer report"
