@@ -60,7 +60,11 @@ void MaskMapping::build(const Costmap2D& master, const CellWindow& window, const
 
   constexpr double eps = 1e-9;
   axis_aligned_ = std::fabs(duy_) < eps && std::fabs(dvx_) < eps;
-  offset_ = axis_aligned_ && std::fabs(dux_ - 1.0) < eps && std::fabs(dvy_ - 1.0) < eps;
+  // The whole-cell offset must fit an int with room for the window added to it; a mask that far off
+  // (a tiny resolution far from the origin) goes through the per-column path, which compares in double.
+  constexpr double max_offset = 1e9;
+  offset_ = axis_aligned_ && std::fabs(dux_ - 1.0) < eps && std::fabs(dvy_ - 1.0) < eps &&
+            std::fabs(p0x_) < max_offset && std::fabs(p0y_) < max_offset;
   if (offset_)
   {
     offset_x_ = static_cast<int>(std::floor(p0x_ + 1e-9));

@@ -100,3 +100,51 @@ TEST(FuzzRegressions, PercentLimitOfAHugeDefaultStaysFinite)
   cfg.default_max_speed = 2.0;
   EXPECT_DOUBLE_EQ(*buildSpeedLimitTable(limits, cfg, nullptr).limit_mps[2], 1.0);
 }
+
+// fuzz_mask, regressions/mask/tiny_resolution_far_mask (found by a 5-minute run): master and mask at
+// the same tiny resolution with the mask far away put the mask 1e15 cells off, and the whole-cell
+// offset was cast to int (UBSan: "-1.0198e+15 is outside the range of representable values of type
+// 'int'"). Such a mask now goes through the per-column path, which compares in double.
+TEST(FuzzRegressions, MaskBillionsOfCellsAwayAtTheSameResolution)
+{
+  for (const double far : {-1e6, 1e6, 3.0})
+  {
+    LayeredCostmap lc("map", false, false);
+    lc.resizeMap(10, 10, 1e-9, 0.0, 0.0);
+    auto keepout = std::make_shared<KeepoutFilter>();
+    keepout->initialize(&lc, "keepout", std::make_shared<FakeContext>());
+    lc.addFilter(keepout);
+    OccupancyGridData mask;
+    mask.frame_id = "map";
+    mask.width = mask.height = 4;
+    mask.resolution = 1e-9;
+    mask.origin_x = far * 1e-9;  // -1e6 and 1e6 cells off; 3 cells off, overlapping the master
+    mask.origin_y = 0.0;
+    mask.data.assign(16, 100);
+    ASSERT_EQ(keepout->setMask(std::make_shared<const OccupancyGridData>(mask)), "");
+    lc.updateMap(0.0, 0.0, 0.0);
+    for (unsigned y = 0; y < 10; ++y)
+      for (unsigned x = 0; x < 10; ++x)
+      {
+        const bool under = far == 3.0 && x >= 3 && x < 7 && y < 4;
+        EXPECT_EQ(lc.getCostmap().getCost(x, y), under ? 254 : 0) << far << ": " << x << "," << y;
+      }
+  }
+  // 1e15 cells off, the fuzzer's case: nothing drawn, nothing overflows.
+  LayeredCostmap lc("map", false, false);
+  lc.resizeMap(10, 10, 1e-9, 0.0, 0.0);
+  auto keepout = std::make_shared<KeepoutFilter>();
+  keepout->initialize(&lc, "keepout", std::make_shared<FakeContext>());
+  lc.addFilter(keepout);
+  OccupancyGridData mask;
+  mask.frame_id = "map";
+  mask.width = mask.height = 4;
+  mask.resolution = 1e-9;
+  mask.origin_x = 1e6;
+  mask.data.assign(16, 100);
+  ASSERT_EQ(keepout->setMask(std::make_shared<const OccupancyGridData>(mask)), "");
+  lc.updateMap(0.0, 0.0, 0.0);
+  for (unsigned y = 0; y < 10; ++y)
+    for (unsigned x = 0; x < 10; ++x)
+      EXPECT_EQ(lc.getCostmap().getCost(x, y), 0);
+}

@@ -305,7 +305,7 @@ void MaskMapping::forEach(Costmap2D& master, const OccupancyGridData& mask, Fn&&
       double py = p0y_ + window_.x0 * duy_ + j * dvy_;
       for (int i = window_.x0; i < window_.xn; ++i, px += dux_, py += duy_)
       {
-        if (px < 0.0 || py < 0.0 || px >= mask_w || py >= mask_h) continue;
+        if (!(px >= 0.0 && py >= 0.0 && px < mask_w && py < mask_h)) continue;  // NaN too
         fn(row[i], mdata[static_cast<std::size_t>(py) * mask_w + static_cast<std::size_t>(px)]);
       }
     }
