@@ -107,44 +107,36 @@ TEST(FuzzRegressions, PercentLimitOfAHugeDefaultStaysFinite)
 // 'int'"). Such a mask now goes through the per-column path, which compares in double.
 TEST(FuzzRegressions, MaskBillionsOfCellsAwayAtTheSameResolution)
 {
-  for (const double far : {-1e6, 1e6, 3.0})
+  constexpr double res = 1e-9;
+  // A lethal 4x4 mask with its origin `cells` master cells to the right of the master's; the master's
+  // costs after one update.
+  auto drawWithMaskAt = [](double cells)
   {
     LayeredCostmap lc("map", false, false);
-    lc.resizeMap(10, 10, 1e-9, 0.0, 0.0);
+    lc.resizeMap(10, 10, res, 0.0, 0.0);
     auto keepout = std::make_shared<KeepoutFilter>();
     keepout->initialize(&lc, "keepout", std::make_shared<FakeContext>());
     lc.addFilter(keepout);
     OccupancyGridData mask;
     mask.frame_id = "map";
     mask.width = mask.height = 4;
-    mask.resolution = 1e-9;
-    mask.origin_x = far * 1e-9;  // -1e6 and 1e6 cells off; 3 cells off, overlapping the master
-    mask.origin_y = 0.0;
+    mask.resolution = res;
+    mask.origin_x = cells * res;
     mask.data.assign(16, 100);
-    ASSERT_EQ(keepout->setMask(std::make_shared<const OccupancyGridData>(mask)), "");
+    EXPECT_EQ(keepout->setMask(std::make_shared<const OccupancyGridData>(mask)), "");
     lc.updateMap(0.0, 0.0, 0.0);
+    return lc.getCostmap();
+  };
+  // 3 cells off (overlapping), a million cells either way (the offset path), 1e15 cells (the fuzzer's
+  // case, now the per-column path): drawn exactly where the mask lies, nothing overflows.
+  for (const double cells : {3.0, -1e6, 1e6, 1e15, -1e15})
+  {
+    const Costmap2D master = drawWithMaskAt(cells);
     for (unsigned y = 0; y < 10; ++y)
       for (unsigned x = 0; x < 10; ++x)
       {
-        const bool under = far == 3.0 && x >= 3 && x < 7 && y < 4;
-        EXPECT_EQ(lc.getCostmap().getCost(x, y), under ? 254 : 0) << far << ": " << x << "," << y;
+        const bool under = cells == 3.0 && x >= 3 && x < 7 && y < 4;
+        EXPECT_EQ(master.getCost(x, y), under ? 254 : 0) << cells << ": " << x << "," << y;
       }
   }
-  // 1e15 cells off, the fuzzer's case: nothing drawn, nothing overflows.
-  LayeredCostmap lc("map", false, false);
-  lc.resizeMap(10, 10, 1e-9, 0.0, 0.0);
-  auto keepout = std::make_shared<KeepoutFilter>();
-  keepout->initialize(&lc, "keepout", std::make_shared<FakeContext>());
-  lc.addFilter(keepout);
-  OccupancyGridData mask;
-  mask.frame_id = "map";
-  mask.width = mask.height = 4;
-  mask.resolution = 1e-9;
-  mask.origin_x = 1e6;
-  mask.data.assign(16, 100);
-  ASSERT_EQ(keepout->setMask(std::make_shared<const OccupancyGridData>(mask)), "");
-  lc.updateMap(0.0, 0.0, 0.0);
-  for (unsigned y = 0; y < 10; ++y)
-    for (unsigned x = 0; x < 10; ++x)
-      EXPECT_EQ(lc.getCostmap().getCost(x, y), 0);
 }

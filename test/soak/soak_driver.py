@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Drives the soak test: robot tf at 50 Hz (with a jump every 20 s), a LaserScan and a PointCloud2 at
 40 Hz each, the three masks and the speed limits republished every second, and a burst of malformed
-messages every 10 s. Samples costmap_node's resident memory every second. At the end it checks that
+messages (stale stamps among them) every 10 s. Samples costmap_node's resident memory every second. At the end it checks that
 memory did not grow after the warm-up, reports how many update cycles overran their period, and that
 /max_speed and the costmap still answer correctly; exits non-zero when a check fails."""
 import math
@@ -21,6 +21,7 @@ from map_msgs.msg import OccupancyGridUpdate
 from nav_msgs.msg import OccupancyGrid
 from rosgraph_msgs.msg import Log
 from sensor_msgs.msg import LaserScan, PointCloud2, PointField
+from std_msgs.msg import Header
 
 
 def load_pgm_mask(path):
@@ -149,6 +150,16 @@ def main():
                     scan_pub.publish(LaserScan(header=s.header, angle_increment=float("nan"), ranges=[1.0] * 5))
                     u = OccupancyGridUpdate(header=t.header, x=-5, y=3999, width=100, height=100, data=[100] * 7)
                     update_pub.publish(u)
+                # Stale stamps: a mask and speed limits from long ago, a scan from an hour ago.
+                for topic, m in masks.items():
+                    mask_pubs[topic].publish(OccupancyGrid(header=Header(stamp=rospy.Time(1), frame_id="map"),
+                                                           info=m.info, data=m.data))
+                features_pub.publish(SpeedLimits(header=Header(stamp=rospy.Time(1), frame_id="map"),
+                                                 limits=features.limits))
+                old_scan = LaserScan(header=Header(stamp=stamp - rospy.Duration(3600), frame_id="base_link"),
+                                     angle_min=s.angle_min, angle_max=s.angle_max, angle_increment=s.angle_increment,
+                                     range_min=s.range_min, range_max=s.range_max, ranges=s.ranges)
+                scan_pub.publish(old_scan)
                 for topic, m in masks.items():  # and the good masks again
                     mask_pubs[topic].publish(m)
             if last_second % 30 == 0:
