@@ -156,6 +156,11 @@ void CostmapFilter::onInitialize()
   context_->advertiseToggle([this](bool on) { setFilterEnabled(on); });
 }
 
+void CostmapFilter::reconfigure(const ParamValue& params)
+{
+  setFilterEnabled(ParamReader(params, name_).getBool("enabled", true));
+}
+
 void CostmapFilter::setFilterEnabled(bool on)
 {
   std::lock_guard<std::mutex> lock(mask_mutex_);

@@ -244,6 +244,34 @@ TEST(KeepoutFilter, ThroughALayeredCostmapAndToggle)
   EXPECT_EQ(r.lc.getCostmap().getCost(4, 4), 254);
 }
 
+// dynamic_reconfigure's `enabled` is the same switch as the toggle service: off clears the filter's
+// cells at the next update, on draws them again, and the two agree whichever was used last.
+TEST(KeepoutFilter, ReconfiguredEnabledIsTheToggle)
+{
+  Rig r;
+  r.lc.resizeMap(10, 10, 1.0, 0.0, 0.0);
+  r.lc.addFilter(r.filter);
+  r.ctx->publishGrid(GridKind::Mask, makeMask(3, 3, 1.0, 3.0, 3.0, 100));
+  r.lc.updateMap(0, 0, 0);
+  ASSERT_EQ(r.lc.getCostmap().getCost(4, 4), 254);
+  ParamValue off = ParamValue::makeMap(), on = ParamValue::makeMap();
+  off.set("enabled", ParamValue::makeBool(false));
+  on.set("enabled", ParamValue::makeBool(true));
+  r.filter->reconfigure(off);
+  EXPECT_FALSE(r.filter->filterEnabled());
+  r.lc.updateMap(0, 0, 0);
+  for (unsigned j = 0; j < 10; ++j)
+    for (unsigned i = 0; i < 10; ++i)
+      EXPECT_EQ(r.lc.getCostmap().getCost(i, j), 0) << i << "," << j;
+  r.ctx->toggle(true);  // the service switches it back on
+  r.lc.updateMap(0, 0, 0);
+  EXPECT_EQ(r.lc.getCostmap().getCost(4, 4), 254);
+  r.ctx->toggle(false);
+  r.filter->reconfigure(on);  // and reconfigure too
+  r.lc.updateMap(0, 0, 0);
+  EXPECT_EQ(r.lc.getCostmap().getCost(4, 4), 254);
+}
+
 TEST(KeepoutFilter, OutOfOrderMaskIsDroppedAndThePreviousKept)
 {
   Rig r;

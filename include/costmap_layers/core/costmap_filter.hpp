@@ -102,6 +102,9 @@ public:
   /// Calls process(); skips (writing nothing) when disabled, without a mask, or without a transform.
   void updateCosts(Costmap2D& master_grid, int min_i, int min_j, int max_i, int max_j) final;
   bool isClearable() override { return false; }
+  /// `enabled` at run time is the same switch as the toggle service (setFilterEnabled()): the filter
+  /// keeps taking part in updates, so that switching it off clears its cells at the next update.
+  void reconfigure(const ParamValue& params) override;
 
   /// Replaces the mask, unless it is invalid or stamped before the mask in force (isOutOfOrder()): then
   /// the previous mask stays and the reason is returned.
