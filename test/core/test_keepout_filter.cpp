@@ -37,6 +37,14 @@ struct Rig
   std::shared_ptr<KeepoutFilter> filter = std::make_shared<KeepoutFilter>();
 
   Rig() { filter->initialize(&lc, "keepout", ctx); }
+  /// Puts the filter on a 10 x 10 master at 1 m and draws a lethal mask over cells 3..5 x 3..5 once.
+  void drawLethalSquare()
+  {
+    lc.resizeMap(10, 10, 1.0, 0.0, 0.0);
+    lc.addFilter(filter);
+    ctx->publishGrid(GridKind::Mask, makeMask(3, 3, 1.0, 3.0, 3.0, 100));
+    lc.updateMap(0, 0, 0);
+  }
   void setMask(const OccupancyGridData& m)
   {
     ctx->publishGrid(GridKind::Mask, m);
@@ -226,10 +234,7 @@ TEST(KeepoutFilter, InvalidValuesSkippedAndWarnedOnce)
 TEST(KeepoutFilter, ThroughALayeredCostmapAndToggle)
 {
   Rig r;
-  r.lc.resizeMap(10, 10, 1.0, 0.0, 0.0);
-  r.lc.addFilter(r.filter);
-  r.ctx->publishGrid(GridKind::Mask, makeMask(3, 3, 1.0, 3.0, 3.0, 100));
-  r.lc.updateMap(0, 0, 0);
+  r.drawLethalSquare();
   const Costmap2D& g = r.lc.getCostmap();
   for (unsigned j = 0; j < 10; ++j)
     for (unsigned i = 0; i < 10; ++i)
@@ -249,10 +254,7 @@ TEST(KeepoutFilter, ThroughALayeredCostmapAndToggle)
 TEST(KeepoutFilter, ReconfiguredEnabledIsTheToggle)
 {
   Rig r;
-  r.lc.resizeMap(10, 10, 1.0, 0.0, 0.0);
-  r.lc.addFilter(r.filter);
-  r.ctx->publishGrid(GridKind::Mask, makeMask(3, 3, 1.0, 3.0, 3.0, 100));
-  r.lc.updateMap(0, 0, 0);
+  r.drawLethalSquare();
   ASSERT_EQ(r.lc.getCostmap().getCost(4, 4), 254);
   ParamValue off = ParamValue::makeMap(), on = ParamValue::makeMap();
   off.set("enabled", ParamValue::makeBool(false));
