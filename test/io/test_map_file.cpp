@@ -1,6 +1,6 @@
 // Tests of costmap_layers::io map file loading: every mode on tiny images with hand-computed values,
 // negate, alpha, colour/palette/16-bit images, the flip, PNG == PGM, every error, and the real maps
-// of ../shared/maps when that folder exists.
+// of ../shared/maps (beside the repository; its absence fails those tests).
 #include "costmap_layers/io/map_file.hpp"
 
 #include <gtest/gtest.h>
@@ -471,8 +471,9 @@ class SharedMapsTest : public ::testing::Test
 protected:
   void SetUp() override
   {
-    if (!std::filesystem::exists(sharedMapsDir() + "/turtlebot3_world.yaml"))
-      GTEST_SKIP() << "no shared maps at " << sharedMapsDir();
+    // The shared maps sit beside the repository, in CI too: their absence is a failure, not a skip.
+    ASSERT_TRUE(std::filesystem::exists(sharedMapsDir() + "/turtlebot3_world.yaml"))
+        << "no shared maps at " << sharedMapsDir() << ": clone the repository beside ../shared";
   }
   static std::map<int, size_t> histogram(const OccupancyGridData& g)
   {
