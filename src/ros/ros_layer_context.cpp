@@ -1,14 +1,14 @@
 #include "costmap_layers/ros/ros_layer_context.hpp"
 
 #include <map_msgs/OccupancyGridUpdate.h>
-#include <message_filters/subscriber.h>
 #include <nav_msgs/OccupancyGrid.h>
 #include <std_srvs/SetBool.h>
 #include <tf2/exceptions.h>
-#include <tf2_ros/message_filter.h>
 
 #include <cmath>
 #include <cstdio>
+#include <deque>
+#include <mutex>
 
 #include "costmap_layers/MaxSpeed.h"
 #include "costmap_layers/SpeedLimits.h"
@@ -113,18 +113,106 @@ void RosLayerContext::subscribeSpeedLimits(const std::string& topic, costmap_lay
 
 namespace
 {
-/// A message filter and the subscriber it reads, destroyed in that order.
-template <class Msg>
-struct FilteredInput
+enum class TfVerdict
 {
-  // Readings waiting for tf: once this many newer ones wait too, the oldest is dropped (and reported).
-  static constexpr uint32_t kQueue = 10;
-  message_filters::Subscriber<Msg> subscriber;
-  tf2_ros::MessageFilter<Msg> filter;
-  FilteredInput(ros::NodeHandle& nh, const std::string& topic, tf2_ros::Buffer& tf, const std::string& target)
-      : subscriber(nh, topic, 5), filter(subscriber, tf, target, kQueue, nh)
+  Ready,     ///< tf can transform the reading's frame at its stamp
+  Wait,      ///< not yet: the transform may still arrive
+  TooOld,    ///< older than every transform tf keeps: it never will
+  NoFrame,   ///< header.frame_id is empty
+  PushedOut  ///< waited until kQueue newer readings queued behind it
+};
+
+/// Holds each reading until tf can place it, then hands it on in arrival order; the readings tf will
+/// never place are handed to the failure callback. This replaces tf2_ros::MessageFilter, whose
+/// addTransformableRequest() in Debian's tf2 (0.7.6) reads tf's frame table without tf's lock, a race
+/// with the tf listener adding frames that TSan reports (fixed upstream in 0.7.10, ros/geometry2#539).
+/// Only tf2's public, locked calls are used here: canTransform(), lookupTransform(), getCacheLength().
+template <class Msg>
+class TfGate : public std::enable_shared_from_this<TfGate<Msg>>
+{
+public:
+  using Ptr = typename Msg::ConstPtr;
+  static constexpr std::size_t kQueue = 10;     ///< readings that may wait for tf at once
+  static constexpr double kRetryPeriod = 0.02;  ///< [s] how often waiting readings are retried
+
+  static std::shared_ptr<TfGate> create(ros::NodeHandle& nh, const std::string& topic, tf2_ros::Buffer& tf,
+                                        std::string target, std::function<void(const Ptr&)> ready,
+                                        std::function<void(const Ptr&, TfVerdict)> failed)
+  {
+    std::shared_ptr<TfGate> gate(new TfGate(tf, std::move(target), std::move(ready), std::move(failed)));
+    std::weak_ptr<TfGate> weak = gate;  // callbacks still in flight after destruction do nothing
+    gate->subscriber_ = nh.subscribe<Msg>(topic, 5,
+                                          [weak](const Ptr& msg)
+                                          {
+                                            if (auto g = weak.lock()) g->arrive(msg);
+                                          });
+    gate->timer_ = nh.createWallTimer(ros::WallDuration(kRetryPeriod),
+                                      [weak](const ros::WallTimerEvent&)
+                                      {
+                                        if (auto g = weak.lock()) g->arrive(nullptr);
+                                      });
+    return gate;
+  }
+
+private:
+  TfGate(tf2_ros::Buffer& tf, std::string target, std::function<void(const Ptr&)> ready,
+         std::function<void(const Ptr&, TfVerdict)> failed)
+      : tf_(tf), target_(std::move(target)), ready_(std::move(ready)), failed_(std::move(failed))
   {
   }
+
+  TfVerdict check(const Msg& msg) const
+  {
+    const std::string& frame = msg.header.frame_id;
+    if (frame.empty()) return TfVerdict::NoFrame;
+    if (tf_.canTransform(target_, frame, msg.header.stamp)) return TfVerdict::Ready;
+    try
+    {
+      // The newest transform tf has between the frames; the reading is beyond hope when even the
+      // oldest one tf still keeps is newer than it.
+      const ros::Time latest = tf_.lookupTransform(target_, frame, ros::Time(0)).header.stamp;
+      if (!latest.isZero() && msg.header.stamp + tf_.getCacheLength() < latest) return TfVerdict::TooOld;
+    }
+    catch (const tf2::TransformException&)
+    {
+      // frames not connected (yet): wait
+    }
+    return TfVerdict::Wait;
+  }
+
+  /// Queues msg (when not null) and hands on, in order, every waiting reading tf can now place. One
+  /// lock for queue and delivery: the layer sees one input's readings one at a time and in order.
+  void arrive(const Ptr& msg)
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (msg) waiting_.push_back(msg);
+    std::deque<Ptr> still;
+    for (const Ptr& m : waiting_)
+    {
+      const TfVerdict v = check(*m);
+      if (v == TfVerdict::Ready)
+        ready_(m);
+      else if (v == TfVerdict::Wait)
+        still.push_back(m);
+      else
+        failed_(m, v);
+    }
+    while (still.size() > kQueue)
+    {
+      failed_(still.front(), TfVerdict::PushedOut);
+      still.pop_front();
+    }
+    waiting_.swap(still);
+  }
+
+  tf2_ros::Buffer& tf_;
+  const std::string target_;
+  const std::function<void(const Ptr&)> ready_;
+  const std::function<void(const Ptr&, TfVerdict)> failed_;
+  std::mutex mutex_;
+  std::deque<Ptr> waiting_;
+  ros::Subscriber subscriber_;
+  ros::WallTimer timer_;
 };
 }  // namespace
 
@@ -132,63 +220,60 @@ template <class Msg, class Reading>
 void RosLayerContext::subscribeSensor(const std::string& topic, const std::string& sensor_frame,
                                       costmap_layers::SensorCallback<Reading> cb)
 {
-  auto input = std::make_shared<FilteredInput<Msg>>(public_nh_, topic, tf_, global_frame_);
   const std::string owner = private_nh_.getNamespace();
   const std::string global = global_frame_;
   tf2_ros::Buffer& tf = tf_;
   auto log = log_;
-  input->filter.registerCallback(
-      [=, &tf](const typename Msg::ConstPtr& msg)
-      {
-        try
-        {
-          costmap_layers::SensorPose pose;
-          const std::string& frame = msg->header.frame_id;
-          pose.to_global = fromMsg(tf.lookupTransform(global, frame, msg->header.stamp).transform);
-          const std::string origin_frame = sensor_frame.empty() ? frame : sensor_frame;
-          const auto origin = tf.lookupTransform(global, origin_frame, msg->header.stamp, ros::Duration(0.1));
-          pose.origin_x = origin.transform.translation.x;
-          pose.origin_y = origin.transform.translation.y;
-          pose.origin_z = origin.transform.translation.z;
-          cb(std::make_shared<const Reading>(fromMsg(*msg)), pose);
-        }
-        catch (const std::exception& e)
-        {
-          log->log(Severity::Warn, owner + topic + "/tf",
-                   owner + ": dropped a reading on " + topic + " (frame " + msg->header.frame_id + "): " + e.what());
-        }
-      });
-  input->filter.registerFailureCallback(
-      [=](const typename Msg::ConstPtr& msg, tf2_ros::filter_failure_reasons::FilterFailureReason reason)
-      {
-        // Each reason is its own throttled report, so that a stale stamp does not hide a wrong frame.
-        std::string key = owner + topic + "/tf/", why;
-        const ros::Time stamp = msg->header.stamp;
-        const double behind = (ros::Time::now() - stamp).toSec();
-        char when[96];
-        std::snprintf(when, sizeof(when), "header.stamp %.3f s (%.3f s %s now)", stamp.toSec(), std::fabs(behind),
-                      behind >= 0.0 ? "before" : "after");
-        switch (reason)
-        {
-          case tf2_ros::filter_failure_reasons::EmptyFrameID:
-            key += "frame_id";
-            why = "header.frame_id is empty";
-            break;
-          case tf2_ros::filter_failure_reasons::OutTheBack:
-            key += "stamp";
-            why = std::string(when) + " is older than every transform tf keeps";
-            break;
-          default:
-            key += "wait";
-            why = std::string("no transform at ") + when + " arrived while " +
-                  std::to_string(FilteredInput<Msg>::kQueue) + " newer readings waited";
-            break;
-        }
-        log->log(Severity::Warn, key,
-                 owner + ": dropped a reading on " + topic + ": cannot transform frame '" + msg->header.frame_id +
-                     "' into '" + global + "': " + why);
-      });
-  sensor_inputs_.push_back(input);
+  auto ready = [=, &tf](const typename Msg::ConstPtr& msg)
+  {
+    try
+    {
+      costmap_layers::SensorPose pose;
+      const std::string& frame = msg->header.frame_id;
+      pose.to_global = fromMsg(tf.lookupTransform(global, frame, msg->header.stamp).transform);
+      const std::string origin_frame = sensor_frame.empty() ? frame : sensor_frame;
+      const auto origin = tf.lookupTransform(global, origin_frame, msg->header.stamp, ros::Duration(0.1));
+      pose.origin_x = origin.transform.translation.x;
+      pose.origin_y = origin.transform.translation.y;
+      pose.origin_z = origin.transform.translation.z;
+      cb(std::make_shared<const Reading>(fromMsg(*msg)), pose);
+    }
+    catch (const std::exception& e)
+    {
+      log->log(Severity::Warn, owner + topic + "/tf",
+               owner + ": dropped a reading on " + topic + " (frame " + msg->header.frame_id + "): " + e.what());
+    }
+  };
+  auto failed = [=](const typename Msg::ConstPtr& msg, TfVerdict verdict)
+  {
+    // Each reason is its own throttled report, so that a stale stamp does not hide a wrong frame.
+    std::string key = owner + topic + "/tf/", why;
+    const ros::Time stamp = msg->header.stamp;
+    const double behind = (ros::Time::now() - stamp).toSec();
+    char when[96];
+    std::snprintf(when, sizeof(when), "header.stamp %.3f s (%.3f s %s now)", stamp.toSec(), std::fabs(behind),
+                  behind >= 0.0 ? "before" : "after");
+    switch (verdict)
+    {
+      case TfVerdict::NoFrame:
+        key += "frame_id";
+        why = "header.frame_id is empty";
+        break;
+      case TfVerdict::TooOld:
+        key += "stamp";
+        why = std::string(when) + " is older than every transform tf keeps";
+        break;
+      default:
+        key += "wait";
+        why = std::string("no transform at ") + when + " arrived while " + std::to_string(TfGate<Msg>::kQueue) +
+              " newer readings waited";
+        break;
+    }
+    log->log(Severity::Warn, key,
+             owner + ": dropped a reading on " + topic + ": cannot transform frame '" + msg->header.frame_id +
+                 "' into '" + global + "': " + why);
+  };
+  sensor_inputs_.push_back(TfGate<Msg>::create(public_nh_, topic, tf_, global_frame_, ready, failed));
 }
 
 void RosLayerContext::subscribeLaserScan(const std::string& topic, const std::string& sensor_frame,

@@ -62,8 +62,8 @@ public:
   void report(costmap_layers::Severity severity, const std::string& key, const std::string& message) override;
 
 private:
-  /// Subscribes through a tf2 message filter: a reading is delivered once its frame can be
-  /// transformed into the global frame at its stamp, or dropped with a throttled warning.
+  /// Subscribes through a tf gate (see ros_layer_context.cpp): a reading is delivered once its frame
+  /// can be transformed into the global frame at its stamp, or dropped with a throttled warning.
   template <class Msg, class Reading>
   void subscribeSensor(const std::string& topic, const std::string& sensor_frame,
                        costmap_layers::SensorCallback<Reading> cb);
@@ -78,6 +78,6 @@ private:
   std::vector<ros::Subscriber> subscribers_;
   std::vector<ros::Publisher> publishers_;
   std::vector<ros::ServiceServer> services_;
-  std::vector<std::shared_ptr<void>> sensor_inputs_;  ///< message filters with their subscribers
+  std::vector<std::shared_ptr<void>> sensor_inputs_;  ///< tf gates with their subscribers
 };
 }  // namespace costmap_layers_ros
