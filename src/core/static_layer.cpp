@@ -78,26 +78,28 @@ std::string StaticLayer::setMap(std::shared_ptr<const OccupancyGridData> map)
   const uint64_t now = context_ ? context_->nowNs() : UINT64_MAX;
   if (error.empty())
   {
+    // The stamp check and the hand-over under one lock: two maps arriving together cannot both pass
+    // the check and then install the older one last.
     std::lock_guard<std::mutex> lock(mutex_);
-    if (isOutOfOrder(map->stamp_ns, map_stamp_ns_, now)) error = outOfOrderError(map->stamp_ns, map_stamp_ns_, "map");
+    if (isOutOfOrder(map->stamp_ns, map_stamp_ns_, now))
+      error = outOfOrderError(map->stamp_ns, map_stamp_ns_, "map");
+    else
+    {
+      if (config_.first_map_only && accepted_any_) return {};
+      pending_map_ = std::move(map);
+      pending_updates_.clear();  // they referred to the previous map
+      accepted_any_ = true;
+      map_stamp_ns_ = pending_map_->stamp_ns;
+      latest_width_ = pending_map_->width;
+      latest_height_ = pending_map_->height;
+      return {};
+    }
   }
-  if (!error.empty())
-  {
-    // Throttled per field, so that each distinct problem is still reported once.
-    const std::string key = "map/" + error.substr(0, error.find(' '));
-    error = name_ + ": map on " + config_.map_topic + " rejected, keeping the previous one: " + error;
-    context_->report(Severity::Error, key, error);
-    return error;
-  }
-  std::lock_guard<std::mutex> lock(mutex_);
-  if (config_.first_map_only && accepted_any_) return {};
-  pending_map_ = std::move(map);
-  pending_updates_.clear();  // they referred to the previous map
-  accepted_any_ = true;
-  map_stamp_ns_ = pending_map_->stamp_ns;
-  latest_width_ = pending_map_->width;
-  latest_height_ = pending_map_->height;
-  return {};
+  // Throttled per field, so that each distinct problem is still reported once.
+  const std::string key = "map/" + error.substr(0, error.find(' '));
+  error = name_ + ": map on " + config_.map_topic + " rejected, keeping the previous one: " + error;
+  context_->report(Severity::Error, key, error);
+  return error;
 }
 
 std::string StaticLayer::applyUpdate(uint32_t x, uint32_t y, uint32_t width, uint32_t height,
