@@ -11,6 +11,7 @@
 
 #include "costmap_layers/core/costmap_2d.hpp"
 #include "costmap_layers/core/footprint.hpp"
+#include "costmap_layers/core/grid_data.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
 #include "fake_context.hpp"
 #include "fuzz_decoder.hpp"
@@ -83,6 +84,22 @@ inline void decodePose(FuzzDecoder& in, double& x, double& y, double& yaw)
 }
 
 /// The master grid's geometry must never change except through resizeMap.
+/// An OccupancyGrid as a map or mask topic would deliver it: frame map or odom, any size, resolution,
+/// origin and yaw, and data of the right length or not (gridValues).
+inline OccupancyGridData decodeGrid(FuzzDecoder& in)
+{
+  OccupancyGridData m;
+  m.frame_id = in.flag() ? "odom" : "map";
+  m.width = in.size();
+  m.height = in.size();
+  m.resolution = in.real();
+  m.origin_x = in.real();
+  m.origin_y = in.real();
+  m.origin_yaw = in.real();
+  m.data = gridValues(in, static_cast<uint64_t>(m.width) * m.height, 1u << 16);
+  return m;
+}
+
 inline void checkMasterUnchanged(const LayeredCostmap& lc, unsigned w, unsigned h, double res)
 {
   const Costmap2D& m = lc.getCostmap();

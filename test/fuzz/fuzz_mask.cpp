@@ -15,23 +15,6 @@
 using namespace costmap_layers;
 using namespace costmap_layers_fuzz;
 
-namespace
-{
-OccupancyGridData decodeMask(FuzzDecoder& in)
-{
-  OccupancyGridData m;
-  m.frame_id = in.flag() ? "odom" : "map";
-  m.width = in.size();
-  m.height = in.size();
-  m.resolution = in.real();
-  m.origin_x = in.real();
-  m.origin_y = in.real();
-  m.origin_yaw = in.real();
-  m.data = gridValues(in, static_cast<uint64_t>(m.width) * m.height, 1u << 16);
-  return m;
-}
-}  // namespace
-
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
 {
   FuzzDecoder in(data, size);
@@ -83,7 +66,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
       case 1:
       {
         auto before = filter->getMask();
-        auto mask = std::make_shared<const OccupancyGridData>(decodeMask(in));
+        auto mask = std::make_shared<const OccupancyGridData>(decodeGrid(in));
         const std::string valid = validateGrid(*mask);
         const std::string err = filter->setMask(mask);
         FUZZ_CHECK(err.empty() == valid.empty(), "setMask and validateGrid disagree");

@@ -18,20 +18,6 @@ using namespace costmap_layers_fuzz;
 
 namespace
 {
-OccupancyGridData decodeMap(FuzzDecoder& in)
-{
-  OccupancyGridData m;
-  m.frame_id = in.flag() ? "odom" : "map";
-  m.width = in.size();
-  m.height = in.size();
-  m.resolution = in.real();
-  m.origin_x = in.real();
-  m.origin_y = in.real();
-  m.origin_yaw = in.real();
-  m.data = gridValues(in, static_cast<uint64_t>(m.width) * m.height, 1u << 16);
-  return m;
-}
-
 OccupancyGridUpdateData decodeUpdate(FuzzDecoder& in)
 {
   OccupancyGridUpdateData u;
@@ -89,7 +75,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     {
       case 0:
       {
-        auto map = std::make_shared<const OccupancyGridData>(decodeMap(in));
+        auto map = std::make_shared<const OccupancyGridData>(decodeGrid(in));
         const std::string err = layer->setMap(map);
         FUZZ_CHECK(err.empty() == validateGrid(*map).empty(), "setMap and validateGrid disagree");
         if (err.empty() && !(layer->config().first_map_only && in_force)) in_force = map;
