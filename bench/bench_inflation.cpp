@@ -3,19 +3,13 @@
 // costmaps after a 360-beam scan.
 #include <benchmark/benchmark.h>
 
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
-#include <limits>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 #include "costmap_layers/core/cost_values.hpp"
 #include "costmap_layers/core/costmap_2d.hpp"
@@ -24,10 +18,7 @@
 #include "costmap_layers/core/layer_context.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
 #include "costmap_layers/core/static_layer.hpp"
-
-#ifndef COSTMAP_LAYERS_SOURCE_DIR
-#define COSTMAP_LAYERS_SOURCE_DIR "."
-#endif
+#include "costmap_layers/io/map_file.hpp"
 
 using namespace costmap_layers;
 
@@ -64,107 +55,36 @@ private:
   std::string frame_ = "map";
 };
 
-/// The synthetic map as an occupancy grid (map_server's trinary rule), loaded once.
-struct SyntheticMap
+/// The big map of the benchmarks, loaded once: the map file named by $COSTMAP_LAYERS_BENCH_MAP, which
+/// scripts/bench.sh sets to the synthetic 4000x4000 map it writes with scripts/make_synthetic_map.py.
+/// Any map_server YAML works (e.g. a robot's own map).
+struct BenchMap
 {
   bool ok = false;
   std::string error;
   OccupancyGridData grid;
 };
 
-std::string readWord(std::istream& in)
+const BenchMap& syntheticMap()
 {
-  std::string word;
-  while (in)
+  static const BenchMap map = []
   {
-    const int c = in.peek();
-    if (c == '#')
+    BenchMap m;
+    const char* path = std::getenv("COSTMAP_LAYERS_BENCH_MAP");
+    if (path == nullptr || *path == '\0')
     {
-      std::string comment;
-      std::getline(in, comment);
-    }
-    else if (std::isspace(c))
-      in.get();
-    else
-      break;
-  }
-  in >> word;
-  return word;
-}
-
-double yamlNumber(const std::string& yaml, const std::string& key, double def)
-{
-  const auto pos = yaml.find(key + ":");
-  if (pos == std::string::npos) return def;
-  return std::strtod(yaml.c_str() + pos + key.size() + 1, nullptr);
-}
-
-const SyntheticMap& syntheticMap()
-{
-  static const SyntheticMap map = []
-  {
-    SyntheticMap m;
-    const std::string dir = std::string(COSTMAP_LAYERS_SOURCE_DIR) + "/../shared/maps/";
-    const std::string gz = dir + "synthetic_indoor_4000.pgm.gz";
-    if (access(gz.c_str(), R_OK) != 0)
-    {
-      m.error = "shared maps absent (" + gz + ")";
+      m.error = "set COSTMAP_LAYERS_BENCH_MAP to a map YAML (scripts/bench.sh does)";
       return m;
     }
-    std::ifstream yaml_file(dir + "synthetic_indoor_4000.yaml");
-    std::stringstream yaml;
-    yaml << yaml_file.rdbuf();
-    char tmpl[] = "/tmp/bench_inflation_XXXXXX";
-    const char* tmp = mkdtemp(tmpl);
-    if (tmp == nullptr)
+    try
     {
-      m.error = "mkdtemp failed";
-      return m;
+      m.grid = io::loadMapFile(path);
+      m.ok = true;
     }
-    const std::string pgm = std::string(tmp) + "/map.pgm";
-    const std::string cmd = "gzip -dc '" + gz + "' > '" + pgm + "'";
-    if (std::system(cmd.c_str()) != 0)
+    catch (const std::exception& e)
     {
-      m.error = "gunzip failed";
-      return m;
+      m.error = e.what();
     }
-    std::ifstream in(pgm, std::ios::binary);
-    const std::string magic = readWord(in);
-    const int w = std::atoi(readWord(in).c_str()), h = std::atoi(readWord(in).c_str());
-    const int maxval = std::atoi(readWord(in).c_str());
-    in.get();  // the single whitespace after maxval
-    if (magic != "P5" || w <= 0 || h <= 0 || maxval != 255)
-    {
-      m.error = "unexpected PGM header";
-      return m;
-    }
-    std::vector<unsigned char> pixels(static_cast<std::size_t>(w) * h);
-    in.read(reinterpret_cast<char*>(pixels.data()), static_cast<std::streamsize>(pixels.size()));
-    std::remove(pgm.c_str());
-    rmdir(tmp);
-    if (!in)
-    {
-      m.error = "short PGM";
-      return m;
-    }
-    const double occupied = yamlNumber(yaml.str(), "occupied_thresh", 0.65);
-    const double free_t = yamlNumber(yaml.str(), "free_thresh", 0.196);
-    m.grid.frame_id = "map";
-    m.grid.width = static_cast<uint32_t>(w);
-    m.grid.height = static_cast<uint32_t>(h);
-    m.grid.resolution = yamlNumber(yaml.str(), "resolution", 0.05);
-    m.grid.origin_x = -100.0;
-    m.grid.origin_y = -100.0;
-    m.grid.data.resize(pixels.size());
-    // Image row 0 is the top of the map; grid row 0 is the bottom.
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x)
-      {
-        const double occ = (255.0 - pixels[static_cast<std::size_t>(h - 1 - y) * w + x]) / 255.0;
-        m.grid.data[static_cast<std::size_t>(y) * w + x] =
-            static_cast<int8_t>(occ > occupied ? 100 : (occ < free_t ? 0 : -1));
-      }
-    m.ok = true;
     return m;
   }();
   return map;

@@ -3,7 +3,9 @@
 # first every input kept in test/fuzz/regressions/<target>/ (inputs that once crashed), then
 # FUZZ_SECONDS of fuzzing from the seed corpus test/fuzz/corpus/<target>/. Fails when any target
 # crashes, leaks, times out or breaks an invariant; the input is saved in build/fuzz/artifacts/<target>/.
-#   scripts/fuzz.sh                       every target for 10 s (part of the test command)
+#   FUZZ_SECONDS=0 scripts/fuzz.sh        replay only: every regression input and every committed seed,
+#                                         each run once (deterministic: what scripts/test.sh runs)
+#   scripts/fuzz.sh                       every target for 10 s of random fuzzing
 #   FUZZ_SECONDS=600 scripts/fuzz.sh      the long run
 #   FUZZ_TARGETS="mask params" scripts/fuzz.sh   some targets only
 # New inputs the fuzzer finds go to build/fuzz/corpus/<target>/ (kept between runs, not committed).
@@ -36,7 +38,20 @@ for t in $TARGETS; do
       echo "fuzz.sh: $t: a regression input fails again:"; tail -n 40 "$log.regressions"; failed+=("$t"); continue
     fi
   fi
-  # 2. Fuzzing: new units go to the first (work) corpus folder, the committed seeds are read only.
+  # 2a. Replay only: every committed seed once, nothing random (-runs=0 stops after reading the corpus).
+  if [ "$SECONDS_PER_TARGET" = 0 ]; then
+    seeds=$(find "$ROOT/test/fuzz/corpus/$t" -type f | wc -l)
+    if "$exe" -runs=0 -timeout=10 -rss_limit_mb=2048 -artifact_prefix="$BUILD/artifacts/$t/" \
+        "$ROOT/test/fuzz/corpus/$t" > "$log" 2>&1; then
+      echo "fuzz.sh: $t: ok, replayed $seeds seed(s) and ${#regressions[@]} regression input(s)"
+    else
+      echo "fuzz.sh: $t: FAILED replaying the seeds (log $log):"
+      grep -E "ERROR|invariant|runtime error|SUMMARY|Test unit written" "$log" | head -n 20
+      failed+=("$t")
+    fi
+    continue
+  fi
+  # 2b. Fuzzing: new units go to the first (work) corpus folder, the committed seeds are read only.
   if "$exe" -max_total_time="$SECONDS_PER_TARGET" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
       -artifact_prefix="$BUILD/artifacts/$t/" "$BUILD/corpus/$t" "$ROOT/test/fuzz/corpus/$t" > "$log" 2>&1; then
     runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")

@@ -7,12 +7,9 @@ set -euo pipefail
 source "$(dirname "$0")/common.sh"
 build_package
 source_install
-MAPS="$ROOT/../shared/maps"
-[ -f "$MAPS/synthetic_indoor_4000.pgm.gz" ] || { echo "soak: needs ../shared/maps/synthetic_indoor_4000" >&2; exit 1; }
 TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
-gunzip -c "$MAPS/synthetic_indoor_4000.pgm.gz" > "$TMP/synthetic_indoor_4000.pgm"
-cp "$MAPS/synthetic_indoor_4000.yaml" "$TMP/"
+python3 "$ROOT/scripts/make_synthetic_map.py" "$TMP"
 export ROS_HOME="${ROS_HOME:-$ROOT/log/soak_ros_home}"
 set +e
 roslaunch --screen "$ROOT/test/soak/soak.launch" map:="$TMP/synthetic_indoor_4000.yaml" \

@@ -1,11 +1,13 @@
 // Tests of costmap_layers::io map file loading: every mode on tiny images with hand-computed values,
 // negate, alpha, colour/palette/16-bit images, the flip, PNG == PGM, every error, and the real maps
-// of ../shared/maps (beside the repository; its absence fails those tests).
+// copied into test/data/maps (sources and licences in test/data/README.md).
 #include "costmap_layers/io/map_file.hpp"
 
 #include <gtest/gtest.h>
 #include <png.h>
 
+#include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -42,9 +44,9 @@ std::string dataDir()
 {
   return sourceDir() + "/test/data";
 }
-std::string sharedMapsDir()
+std::string realMapsDir()
 {
-  return sourceDir() + "/../shared/maps";
+  return dataDir() + "/maps";
 }
 
 void writeText(const std::string& path, const std::string& text)
@@ -464,93 +466,156 @@ TEST_F(MapFileTest, ImageErrors)
   expectError([&] { load("wide.png"); }, {"wide.png", "absurdly large"});
 }
 
-// ---- The real maps of ../shared/maps (skipped when the folder is absent) ----
+// ---- The real maps of test/data/maps ----
+// Expected values come from the image itself: the test reads the PGM's grey levels with its own few
+// lines and applies map_server's and Nav2's published rules to them, never the loader's output.
 
-class SharedMapsTest : public ::testing::Test
+/// Grey level -> pixel count of a binary (P5, maxval 255) PGM, read here independently of the loader.
+struct PgmCounts
 {
-protected:
-  void SetUp() override
-  {
-    // The shared maps sit beside the repository, in CI too: their absence is a failure, not a skip.
-    ASSERT_TRUE(std::filesystem::exists(sharedMapsDir() + "/turtlebot3_world.yaml"))
-        << "no shared maps at " << sharedMapsDir() << ": clone the repository beside ../shared";
-  }
-  static std::map<int, size_t> histogram(const OccupancyGridData& g)
-  {
-    std::map<int, size_t> h;
-    for (int8_t v : g.data)
-      ++h[v];
-    return h;
-  }
+  unsigned width = 0, height = 0;
+  std::map<int, size_t> grey;
 };
 
-TEST_F(SharedMapsTest, Turtlebot3World)
+/// The next header token of a PGM, skipping white space and # comments.
+std::string pgmToken(std::istream& in)
 {
-  const std::string yaml = sharedMapsDir() + "/turtlebot3_world.yaml";
+  std::string token;
+  for (int c = in.get(); c != EOF; c = in.get())
+  {
+    if (c == '#')
+    {
+      std::string comment;
+      std::getline(in, comment);
+    }
+    else if (std::isspace(c))
+    {
+      if (!token.empty()) return token;
+    }
+    else
+      token += static_cast<char>(c);
+  }
+  return token;
+}
+
+PgmCounts countPgm(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  PgmCounts c;
+  const std::string magic = pgmToken(in);
+  c.width = static_cast<unsigned>(std::stoul(pgmToken(in)));
+  c.height = static_cast<unsigned>(std::stoul(pgmToken(in)));
+  const unsigned maxval = static_cast<unsigned>(std::stoul(pgmToken(in)));  // its single white space is read
+  EXPECT_EQ(magic, "P5");
+  EXPECT_EQ(maxval, 255u);
+  std::vector<char> px(static_cast<size_t>(c.width) * c.height);
+  in.read(px.data(), static_cast<std::streamsize>(px.size()));
+  EXPECT_EQ(static_cast<size_t>(in.gcount()), px.size()) << path;
+  for (char g : px)
+    ++c.grey[static_cast<unsigned char>(g)];
+  return c;
+}
+
+/// Applies a per-grey rule (occupancy p = (255 - g) / 255, negate 0) to the grey counts.
+template <class Rule>
+std::map<int, size_t> expectedValues(const PgmCounts& c, Rule rule)
+{
+  std::map<int, size_t> h;
+  for (const auto& [g, n] : c.grey)
+    h[rule((255.0 - g) / 255.0)] += n;
+  return h;
+}
+
+std::map<int, size_t> histogram(const OccupancyGridData& g)
+{
+  std::map<int, size_t> h;
+  for (int8_t v : g.data)
+    ++h[v];
+  return h;
+}
+
+TEST(RealMaps, Turtlebot3World)
+{
+  const std::string yaml = realMapsDir() + "/turtlebot3_world.yaml";
+  const PgmCounts pgm = countPgm(realMapsDir() + "/turtlebot3_world.pgm");
   const OccupancyGridData g = loadMapFile(yaml);
-  EXPECT_EQ(g.width, 384u);
-  EXPECT_EQ(g.height, 384u);
+  EXPECT_EQ(g.width, pgm.width);
+  EXPECT_EQ(g.height, pgm.height);
   EXPECT_DOUBLE_EQ(g.resolution, 0.05);
   EXPECT_DOUBLE_EQ(g.origin_x, -10.0);
   EXPECT_DOUBLE_EQ(g.origin_y, -10.0);
-  EXPECT_EQ(g.data.size(), 384u * 384u);
+  EXPECT_EQ(g.data.size(), static_cast<size_t>(pgm.width) * pgm.height);
+  // map_server trinary with the file's thresholds (occupied 0.65, free 0.196), strict comparisons.
+  const auto trinary = expectedValues(pgm, [](double p) { return p > 0.65 ? 100 : p < 0.196 ? 0 : -1; });
   const auto h = histogram(g);
-  // A classic trinary map: only -1 / 0 / 100, mostly unknown around a free arena with walls.
+  EXPECT_EQ(h, trinary);
+  // The map really has all three classes.
   EXPECT_EQ(h.size(), 3u);
-  EXPECT_EQ(h.at(100), 870u);
-  EXPECT_EQ(h.at(0), 7903u);
-  EXPECT_EQ(h.at(-1), 138683u);
-  // Read as ROS 1 scale, the unknown grey 205 is just inside the band: value 1; as Nav2 scale: 0.
-  const auto hs = histogram(loadMapFile(yaml, MapMode::Scale));
-  EXPECT_EQ(hs.at(1), 138683u);
-  EXPECT_EQ(hs.count(-1), 0u);
-  const auto hn = histogram(loadMapFile(yaml, MapMode::Nav2Scale));
-  EXPECT_EQ(hn.at(0), 7903u + 138683u);
-  EXPECT_EQ(hn.at(100), 870u);
+  // ROS 1 scale: between the thresholds 1 + 98 * ratio, truncated (the unknown grey 205 is value 1).
+  const auto ros1_scale = expectedValues(pgm,
+                                         [](double p)
+                                         {
+                                           if (p > 0.65) return 100;
+                                           if (p < 0.196) return 0;
+                                           return static_cast<int>(1.0 + 98.0 * (p - 0.196) / (0.65 - 0.196));
+                                         });
+  EXPECT_EQ(histogram(loadMapFile(yaml, MapMode::Scale)), ros1_scale);
+  // Nav2 scale (nav2_map_server map_io): beyond the thresholds 100 / 0, between them
+  // rint(100 * (p - free) / (occupied - free)).
+  const auto nav2_scale = expectedValues(pgm,
+                                         [](double p)
+                                         {
+                                           if (p >= 0.65) return 100;
+                                           if (p <= 0.196) return 0;
+                                           return static_cast<int>(std::rint(100.0 * (p - 0.196) / (0.65 - 0.196)));
+                                         });
+  EXPECT_EQ(histogram(loadMapFile(yaml, MapMode::Nav2Scale)), nav2_scale);
 }
 
-TEST_F(SharedMapsTest, DepotKeepout)
+TEST(RealMaps, DepotKeepout)
 {
-  const std::string yaml = sharedMapsDir() + "/depot_keepout.yaml";
+  const std::string yaml = realMapsDir() + "/depot_keepout.yaml";
   const MapFileInfo info = loadMapFileInfo(yaml);
   EXPECT_EQ(info.mode, MapMode::Trinary);
   EXPECT_DOUBLE_EQ(info.free_thresh, 0.25);
+  const PgmCounts pgm = countPgm(realMapsDir() + "/depot_keepout.pgm");
   const OccupancyGridData g = loadMapFile(yaml);
-  EXPECT_EQ(g.width, 604u);
-  EXPECT_EQ(g.height, 307u);
-  const auto h = histogram(g);
-  // A keepout mask: free and keepout (100) only, no unknown.
-  EXPECT_EQ(h.size(), 2u);
-  EXPECT_EQ(h.at(100), 31213u);
-  EXPECT_EQ(h.at(0), 604u * 307u - 31213u);
+  EXPECT_EQ(g.width, pgm.width);
+  EXPECT_EQ(g.height, pgm.height);
+  const auto expected = expectedValues(pgm, [](double p) { return p > 0.65 ? 100 : p < 0.25 ? 0 : -1; });
+  EXPECT_EQ(histogram(g), expected);
+  // A keepout mask: free and keepout only, no unknown.
+  EXPECT_EQ(expected.count(-1), 0u);
+  EXPECT_GT(expected.at(100), 0u);
 }
 
-TEST_F(SharedMapsTest, TutorialsSpeedMaskRos1VersusNav2)
+TEST(RealMaps, TutorialsSpeedMaskRos1VersusNav2)
 {
-  const std::string yaml = sharedMapsDir() + "/tutorials_speed_mask.yaml";
+  const std::string yaml = realMapsDir() + "/tutorials_speed_mask.yaml";
   const MapFileInfo info = loadMapFileInfo(yaml);
   EXPECT_EQ(info.mode, MapMode::Scale);
   EXPECT_DOUBLE_EQ(info.occupied_thresh, 1.0);
   EXPECT_DOUBLE_EQ(info.free_thresh, 0.0);
+  const PgmCounts pgm = countPgm(realMapsDir() + "/tutorials_speed_mask.pgm");
   const OccupancyGridData ros1 = loadMapFile(yaml);
   const OccupancyGridData nav2 = loadMapFile(yaml, MapMode::Nav2Scale);
-  ASSERT_EQ(ros1.width, 384u);
-  ASSERT_EQ(ros1.height, 384u);
+  ASSERT_EQ(ros1.width, pgm.width);
+  ASSERT_EQ(ros1.height, pgm.height);
   ASSERT_EQ(nav2.data.size(), ros1.data.size());
 
-  // The mask's pixels are 254 (background), 205, 153, 77 and 0.
-  // Nav2: occupancy = round(100 * (255 - g) / 255) -> 0, 20, 40, 70, 100 (inclusive thresholds).
-  // ROS 1: nothing is > 1.0 or < 0.0, so everything is 1 + 98 * occ truncated -> 1, 20, 40, 69, 99.
-  const auto hr = histogram(ros1);
-  const auto hn = histogram(nav2);
-  EXPECT_EQ(hn, (std::map<int, size_t>{{0, 8181}, {20, 138514}, {40, 500}, {70, 180}, {100, 81}}));
-  EXPECT_EQ(hr, (std::map<int, size_t>{{1, 8181}, {20, 138514}, {40, 500}, {69, 180}, {99, 81}}));
-  EXPECT_EQ(hn.count(0), 1u);
-  EXPECT_EQ(hr.count(0), 0u);
-  const std::map<int, int> ros1_to_nav2 = {{1, 0}, {20, 20}, {40, 40}, {69, 70}, {99, 100}};
+  // With thresholds 0 and 1 nothing is strictly beyond them: ROS 1 gives 1 + 98 * p truncated
+  // everywhere (white 1, black 99); Nav2 gives round(100 * p) (white 0, black 100).
+  const auto ros1_expected = expectedValues(pgm, [](double p) { return static_cast<int>(1.0 + 98.0 * p); });
+  const auto nav2_expected = expectedValues(pgm, [](double p) { return static_cast<int>(std::rint(100.0 * p)); });
+  EXPECT_EQ(histogram(ros1), ros1_expected);
+  EXPECT_EQ(histogram(nav2), nav2_expected);
+  // The speed zones' grey levels as Nav2's tutorial documents them: 20, 40, 70 % and the black border.
+  for (int v : {0, 20, 40, 70, 100})
+    EXPECT_EQ(nav2_expected.count(v), 1u) << v;
+  // Cell by cell, the two rules differ only by the grey's rounding, never by more than 1.
   for (size_t k = 0; k < ros1.data.size(); ++k)
   {
-    ASSERT_EQ(ros1_to_nav2.at(ros1.data[k]), nav2.data[k]) << "cell " << k;
+    ASSERT_LE(std::abs(ros1.data[k] - nav2.data[k]), 1) << "cell " << k;
   }
 }
 }  // namespace

@@ -39,9 +39,10 @@ std::vector<uint8_t> rawCells(const std::string& path)
   return std::vector<uint8_t>(bytes.begin(), bytes.end());
 }
 
-std::string sharedMaps()
+/// Real maps copied into the repository (sources and licences in test/data/README.md).
+std::string realMaps()
 {
-  return std::string(COSTMAP_LAYERS_SOURCE_DIR) + "/../shared/maps";
+  return std::string(COSTMAP_LAYERS_SOURCE_DIR) + "/test/data/maps";
 }
 }  // namespace
 
@@ -63,9 +64,8 @@ TEST(CostmapTool, GradientOnRealMapsIsExact)
 {
   for (const std::string name : {"turtlebot3_world", "depot", "willow-full-0.1"})
   {
-    const std::string map = sharedMaps() + "/" + name + ".yaml";
-    // The shared maps sit beside the repository, in CI too: their absence is a failure, not a skip.
-    ASSERT_TRUE(std::filesystem::exists(map)) << map << " is absent: clone the repository beside ../shared";
+    const std::string map = realMaps() + "/" + name + ".yaml";
+    ASSERT_TRUE(std::filesystem::exists(map)) << map;
     TempDir dir;
     const std::string params = dir.write("params.yaml", kGradientParams +
                                                             "gradient_layer: {gradient_size: 7, "
@@ -262,11 +262,10 @@ plugins:
   - {name: inflation_layer, type: costmap_layers/InflationLayer}
 inflation_layer: {inflation_radius: 0.55, cost_scaling_factor: 10.0}
 )";
-  for (const std::string name : {"turtlebot3_world", "depot", "warehouse", "willow-full-0.05"})
+  for (const std::string name : {"turtlebot3_world", "tb3_sandbox", "depot", "willow-full-0.1"})
   {
-    const std::string map = sharedMaps() + "/" + name + ".yaml";
-    // The shared maps sit beside the repository, in CI too: their absence is a failure, not a skip.
-    ASSERT_TRUE(std::filesystem::exists(map)) << map << " is absent: clone the repository beside ../shared";
+    const std::string map = realMaps() + "/" + name + ".yaml";
+    ASSERT_TRUE(std::filesystem::exists(map)) << map;
     TempDir dir;
     const std::string params = dir.write("params.yaml", params_text);
     const ToolResult r = runTool({"--map", map, "--params", params, "--out-raw", dir.file("out.raw")}, dir);
