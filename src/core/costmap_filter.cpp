@@ -31,6 +31,20 @@ std::string validateGrid(const OccupancyGridData& grid, uint64_t max_cells)
   return err.str();
 }
 
+std::string validateGridUpdate(int64_t x, int64_t y, uint32_t width, uint32_t height, std::size_t data_size,
+                               uint32_t grid_width, uint32_t grid_height)
+{
+  std::ostringstream err;
+  if (x < 0 || y < 0)
+    err << "x/y must not be negative (got x=" << x << " y=" << y << ")";
+  else if (static_cast<uint64_t>(data_size) != static_cast<uint64_t>(width) * height)
+    err << "data has " << data_size << " values, expected width x height = " << width << "x" << height;
+  else if (static_cast<uint64_t>(x) + width > grid_width || static_cast<uint64_t>(y) + height > grid_height)
+    err << "rectangle x=" << x << " y=" << y << " " << width << "x" << height << " leaves the " << grid_width << "x"
+        << grid_height << " grid";
+  return err.str();
+}
+
 void MaskMapping::build(const Costmap2D& master, const CellWindow& window, const OccupancyGridData& mask,
                         const Transform2D& to_mask)
 {

@@ -130,6 +130,11 @@ std::string RangeSensorLayer::addRange(const RangeData& range, const SensorPose&
   p.clear = r.clear;
   std::lock_guard<std::mutex> lock(mutex_);
   if (!active_) return {};
+  if (queue_.size() >= kMaxPending)
+  {
+    queue_.pop_front();
+    ++dropped_;
+  }
   queue_.push_back(p);
   return {};
 }
@@ -239,10 +244,17 @@ void RangeSensorLayer::updateBounds(double robot_x, double robot_y, double /*rob
   if (layered_costmap_->isRolling())
     costmap_.updateOrigin(robot_x - costmap_.getSizeInMetersX() / 2, robot_y - costmap_.getSizeInMetersY() / 2);
   useExtraBounds(min_x, min_y, max_x, max_y);
+  uint64_t dropped = 0;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     work_.swap(queue_);
+    std::swap(dropped, dropped_);
   }
+  if (dropped != 0)
+    context_->report(Severity::Warn, "flood",
+                     name_ + ": range readings arrive faster than the update loop applies them: dropped the " +
+                         std::to_string(dropped) + " oldest since the last update (at most " +
+                         std::to_string(kMaxPending) + " are applied per update)");
   const uint64_t now = context_->nowNs();
   const bool got_readings = !work_.empty();
   for (const Pending& r : work_)

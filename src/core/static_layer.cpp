@@ -53,17 +53,7 @@ void StaticLayer::onInitialize()
   if (config_.subscribe_to_updates)
     context_->subscribeGridUpdates(config_.map_topic + "_updates",
                                    [this](const std::shared_ptr<const OccupancyGridUpdateData>& u)
-                                   {
-                                     if (u->x < 0 || u->y < 0)
-                                     {
-                                       context_->report(Severity::Error, "map_update",
-                                                        name_ + ": map update rejected: negative x/y (" +
-                                                            std::to_string(u->x) + ", " + std::to_string(u->y) + ")");
-                                       return;
-                                     }
-                                     applyUpdate(static_cast<uint32_t>(u->x), static_cast<uint32_t>(u->y), u->width,
-                                                 u->height, u->data, u->stamp_ns);
-                                   });
+                                   { applyUpdate(u->x, u->y, u->width, u->height, u->data, u->stamp_ns); });
 }
 
 void StaticLayer::rebuildTable()
@@ -88,6 +78,7 @@ std::string StaticLayer::setMap(std::shared_ptr<const OccupancyGridData> map)
       if (config_.first_map_only && accepted_any_) return {};
       pending_map_ = std::move(map);
       pending_updates_.clear();  // they referred to the previous map
+      pending_update_cells_ = 0;
       accepted_any_ = true;
       map_stamp_ns_ = pending_map_->stamp_ns;
       latest_width_ = pending_map_->width;
@@ -102,34 +93,48 @@ std::string StaticLayer::setMap(std::shared_ptr<const OccupancyGridData> map)
   return error;
 }
 
-std::string StaticLayer::applyUpdate(uint32_t x, uint32_t y, uint32_t width, uint32_t height,
+std::string StaticLayer::applyUpdate(int64_t x, int64_t y, uint32_t width, uint32_t height,
                                      const std::vector<int8_t>& data, uint64_t stamp_ns)
 {
-  std::ostringstream err;
+  std::string why, key;
+  uint64_t dropped = 0;
   const uint64_t now = context_ ? context_->nowNs() : UINT64_MAX;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (!config_.subscribe_to_updates)
-      err << "subscribe_to_updates is false";
+      why = "subscribe_to_updates is false", key = "subscribe_to_updates";
     else if (!accepted_any_)
-      err << "no map yet";
+      why = "no map yet", key = "no_map";
     else if (isOutOfOrder(stamp_ns, map_stamp_ns_, now))
-      err << outOfOrderError(stamp_ns, map_stamp_ns_, "map");
-    else if (data.size() != static_cast<uint64_t>(width) * height)
-      err << "data has " << data.size() << " values, expected width x height = " << width << "x" << height;
-    else if (static_cast<uint64_t>(x) + width > latest_width_ || static_cast<uint64_t>(y) + height > latest_height_)
-      err << "rectangle x=" << x << " y=" << y << " " << width << "x" << height << " leaves the " << latest_width_
-          << "x" << latest_height_ << " map";
+      why = outOfOrderError(stamp_ns, map_stamp_ns_, "map"), key = "header.stamp";
+    else if (!(why = validateGridUpdate(x, y, width, height, data.size(), latest_width_, latest_height_)).empty())
+      key = "rectangle";
     else
     {
-      pending_updates_.push_back(PendingUpdate{x, y, width, height, data});
-      return {};
+      const uint64_t cells = static_cast<uint64_t>(width) * height;
+      while (!pending_updates_.empty() && (pending_updates_.size() >= kMaxPendingUpdates ||
+                                           pending_update_cells_ + cells > kMaxPendingUpdateCells))
+      {
+        pending_update_cells_ -= static_cast<uint64_t>(pending_updates_.front().width) * pending_updates_.front().height;
+        pending_updates_.erase(pending_updates_.begin());
+        dropped = ++dropped_updates_;
+      }
+      pending_updates_.push_back(
+          PendingUpdate{static_cast<uint32_t>(x), static_cast<uint32_t>(y), width, height, data});
+      pending_update_cells_ += cells;
     }
   }
-  const std::string why = err.str();
+  if (why.empty())
+  {
+    if (dropped != 0 && context_)
+      context_->report(Severity::Warn, "map_update/flood",
+                       name_ + ": map updates arrive faster than the update loop applies them: dropped the oldest (" +
+                           std::to_string(dropped) + " dropped so far)");
+    return {};
+  }
   const std::string error = name_ + ": map update rejected: " + why;
   // Throttled per field, so that each distinct problem is still reported once.
-  if (context_) context_->report(Severity::Error, "map_update/" + why.substr(0, why.find(' ')), error);
+  if (context_) context_->report(Severity::Error, "map_update/" + key, error);
   return error;
 }
 
@@ -220,6 +225,7 @@ void StaticLayer::updateBounds(double, double, double, double* min_x, double* mi
     map = std::move(pending_map_);
     pending_map_.reset();
     updates.swap(pending_updates_);
+    pending_update_cells_ = 0;
   }
   if (map) processMap(*map);
   for (const auto& u : updates)

@@ -7,7 +7,9 @@
 
 #include <mutex>
 
+#include "costmap_layers/core/costmap_filter.hpp"
 #include "costmap_layers/io/png_writer.hpp"
+#include "costmap_layers/ros/conversions.hpp"
 
 int main(int argc, char** argv)
 {
@@ -25,6 +27,15 @@ int main(int argc, char** argv)
   auto sub = nh.subscribe<nav_msgs::OccupancyGrid>(topic, 1,
                                                    [&](const nav_msgs::OccupancyGrid::ConstPtr& msg)
                                                    {
+                                                     // Sizes checked before any cell is touched.
+                                                     const std::string error =
+                                                         costmap_layers::validateGrid(costmap_layers_ros::fromMsg(*msg));
+                                                     if (!error.empty())
+                                                     {
+                                                       ROS_ERROR_THROTTLE(5.0, "costmap_snapshot: grid on %s dropped: %s",
+                                                                          topic.c_str(), error.c_str());
+                                                       return;
+                                                     }
                                                      std::lock_guard<std::mutex> lock(mutex);
                                                      grid = *msg;
                                                      if (!have_grid) first = ros::Time::now();
@@ -35,12 +46,17 @@ int main(int argc, char** argv)
       [&](const map_msgs::OccupancyGridUpdate::ConstPtr& u)
       {
         std::lock_guard<std::mutex> lock(mutex);
-        if (!have_grid || u->x + u->width > grid.info.width || u->y + u->height > grid.info.height ||
-            u->data.size() != static_cast<std::size_t>(u->width) * u->height)
+        if (!have_grid) return;
+        const std::string error = costmap_layers::validateGridUpdate(u->x, u->y, u->width, u->height, u->data.size(),
+                                                                     grid.info.width, grid.info.height);
+        if (!error.empty())
+        {
+          ROS_ERROR_THROTTLE(5.0, "costmap_snapshot: update on %s_updates dropped: %s", topic.c_str(), error.c_str());
           return;
+        }
         for (uint32_t j = 0; j < u->height; ++j)
-          std::copy_n(u->data.begin() + j * u->width, u->width,
-                      grid.data.begin() + (u->y + j) * grid.info.width + u->x);
+          std::copy_n(u->data.begin() + static_cast<std::size_t>(j) * u->width, u->width,
+                      grid.data.begin() + (static_cast<std::size_t>(u->y) + j) * grid.info.width + u->x);
       });
 
   const ros::WallTime start = ros::WallTime::now();

@@ -87,8 +87,12 @@ void CostmapNode::setUp()
                                              sub != nullptr ? *sub : ParamValue::makeMap(), run_locked));
     }
 
+  schedule_ = std::make_unique<costmap_layers::PublishSchedule>(config_.publish_frequency,
+                                                                 config_.always_send_full_costmap);
+  // Not latched: a latched grid would be the one of the last resize. Each new subscriber gets the
+  // current grid from the connect callback instead, as costmap_2d's publisher does.
   costmap_pub_ = private_nh_.advertise<nav_msgs::OccupancyGrid>(
-      "costmap", 1, [this](const ros::SingleSubscriberPublisher&) { new_subscriber_ = true; }, {}, {}, true);
+      "costmap", 1, [this](const ros::SingleSubscriberPublisher& sub) { sendCurrentGrid(sub); });
   update_pub_ = private_nh_.advertise<map_msgs::OccupancyGridUpdate>("costmap_updates", 1);
   footprint_pub_ = private_nh_.advertise<geometry_msgs::PolygonStamped>("footprint", 1);
   clear_srv_ = private_nh_.advertiseService<std_srvs::Empty::Request, std_srvs::Empty::Response>(
@@ -139,15 +143,8 @@ bool CostmapNode::updateOnce()
   last_x_ = pose->x;
   last_y_ = pose->y;
 
-  const CellWindow w = costmap_->getUpdatedBounds();
-  if (!w.empty())
-  {
-    if (pending_.empty())
-      pending_ = w;
-    else
-      pending_ = CellWindow{std::min(pending_.x0, w.x0), std::min(pending_.y0, w.y0), std::max(pending_.xn, w.xn),
-                            std::max(pending_.yn, w.yn)};
-  }
+  schedule_->noteCycle(costmap_->getCostmap(), costmap_->getUpdatedBounds());
+  cycled_once_ = true;
 
   geometry_msgs::PolygonStamped fp;
   fp.header.frame_id = config_.global_frame;
@@ -162,43 +159,36 @@ bool CostmapNode::updateOnce()
   footprint_pub_.publish(fp);
 
   // Publish once a cycle ran, even if no layer had anything to draw yet: the grid is valid then.
-  if (config_.publish_frequency > 0.0 &&
-      (ros::WallTime::now() - last_publish_).toSec() >= 1.0 / config_.publish_frequency)
-  {
-    const auto& grid = costmap_->getCostmap();
-    const bool geometry_changed = grid.getSizeInCellsX() != last_size_x_ || grid.getSizeInCellsY() != last_size_y_ ||
-                                  grid.getOriginX() != last_origin_x_ || grid.getOriginY() != last_origin_y_ ||
-                                  grid.getResolution() != last_resolution_;
-    publish(!published_once_ || geometry_changed || config_.always_send_full_costmap ||
-            new_subscriber_.exchange(false));
-    last_publish_ = ros::WallTime::now();
-  }
+  if (schedule_->due(ros::WallTime::now().toSec())) publish();
   return true;
 }
 
-void CostmapNode::publish(bool full)
+void CostmapNode::publish()
 {
   const auto& grid = costmap_->getCostmap();
+  const costmap_layers::PublishDecision d = schedule_->take(grid, false);
   const ros::Time now = ros::Time::now();
-  if (full)
+  if (d.full)
   {
     nav_msgs::OccupancyGrid msg;
     toOccupancyGrid(grid, config_.global_frame, now, msg);
     costmap_pub_.publish(msg);
-    last_size_x_ = grid.getSizeInCellsX();
-    last_size_y_ = grid.getSizeInCellsY();
-    last_origin_x_ = grid.getOriginX();
-    last_origin_y_ = grid.getOriginY();
-    last_resolution_ = grid.getResolution();
-    published_once_ = true;
   }
-  else if (!pending_.empty())
+  else if (!d.window.empty())
   {
     map_msgs::OccupancyGridUpdate msg;
-    toOccupancyGridUpdate(grid, pending_, config_.global_frame, now, msg);
-    update_pub_.publish(msg);
+    if (toOccupancyGridUpdate(grid, d.window, config_.global_frame, now, msg)) update_pub_.publish(msg);
   }
-  pending_ = CellWindow{};
+}
+
+void CostmapNode::sendCurrentGrid(const ros::SingleSubscriberPublisher& subscriber)
+{
+  std::lock_guard<std::mutex> lock(update_mutex_);
+  // Before the first cycle the grid holds nothing yet: the first scheduled publish sends it.
+  if (!cycled_once_) return;
+  nav_msgs::OccupancyGrid msg;
+  toOccupancyGrid(costmap_->getCostmap(), config_.global_frame, ros::Time::now(), msg);
+  subscriber.publish(msg);
 }
 
 void CostmapNode::run()

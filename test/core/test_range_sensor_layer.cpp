@@ -243,3 +243,26 @@ TEST(RangeSensorLayer, ResetAndRollingWindow)
   EXPECT_EQ(rig.layer->costmap().getCost(3, 5), 127);
   EXPECT_TRUE(rig.layer->isClearable());
 }
+
+// The outside attack: ~750 ranges a second queued without a bound and were all applied in one cycle,
+// under the lock services need. Now the queue holds at most kMaxPending; the oldest are dropped and
+// counted in one report at the next update.
+TEST(RangeSensorLayer, AFloodIsBoundedAndReported)
+{
+  Rig r(nav2Params());
+  for (int k = 0; k < 10000; ++k)
+    r.range(sonar(2.0f), 1.5, 5.0);
+  EXPECT_EQ(r.layer->pending(), RangeSensorLayer::kMaxPending);
+  r.update(1.5, 5.0);
+  EXPECT_EQ(r.layer->pending(), 0u);
+  ASSERT_EQ(r.ctx->countReports("dropped the " + std::to_string(10000 - RangeSensorLayer::kMaxPending) + " oldest"), 1);
+  for (const auto& rep : r.ctx->reports)
+    if (rep.message.find("oldest") != std::string::npos) EXPECT_EQ(rep.key, "flood");
+  // The readings kept still mark: the cell 2 m ahead of the sensor.
+  EXPECT_GT(r.at(3, 5), 0u);
+  // No flood, no report.
+  r.ctx->reports.clear();
+  r.range(sonar(2.0f), 1.5, 5.0);
+  r.update(1.5, 5.0);
+  EXPECT_EQ(r.ctx->countReports("oldest"), 0);
+}

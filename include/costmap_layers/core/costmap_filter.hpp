@@ -30,6 +30,12 @@ class ParamReader;
 /// @return an empty string when valid, else one line naming the field and its value.
 std::string validateGrid(const OccupancyGridData& grid, uint64_t max_cells = 400'000'000ull);
 
+/// Checks a partial update (x, y, width x height, data_size values) against a grid of
+/// grid_width x grid_height cells, in arithmetic that cannot overflow or wrap for any field values.
+/// @return an empty string when it fits, else one line naming the field and its value.
+std::string validateGridUpdate(int64_t x, int64_t y, uint32_t width, uint32_t height, std::size_t data_size,
+                               uint32_t grid_width, uint32_t grid_height);
+
 /// How master cells of one update window map to cells of the mask: per master column a mask column
 /// (or -1 outside) and per master row a mask row, when the mask is axis-aligned with the costmap;
 /// otherwise a per-cell affine map. Built once per update, never per cell.

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -73,8 +74,12 @@ public:
   const RangeSensorConfig& config() const { return config_; }
 
   /// Queues a reading (safe from any thread). Malformed readings are rejected here: the reason is
-  /// returned and reported as a Warn; "" when queued or when the reading says nothing.
+  /// returned and reported as a Warn; "" when queued or when the reading says nothing. At most
+  /// kMaxPending readings wait for the next update (a flood cannot grow memory or the work of one
+  /// cycle, which runs under the costmap's lock): past that the oldest are dropped, counted and
+  /// reported (throttled) at the next update.
   std::string addRange(const RangeData& range, const SensorPose& pose);
+  static constexpr std::size_t kMaxPending = 128;
   /// Readings waiting for the next update.
   std::size_t pending() const;
 
@@ -95,11 +100,12 @@ private:
 
   RangeSensorConfig config_;
   mutable std::mutex mutex_;
-  std::vector<Pending> queue_;
+  std::deque<Pending> queue_;
+  uint64_t dropped_ = 0;  ///< readings pushed out of the full queue since the last update
   bool active_ = true;
 
   // Update thread only.
-  std::vector<Pending> work_;
+  std::deque<Pending> work_;
   double touched_min_x_ = 0, touched_min_y_ = 0, touched_max_x_ = 0, touched_max_y_ = 0;
   bool touched_ = false;
   uint64_t last_reading_ns_ = 0;

@@ -64,10 +64,14 @@ public:
   /// for the cells [x, x + width) x [y, y + height). Safe from any thread; applied on the next update.
   /// Rejected (returned and reported) when subscribe_to_updates is off, before any map, when it is
   /// stamped before the map in force (it was meant for an older map), when the data size is not
-  /// width * height or when the rectangle leaves the map.
+  /// width * height or when the rectangle leaves the map (validateGridUpdate()). Updates wait for the
+  /// next cycle in a queue of at most kMaxPendingUpdateCells cells and kMaxPendingUpdates updates; past
+  /// that the oldest are dropped, counted in a throttled warning (a flood cannot grow memory).
   /// @param stamp_ns  the update's header.stamp [ns], 0 for none
-  std::string applyUpdate(uint32_t x, uint32_t y, uint32_t width, uint32_t height, const std::vector<int8_t>& data,
+  std::string applyUpdate(int64_t x, int64_t y, uint32_t width, uint32_t height, const std::vector<int8_t>& data,
                           uint64_t stamp_ns = 0);
+  static constexpr std::size_t kMaxPendingUpdates = 256;
+  static constexpr uint64_t kMaxPendingUpdateCells = 64ull << 20;
 
   /// True once a map has been interpreted (on the update thread).
   bool mapReceived() const { return map_received_; }
@@ -95,6 +99,8 @@ private:
   std::mutex mutex_;
   std::shared_ptr<const OccupancyGridData> pending_map_;
   std::vector<PendingUpdate> pending_updates_;
+  uint64_t pending_update_cells_ = 0;
+  uint64_t dropped_updates_ = 0;  ///< since the layer started, for the flood warning
   bool accepted_any_ = false;  ///< a map was accepted (for first_map_only and updates)
   uint32_t latest_width_ = 0, latest_height_ = 0;
   uint64_t map_stamp_ns_ = 0;  ///< header.stamp of the latest accepted map

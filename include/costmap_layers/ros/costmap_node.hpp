@@ -6,7 +6,6 @@
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
 
-#include <atomic>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -14,6 +13,7 @@
 
 #include "costmap_layers/core/costmap_config.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
+#include "costmap_layers/core/publish_schedule.hpp"
 #include "costmap_layers/core/transform2d.hpp"
 #include "costmap_layers/ros/layer_reconfigure.hpp"
 #include "costmap_layers/ros/plugin_factory.hpp"
@@ -48,7 +48,10 @@ public:
 private:
   void setUp();
   std::optional<costmap_layers::Transform2D> robotPose();
-  void publish(bool full);
+  /// Sends what the schedule says for the grid as it is now (caller holds update_mutex_).
+  void publish();
+  /// costmap_2d's rule: each new subscriber of ~costmap gets the current grid at once.
+  void sendCurrentGrid(const ros::SingleSubscriberPublisher& subscriber);
 
   ros::NodeHandle nh_;
   ros::NodeHandle private_nh_;
@@ -67,11 +70,7 @@ private:
   ros::ServiceServer clear_around_srv_;
   std::mutex update_mutex_;         ///< one update cycle or one clear request at a time
   double last_x_ = 0, last_y_ = 0;  ///< the robot position of the last update [m]
-  std::atomic<bool> new_subscriber_{false};
-  bool published_once_ = false;
-  costmap_layers::CellWindow pending_;  ///< changed since the last publish
-  ros::WallTime last_publish_;
-  unsigned int last_size_x_ = 0, last_size_y_ = 0;
-  double last_origin_x_ = 0, last_origin_y_ = 0, last_resolution_ = 0;
+  bool cycled_once_ = false;  ///< a whole update cycle ran: the grid is worth sending
+  std::unique_ptr<costmap_layers::PublishSchedule> schedule_;  ///< guarded by update_mutex_
 };
 }  // namespace costmap_layers_ros
