@@ -111,14 +111,27 @@ std::size_t SpeedFilter::setSpeedLimits(const SpeedLimitsData& limits)
   }
   std::vector<SpeedLimitIssue> issues;
   auto table = std::make_shared<SpeedLimitTable>(buildSpeedLimitTable(limits, config, &issues));
-  std::size_t dropped = 0;
+  // One report per kind of problem and message, keyed by the field, naming at most kListed entries:
+  // however many entries a sender puts in, the log gets at most two lines per throttle period, each
+  // of bounded length, and the throttle table two keys.
+  constexpr std::size_t kListed = 8;
+  std::size_t dropped = 0, duplicates = 0;
+  std::string errors, repeats;
   for (const auto& i : issues)
   {
-    dropped += i.error ? 1 : 0;
-    context_->report(i.error ? Severity::Error : Severity::Warn,
-                     (i.error ? "features_bad_" : "features_duplicate_") + std::to_string(i.area_id),
-                     name_ + ": " + config.features_topic + ": " + i.message);
+    std::size_t& n = i.error ? dropped : duplicates;
+    std::string& text = i.error ? errors : repeats;
+    if (n++ < kListed) text += (text.empty() ? "" : "; ") + i.message;
   }
+  const auto more = [](std::size_t n) { return n > kListed ? "; and " + std::to_string(n - kListed) + " more" : ""; };
+  if (dropped != 0 && context_)
+    context_->report(Severity::Error, "features/limits",
+                     name_ + ": " + config.features_topic + ": " + std::to_string(dropped) + " of " +
+                         std::to_string(limits.limits.size()) + " entries dropped: " + errors + more(dropped));
+  if (duplicates != 0 && context_)
+    context_->report(Severity::Warn, "features/limits.area_id",
+                     name_ + ": " + config.features_topic + ": " + std::to_string(duplicates) +
+                         " repeated area id(s): " + repeats + more(duplicates));
   std::lock_guard<std::mutex> lock(limits_mutex_);
   // A dropped entry keeps its area's last good limit (an area the message leaves out has none).
   for (const auto& i : issues)
@@ -176,7 +189,7 @@ void SpeedFilter::warnValueOnce(int8_t v, const std::string& message)
   const std::size_t bit = static_cast<uint8_t>(v);
   if (warned_values_.test(bit)) return;
   warned_values_.set(bit);
-  context_->report(Severity::Warn, "mask_value_" + std::to_string(v), name_ + ": " + message);
+  context_->report(Severity::Warn, "mask/value", name_ + ": " + message);
 }
 
 double SpeedFilter::limitForValue(int8_t v, const SpeedLimitTable* table)
@@ -195,7 +208,7 @@ double SpeedFilter::limitForValue(int8_t v, const SpeedLimitTable* table)
     if (!warned_ids_.test(static_cast<std::size_t>(v)))
     {
       warned_ids_.set(static_cast<std::size_t>(v));
-      context_->report(Severity::Warn, "unknown_area_" + std::to_string(v),
+      context_->report(Severity::Warn, "mask/area_id",
                        name_ + ": the robot is in area " + std::to_string(v) +
                            " of the mask, which has no speed "
                            "limit" +

@@ -1,14 +1,47 @@
 #include "costmap_layers/ros/conversions.hpp"
 
+#include <tf2/LinearMath/Quaternion.h>
+#include <tf2/utils.h>
+
+#include <algorithm>
 #include <cmath>
+#include <sstream>
+#include <stdexcept>
 
 #include "costmap_layers/core/cost_translation.hpp"
+#include "costmap_layers/core/publish_schedule.hpp"
 
 namespace costmap_layers_ros
 {
 using costmap_layers::ParamValue;
 
-costmap_layers::OccupancyGridData fromMsg(const nav_msgs::OccupancyGrid& msg)
+double planarYaw(const geometry_msgs::Quaternion& q, double max_tilt, const std::string& field, bool* normalised)
+{
+  const auto value = [&]
+  {
+    std::ostringstream s;
+    s << field << " (" << q.x << ", " << q.y << ", " << q.z << ", " << q.w << ")";
+    return s.str();
+  };
+  if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z) || !std::isfinite(q.w))
+    throw std::invalid_argument(value() + " is not finite");
+  const double n = std::sqrt(q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w);
+  if (!(n > 1e-6)) throw std::invalid_argument(value() + " has zero length: no orientation");
+  const tf2::Quaternion u(q.x / n, q.y / n, q.z / n, q.w / n);
+  // The angle between the rotated z axis and z: its cosine is 1 - 2 (x^2 + y^2) for a unit quaternion.
+  const double tilt = std::acos(std::clamp(1.0 - 2.0 * (u.x() * u.x() + u.y() * u.y()), -1.0, 1.0));
+  if (tilt > max_tilt)
+  {
+    std::ostringstream s;
+    s << value() << " tilts the plane by " << tilt << " rad (roll/pitch), more than the " << max_tilt
+      << " rad a 2-D costmap can represent";
+    throw std::invalid_argument(s.str());
+  }
+  if (normalised) *normalised = std::fabs(n - 1.0) > 1e-6;
+  return tf2::getYaw(u);
+}
+
+costmap_layers::OccupancyGridData fromMsg(const nav_msgs::OccupancyGrid& msg, std::string* note)
 {
   costmap_layers::OccupancyGridData g;
   g.frame_id = msg.header.frame_id;
@@ -18,8 +51,16 @@ costmap_layers::OccupancyGridData fromMsg(const nav_msgs::OccupancyGrid& msg)
   g.resolution = msg.info.resolution;
   g.origin_x = msg.info.origin.position.x;
   g.origin_y = msg.info.origin.position.y;
-  const auto& q = msg.info.origin.orientation;
-  g.origin_yaw = std::atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z));
+  bool normalised = false;
+  g.origin_yaw = planarYaw(msg.info.origin.orientation, kMaxGridTilt, "info.origin.orientation", &normalised);
+  if (normalised && note)
+  {
+    const auto& q = msg.info.origin.orientation;
+    std::ostringstream s;
+    s << "info.origin.orientation (" << q.x << ", " << q.y << ", " << q.z << ", " << q.w
+      << ") is not of unit length: normalised (yaw " << g.origin_yaw << " rad)";
+    *note = s.str();
+  }
   g.data.assign(msg.data.begin(), msg.data.end());
   return g;
 }
@@ -98,10 +139,13 @@ costmap_layers::RangeData fromMsg(const sensor_msgs::Range& msg)
 costmap_layers::Transform3D fromMsg(const geometry_msgs::Transform& msg)
 {
   const auto& q = msg.rotation;
-  const double n = std::sqrt(q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w);
-  const double s = n > 0.0 ? 1.0 / n : 1.0;
-  return costmap_layers::Transform3D::fromQuaternion(msg.translation.x, msg.translation.y, msg.translation.z, q.x * s,
-                                                     q.y * s, q.z * s, n > 0.0 ? q.w * s : 1.0);
+  const auto& t = msg.translation;
+  if (!std::isfinite(t.x) || !std::isfinite(t.y) || !std::isfinite(t.z))
+    throw std::invalid_argument("transform translation is not finite");
+  // Sensors may be mounted at any angle: only the length is checked here (any tilt is a 3-D pose).
+  planarYaw(q, M_PI, "transform rotation");
+  const double s = 1.0 / std::sqrt(q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w);
+  return costmap_layers::Transform3D::fromQuaternion(t.x, t.y, t.z, q.x * s, q.y * s, q.z * s, q.w * s);
 }
 
 void toOccupancyGrid(const costmap_layers::Costmap2D& costmap, const std::string& frame, const ros::Time& stamp,
@@ -124,9 +168,13 @@ void toOccupancyGrid(const costmap_layers::Costmap2D& costmap, const std::string
     msg.data[k] = table[cells[k]];
 }
 
-void toOccupancyGridUpdate(const costmap_layers::Costmap2D& costmap, const costmap_layers::CellWindow& window,
+bool toOccupancyGridUpdate(const costmap_layers::Costmap2D& costmap, const costmap_layers::CellWindow& requested,
                            const std::string& frame, const ros::Time& stamp, map_msgs::OccupancyGridUpdate& msg)
 {
+  // Never read past the grid, whatever window was asked for.
+  const costmap_layers::CellWindow window =
+      costmap_layers::clipWindow(requested, costmap.getSizeInCellsX(), costmap.getSizeInCellsY());
+  if (window.empty()) return false;
   msg.header.frame_id = frame;
   msg.header.stamp = stamp;
   msg.x = window.x0;
@@ -142,6 +190,7 @@ void toOccupancyGridUpdate(const costmap_layers::Costmap2D& costmap, const costm
     for (uint32_t i = 0; i < msg.width; ++i)
       msg.data[k++] = table[row[i]];
   }
+  return true;
 }
 
 ParamValue fromXmlRpc(XmlRpc::XmlRpcValue& value)

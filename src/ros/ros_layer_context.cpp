@@ -18,15 +18,10 @@ namespace costmap_layers_ros
 {
 using costmap_layers::Severity;
 
-void ThrottledLog::log(Severity severity, const std::string& key, const std::string& message)
+namespace
 {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    const ros::WallTime now = ros::WallTime::now();
-    auto it = last_.find(key);
-    if (it != last_.end() && (now - it->second).toSec() < period_) return;
-    last_[key] = now;
-  }
+void logToRosconsole(Severity severity, const std::string& message)
+{
   switch (severity)
   {
     case Severity::Debug:
@@ -42,6 +37,42 @@ void ThrottledLog::log(Severity severity, const std::string& key, const std::str
       ROS_ERROR_STREAM(message);
       break;
   }
+}
+}  // namespace
+
+ThrottledLog::ThrottledLog(double period, Sink sink, Clock clock)
+    : period_(period),
+      sink_(sink ? std::move(sink) : Sink(logToRosconsole)),
+      clock_(clock ? std::move(clock) : Clock([] { return ros::WallTime::now().toSec(); }))
+{
+}
+
+void ThrottledLog::log(Severity severity, const std::string& key, const std::string& message)
+{
+  static const std::string kOverflow = "<throttle table full>";
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const double now = clock_();
+    // A key stays throttled for one period; a clock that went back ends its period.
+    const auto quiet = [&](double since) { return now >= since && now - since < period_; };
+    const std::string* slot = &key;
+    if (last_.size() >= kMaxKeys && last_.find(key) == last_.end())
+    {
+      for (auto k = last_.begin(); k != last_.end();)
+        k = quiet(k->second) ? std::next(k) : last_.erase(k);
+      if (last_.size() >= kMaxKeys) slot = &kOverflow;  // the table holds at most kMaxKeys + 1 keys
+    }
+    const auto it = last_.find(*slot);
+    if (it != last_.end() && quiet(it->second)) return;
+    last_[*slot] = now;
+  }
+  sink_(severity, message);
+}
+
+std::size_t ThrottledLog::keyCount() const
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  return last_.size();
 }
 
 RosLayerContext::RosLayerContext(ros::NodeHandle public_nh, ros::NodeHandle private_nh,
@@ -66,7 +97,11 @@ void RosLayerContext::subscribeGrid(const std::string& topic, costmap_layers::Gr
       {
         try
         {
-          cb(std::make_shared<const costmap_layers::OccupancyGridData>(fromMsg(*msg)));
+          std::string note;
+          auto grid = std::make_shared<const costmap_layers::OccupancyGridData>(fromMsg(*msg, &note));
+          if (!note.empty())
+            log->log(Severity::Warn, owner + topic + "/info.origin.orientation", owner + ": grid on " + topic + ": " + note);
+          cb(grid);
         }
         catch (const std::exception& e)
         {
@@ -118,6 +153,7 @@ enum class TfVerdict
   Ready,     ///< tf can transform the reading's frame at its stamp
   Wait,      ///< not yet: the transform may still arrive
   TooOld,    ///< older than every transform tf keeps: it never will
+  Future,    ///< stamped more than kMaxAhead after now: a wrong clock, or the clock jumped back
   NoFrame,   ///< header.frame_id is empty
   PushedOut  ///< waited until kQueue newer readings queued behind it
 };
@@ -134,6 +170,10 @@ public:
   using Ptr = typename Msg::ConstPtr;
   static constexpr std::size_t kQueue = 10;     ///< readings that may wait for tf at once
   static constexpr double kRetryPeriod = 0.02;  ///< [s] how often waiting readings are retried
+  /// [s] how far a reading's stamp may lie ahead of now. tf's canTransform() is true at any stamp
+  /// between a frame and itself, so without this a reading from the future would pass (and, buffered,
+  /// look fresh until the clock caught up with it).
+  static constexpr double kMaxAhead = 1.0;
 
   static std::shared_ptr<TfGate> create(ros::NodeHandle& nh, const std::string& topic, tf2_ros::Buffer& tf,
                                         std::string target, std::function<void(const Ptr&)> ready,
@@ -165,6 +205,7 @@ private:
   {
     const std::string& frame = msg.header.frame_id;
     if (frame.empty()) return TfVerdict::NoFrame;
+    if ((msg.header.stamp - ros::Time::now()).toSec() > kMaxAhead) return TfVerdict::Future;
     if (tf_.canTransform(target_, frame, msg.header.stamp)) return TfVerdict::Ready;
     try
     {
@@ -263,6 +304,11 @@ void RosLayerContext::subscribeSensor(const std::string& topic, const std::strin
         key += "stamp";
         why = std::string(when) + " is older than every transform tf keeps";
         break;
+      case TfVerdict::Future:
+        key += "future";
+        why = std::string(when) + " is more than " + std::to_string(TfGate<Msg>::kMaxAhead) +
+              " s ahead of the clock (a wrong sensor clock, or the clock jumped back)";
+        break;
       default:
         key += "wait";
         why = std::string("no transform at ") + when + " arrived while " + std::to_string(TfGate<Msg>::kQueue) +
@@ -345,11 +391,23 @@ std::optional<costmap_layers::Transform2D> lookupTransform2D(const tf2_ros::Buff
                  std::to_string(tolerance) + " s)";
       return std::nullopt;
     }
-    const auto& q = t.transform.rotation;
     costmap_layers::Transform2D out;
     out.x = t.transform.translation.x;
     out.y = t.transform.translation.y;
-    out.yaw = std::atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z));
+    if (!std::isfinite(out.x) || !std::isfinite(out.y))
+    {
+      if (error) *error = "transform " + source_frame + " -> " + target_frame + " has a non-finite translation";
+      return std::nullopt;
+    }
+    try
+    {
+      out.yaw = planarYaw(t.transform.rotation, kMaxPoseTilt, "transform " + source_frame + " -> " + target_frame);
+    }
+    catch (const std::invalid_argument& e)
+    {
+      if (error) *error = e.what();
+      return std::nullopt;
+    }
     return out;
   }
   catch (const tf2::TransformException& e)

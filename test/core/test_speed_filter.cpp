@@ -417,20 +417,17 @@ TEST(SpeedFilter, BadFeaturesAreRejectedPerEntry)
               {0, 0.3}, {101, 0.3},        {5, 0.0},  // 0 m/s is valid (it means "no limit")
               {6, 1.25}};
   EXPECT_EQ(r.filter->setSpeedLimits(s), 5u);
-  ASSERT_EQ(r.ctx->reports.size(), 5u);
-  for (const auto& rep : r.ctx->reports)
-  {
-    EXPECT_EQ(rep.severity, Severity::Error);
-    EXPECT_NE(rep.message.find("speed_filter"), std::string::npos) << rep.message;
-    EXPECT_NE(rep.message.find("/features"), std::string::npos) << rep.message;
-    EXPECT_NE(rep.message.find("dropped"), std::string::npos) << rep.message;
-  }
+  // One report for the whole message, keyed by the field, naming every bad entry.
+  ASSERT_EQ(r.ctx->reports.size(), 1u);
+  const auto& rep = r.ctx->reports[0];
+  EXPECT_EQ(rep.severity, Severity::Error);
+  EXPECT_EQ(rep.key, "features/limits");
+  EXPECT_NE(rep.message.find("speed_filter: /features: 5 of 8 entries dropped"), std::string::npos) << rep.message;
   EXPECT_EQ(r.ctx->countReports("limits[1] (area_id 2, max_speed nan)"), 1);
   EXPECT_EQ(r.ctx->countReports("limits[2] (area_id 3, max_speed -0.1)"), 1);
   EXPECT_EQ(r.ctx->countReports("limits[3] (area_id 4, max_speed inf)"), 1);
   EXPECT_EQ(r.ctx->countReports("area_id 0,"), 1);
   EXPECT_EQ(r.ctx->countReports("area_id 101,"), 1);
-  EXPECT_EQ(r.ctx->countReports("1..100"), 2);
   r.ctx->reports.clear();
   // The good entries are in force; the dropped ones count as no limit (warned when met).
   EXPECT_EQ(r.atArea(1), 1u);
@@ -451,13 +448,44 @@ TEST(SpeedFilter, BadFeaturesAreRejectedPerEntry)
   SpeedLimitsData t;
   t.limits = {{1, 0.0}, {2, 100.5}, {3, -5.0}, {4, 100.0}, {5, 0.001}};
   EXPECT_EQ(q.filter->setSpeedLimits(t), 3u);
-  EXPECT_EQ(q.ctx->countReports("(0, 100]"), 2);  // the negative one fails the m/s rule first
+  ASSERT_EQ(q.ctx->reports.size(), 1u);
+  EXPECT_NE(q.ctx->reports[0].message.find("3 of 5 entries dropped"), std::string::npos) << q.ctx->reports[0].message;
+  // limits[0] and limits[1] break the percent rule; the negative one fails the m/s rule first.
+  EXPECT_NE(q.ctx->reports[0].message.find("limits[0]"), std::string::npos) << q.ctx->reports[0].message;
+  EXPECT_NE(q.ctx->reports[0].message.find("limits[1]"), std::string::npos) << q.ctx->reports[0].message;
   EXPECT_EQ(q.atArea(4), 1u);
   EXPECT_DOUBLE_EQ(q.last(), kDefault);
   EXPECT_EQ(q.atArea(5), 1u);
   EXPECT_DOUBLE_EQ(q.last(), kDefault * 0.001 / 100.0);
   EXPECT_EQ(q.atArea(1), 1u);  // dropped: default
   EXPECT_DOUBLE_EQ(q.last(), kDefault);
+}
+
+// The outside attack: 20 000 bad entries with distinct area ids printed 40 000 lines and left a
+// throttle key per id. Now: one report with a fixed key and a bounded text, whatever the count.
+TEST(SpeedFilter, ManyBadEntriesGiveOneBoundedReportWithAFixedKey)
+{
+  Rig r;
+  r.ctx->publishGrid(GridKind::Mask, makeMask());
+  SpeedLimitsData s;
+  for (uint32_t k = 0; k < 20000; ++k)
+    s.limits.push_back({1000 + k, -1.0});
+  for (uint32_t k = 0; k < 20000; ++k)
+    s.limits.push_back({7, 0.1 + 1e-6 * k});
+  EXPECT_EQ(r.filter->setSpeedLimits(s), 20000u);
+  ASSERT_EQ(r.ctx->reports.size(), 2u);
+  EXPECT_EQ(r.ctx->reports[0].key, "features/limits");
+  EXPECT_EQ(r.ctx->reports[1].key, "features/limits.area_id");
+  for (const auto& rep : r.ctx->reports)
+  {
+    EXPECT_LT(rep.message.size(), 2000u) << rep.message.substr(0, 300);
+    EXPECT_NE(rep.message.find("more"), std::string::npos);
+  }
+  EXPECT_NE(r.ctx->reports[0].message.find("20000 of 40000 entries dropped"), std::string::npos);
+  EXPECT_NE(r.ctx->reports[0].message.find("and 19992 more"), std::string::npos);
+  // The good entries still apply (the later duplicate of area 7 wins).
+  EXPECT_EQ(r.atArea(7), 1u);
+  EXPECT_NEAR(r.last(), 0.1 + 1e-6 * 19999, 1e-9);
 }
 
 TEST(SpeedFilter, DuplicateIdsLaterWinsWithAWarning)
@@ -467,12 +495,11 @@ TEST(SpeedFilter, DuplicateIdsLaterWinsWithAWarning)
   SpeedLimitsData s;
   s.limits = {{9, 0.3}, {10, 0.4}, {9, 0.6}, {9, 0.7}};
   EXPECT_EQ(r.filter->setSpeedLimits(s), 0u);
-  ASSERT_EQ(r.ctx->reports.size(), 2u);
-  for (const auto& rep : r.ctx->reports)
-  {
-    EXPECT_EQ(rep.severity, Severity::Warn);
-    EXPECT_NE(rep.message.find("repeats area id 9"), std::string::npos) << rep.message;
-  }
+  ASSERT_EQ(r.ctx->reports.size(), 1u);
+  EXPECT_EQ(r.ctx->reports[0].severity, Severity::Warn);
+  EXPECT_EQ(r.ctx->reports[0].key, "features/limits.area_id");
+  EXPECT_NE(r.ctx->reports[0].message.find("2 repeated area id(s)"), std::string::npos) << r.ctx->reports[0].message;
+  EXPECT_NE(r.ctx->reports[0].message.find("repeats area id 9"), std::string::npos) << r.ctx->reports[0].message;
   EXPECT_EQ(r.atArea(9), 1u);
   EXPECT_DOUBLE_EQ(r.last(), 0.7);
   // A later bad duplicate does not replace a good one.

@@ -1,6 +1,7 @@
 // Conversions between messages and the core's plain types: the only place that knows both.
 #pragma once
 
+#include <geometry_msgs/Quaternion.h>
 #include <geometry_msgs/TransformStamped.h>
 #include <map_msgs/OccupancyGridUpdate.h>
 #include <nav_msgs/OccupancyGrid.h>
@@ -18,8 +19,21 @@
 
 namespace costmap_layers_ros
 {
-/// Copies the grid; the yaw of the origin comes from its quaternion. Does not validate.
-costmap_layers::OccupancyGridData fromMsg(const nav_msgs::OccupancyGrid& msg);
+/// The most a grid's origin may be tilted out of the plane [rad]: a 2-D grid cannot represent more.
+constexpr double kMaxGridTilt = 0.01;
+/// The most a robot or sensor pose used in the plane may be tilted [rad] (a robot on a ramp is fine).
+constexpr double kMaxPoseTilt = 1.0471975511965976;  // 60 degrees
+
+/// The heading of a quaternion as a planar pose uses it (tf2::getYaw of the normalised quaternion).
+/// Throws std::invalid_argument naming `field` and the value when a component is not finite, the
+/// length is (near) zero, or the rotation tilts the plane by more than max_tilt [rad]. A quaternion
+/// of non-unit length is normalised first; *normalised (if given) says whether that was needed.
+double planarYaw(const geometry_msgs::Quaternion& q, double max_tilt, const std::string& field,
+                 bool* normalised = nullptr);
+
+/// Copies the grid; the yaw of the origin comes from its quaternion (planarYaw with kMaxGridTilt,
+/// which throws for an unusable one; *note says when it had to be normalised). Does not validate the rest.
+costmap_layers::OccupancyGridData fromMsg(const nav_msgs::OccupancyGrid& msg, std::string* note = nullptr);
 costmap_layers::SpeedLimitsData fromMsg(const costmap_layers::SpeedLimits& msg);
 costmap_layers::OccupancyGridUpdateData fromMsg(const map_msgs::OccupancyGridUpdate& msg);
 /// Sensor messages: plain copies; the core validates them.
@@ -31,8 +45,9 @@ costmap_layers::Transform3D fromMsg(const geometry_msgs::Transform& msg);
 /// The whole costmap as an OccupancyGrid (costs translated as costmap_2d does).
 void toOccupancyGrid(const costmap_layers::Costmap2D& costmap, const std::string& frame, const ros::Time& stamp,
                      nav_msgs::OccupancyGrid& msg);
-/// The window of the costmap as an OccupancyGridUpdate.
-void toOccupancyGridUpdate(const costmap_layers::Costmap2D& costmap, const costmap_layers::CellWindow& window,
+/// The window of the costmap as an OccupancyGridUpdate, clipped to the grid first.
+/// @return false (msg untouched) when nothing of the window lies on the grid.
+bool toOccupancyGridUpdate(const costmap_layers::Costmap2D& costmap, const costmap_layers::CellWindow& window,
                            const std::string& frame, const ros::Time& stamp, map_msgs::OccupancyGridUpdate& msg);
 
 /// The parameter tree under an XmlRpc value (structs keep their keys, arrays their order).

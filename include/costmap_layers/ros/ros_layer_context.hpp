@@ -6,6 +6,7 @@
 #include <ros/ros.h>
 #include <tf2_ros/buffer.h>
 
+#include <functional>
 #include <map>
 #include <mutex>
 #include <string>
@@ -15,17 +16,27 @@
 
 namespace costmap_layers_ros
 {
-/// Logs each key at most once per period [s]; thread-safe.
+/// Logs each key at most once per period [s]; thread-safe. Keys name a field or a problem, never a
+/// value from a message; the table is bounded all the same (kMaxKeys): when it is full, keys not seen
+/// for a period are forgotten, and if none is, the message is throttled under one shared overflow key.
 class ThrottledLog
 {
 public:
-  explicit ThrottledLog(double period = 5.0) : period_(period) {}
+  using Sink = std::function<void(costmap_layers::Severity, const std::string&)>;
+  using Clock = std::function<double()>;  ///< [s], monotonic
+  static constexpr std::size_t kMaxKeys = 1024;
+
+  /// By default messages go to rosconsole and time is the wall clock; tests pass their own.
+  explicit ThrottledLog(double period = 5.0, Sink sink = {}, Clock clock = {});
   void log(costmap_layers::Severity severity, const std::string& key, const std::string& message);
+  std::size_t keyCount() const;
 
 private:
   double period_;
-  std::mutex mutex_;
-  std::map<std::string, ros::WallTime> last_;
+  Sink sink_;
+  Clock clock_;
+  mutable std::mutex mutex_;
+  std::map<std::string, double> last_;
 };
 
 /// The latest transform mapping source_frame points into target_frame, projected to the plane;
