@@ -1,0 +1,198 @@
+// The ROS adapter's conversions without a master: messages to core data and back, quaternions to a
+// planar yaw (the checks of every pose read from a message), XmlRpc parameter trees.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "costmap_layers/core/costmap_2d.hpp"
+#include "costmap_layers/ros/conversions.hpp"
+
+using namespace costmap_layers_ros;
+
+namespace
+{
+geometry_msgs::Quaternion quat(double x, double y, double z, double w)
+{
+  geometry_msgs::Quaternion q;
+  q.x = x, q.y = y, q.z = z, q.w = w;
+  return q;
+}
+
+/// The message text of the std::invalid_argument fn throws ("" when it throws nothing).
+template <class Fn>
+std::string thrown(Fn fn)
+{
+  try
+  {
+    fn();
+  }
+  catch (const std::invalid_argument& e)
+  {
+    return e.what();
+  }
+  return "";
+}
+
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+const double kInf = std::numeric_limits<double>::infinity();
+}  // namespace
+
+TEST(PlanarYaw, UnitQuaternionsAboutZ)
+{
+  for (double yaw : {0.0, 0.3, -1.2, M_PI / 2, 3.0, -3.0})
+  {
+    bool normalised = true;
+    EXPECT_NEAR(planarYaw(quat(0, 0, std::sin(yaw / 2), std::cos(yaw / 2)), kMaxGridTilt, "q", &normalised), yaw,
+                1e-12);
+    EXPECT_FALSE(normalised);
+  }
+}
+
+// The outside attack: (0, 0, 1, 1) was placed at 116.6 degrees; normalised it is 90.
+TEST(PlanarYaw, NonUnitQuaternionsAreNormalised)
+{
+  bool normalised = false;
+  EXPECT_NEAR(planarYaw(quat(0, 0, 1, 1), kMaxGridTilt, "q", &normalised), M_PI / 2, 1e-12);
+  EXPECT_TRUE(normalised);
+  EXPECT_NEAR(planarYaw(quat(0, 0, 0, 7), kMaxGridTilt, "q", &normalised), 0.0, 1e-12);
+  EXPECT_TRUE(normalised);
+  EXPECT_NEAR(planarYaw(quat(0, 0, -1e-3, 1e-3), kMaxGridTilt, "q"), -M_PI / 2, 1e-9);
+}
+
+TEST(PlanarYaw, UnusableQuaternionsAreRefusedNamingTheField)
+{
+  const std::string zero = thrown([] { planarYaw(quat(0, 0, 0, 0), kMaxGridTilt, "info.origin.orientation"); });
+  EXPECT_NE(zero.find("info.origin.orientation (0, 0, 0, 0)"), std::string::npos) << zero;
+  EXPECT_NE(zero.find("zero length"), std::string::npos) << zero;
+  EXPECT_NE(thrown([] { planarYaw(quat(0, 0, 1e-9, 0), kMaxGridTilt, "q"); }).find("zero length"), std::string::npos);
+  for (double bad : {kNaN, kInf, -kInf})
+  {
+    for (int k = 0; k < 4; ++k)
+    {
+      double c[4] = {0, 0, 0, 1};
+      c[k] = bad;
+      const std::string e = thrown([&] { planarYaw(quat(c[0], c[1], c[2], c[3]), kMaxGridTilt, "q"); });
+      EXPECT_NE(e.find("not finite"), std::string::npos) << k << ": " << e;
+    }
+  }
+}
+
+TEST(PlanarYaw, TiltBeyondTheLimitIsRefused)
+{
+  // A roll of r about x: (sin(r/2), 0, 0, cos(r/2)); the tilt of the plane is r.
+  const auto roll = [](double r) { return quat(std::sin(r / 2), 0, 0, std::cos(r / 2)); };
+  const auto pitch = [](double p) { return quat(0, std::sin(p / 2), 0, std::cos(p / 2)); };
+  EXPECT_NO_THROW(planarYaw(roll(0.005), kMaxGridTilt, "q"));
+  EXPECT_NE(thrown([&] { planarYaw(roll(0.02), kMaxGridTilt, "q"); }).find("tilts the plane"), std::string::npos);
+  EXPECT_NE(thrown([&] { planarYaw(pitch(-0.02), kMaxGridTilt, "q"); }).find("tilts the plane"), std::string::npos);
+  // A robot on a 30 degree ramp is a pose; on its side it is not.
+  EXPECT_NEAR(planarYaw(pitch(M_PI / 6), kMaxPoseTilt, "q"), 0.0, 1e-12);
+  EXPECT_NE(thrown([&] { planarYaw(roll(M_PI / 2), kMaxPoseTilt, "q"); }).find("tilts the plane"), std::string::npos);
+  // Upside down (a rotation of pi about x): a tilt of pi.
+  EXPECT_NE(thrown([] { planarYaw(quat(1, 0, 0, 0), kMaxPoseTilt, "q"); }).find("tilts"), std::string::npos);
+}
+
+TEST(Conversions, GridOriginFromItsQuaternion)
+{
+  nav_msgs::OccupancyGrid m;
+  m.header.frame_id = "map";
+  m.header.stamp = ros::Time(12, 5);
+  m.info.width = 2;
+  m.info.height = 1;
+  m.info.resolution = 0.25f;
+  m.info.origin.position.x = -3.0;
+  m.info.origin.position.y = 4.5;
+  m.info.origin.orientation = quat(0, 0, 1, 1);
+  m.data = {-1, 100};
+  std::string note;
+  const auto g = fromMsg(m, &note);
+  EXPECT_EQ(g.frame_id, "map");
+  EXPECT_EQ(g.stamp_ns, 12'000'000'005ull);
+  EXPECT_EQ(g.width, 2u);
+  EXPECT_EQ(g.height, 1u);
+  EXPECT_DOUBLE_EQ(g.resolution, 0.25);
+  EXPECT_DOUBLE_EQ(g.origin_x, -3.0);
+  EXPECT_DOUBLE_EQ(g.origin_y, 4.5);
+  EXPECT_NEAR(g.origin_yaw, M_PI / 2, 1e-12);
+  EXPECT_EQ(g.data, (std::vector<int8_t>{-1, 100}));
+  EXPECT_NE(note.find("normalised"), std::string::npos) << note;
+  m.info.origin.orientation = quat(0, 0, 0, 0);
+  EXPECT_NE(thrown([&] { fromMsg(m); }).find("info.origin.orientation"), std::string::npos);
+  m.info.origin.orientation = quat(0, 0, 0, 1);
+  note.clear();
+  fromMsg(m, &note);
+  EXPECT_EQ(note, "");
+}
+
+TEST(Conversions, SensorTransformsAreCheckedToo)
+{
+  geometry_msgs::Transform t;
+  t.rotation = quat(0, 0, 0, 2);
+  t.translation.x = 1.0;
+  EXPECT_NO_THROW(fromMsg(t));
+  t.rotation = quat(0, 0, 0, 0);
+  EXPECT_THROW(fromMsg(t), std::invalid_argument);
+  t.rotation = quat(0, 0, 0, 1);
+  t.translation.y = kNaN;
+  EXPECT_THROW(fromMsg(t), std::invalid_argument);
+}
+
+// Costs out as costmap_2d publishes them, and update windows that never leave the grid.
+TEST(Conversions, CostmapToMessages)
+{
+  costmap_layers::Costmap2D grid(4, 3, 0.5, 1.0, -2.0);
+  const uint8_t costs[5] = {0, 1, 253, 254, 255};
+  const int8_t expected[5] = {0, 1, 99, 100, -1};
+  for (int k = 0; k < 5; ++k)
+    grid.setCost(static_cast<unsigned>(k % 4), static_cast<unsigned>(k / 4), costs[k]);
+  nav_msgs::OccupancyGrid m;
+  toOccupancyGrid(grid, "odom", ros::Time(3), m);
+  EXPECT_EQ(m.header.frame_id, "odom");
+  EXPECT_EQ(m.info.width, 4u);
+  EXPECT_EQ(m.info.height, 3u);
+  EXPECT_FLOAT_EQ(m.info.resolution, 0.5f);
+  EXPECT_DOUBLE_EQ(m.info.origin.position.x, 1.0);
+  EXPECT_DOUBLE_EQ(m.info.origin.position.y, -2.0);
+  ASSERT_EQ(m.data.size(), 12u);
+  for (int k = 0; k < 5; ++k)
+    EXPECT_EQ(m.data[static_cast<size_t>(k)], expected[k]) << k;
+  // The round trip through fromMsg keeps the geometry.
+  const auto back = fromMsg(m);
+  EXPECT_EQ(back.width, 4u);
+  EXPECT_DOUBLE_EQ(back.origin_yaw, 0.0);
+
+  map_msgs::OccupancyGridUpdate u;
+  ASSERT_TRUE(toOccupancyGridUpdate(grid, costmap_layers::CellWindow{-5, 1, 100, 100}, "odom", ros::Time(3), u));
+  EXPECT_EQ(u.x, 0);
+  EXPECT_EQ(u.y, 1);
+  EXPECT_EQ(u.width, 4u);
+  EXPECT_EQ(u.height, 2u);
+  ASSERT_EQ(u.data.size(), 8u);
+  EXPECT_EQ(u.data[0], -1);  // cell (0, 1) holds the fifth cost, 255
+  EXPECT_FALSE(toOccupancyGridUpdate(grid, costmap_layers::CellWindow{4, 0, 9, 3}, "odom", ros::Time(3), u));
+}
+
+TEST(Conversions, XmlRpcTrees)
+{
+  XmlRpc::XmlRpcValue v;
+  v["radius"] = 0.5;
+  v["count"] = 3;
+  v["on"] = true;
+  v["name"] = std::string("keepout");
+  v["list"][0] = 1;
+  v["list"][1] = std::string("two");
+  v["nested"]["deeper"]["x"] = -1.5;
+  const costmap_layers::ParamValue p = fromXmlRpc(v);
+  ASSERT_TRUE(p.isMap());
+  EXPECT_DOUBLE_EQ(p.find("radius")->asDouble(), 0.5);
+  EXPECT_EQ(p.find("count")->asInt(), 3);
+  EXPECT_TRUE(p.find("on")->asBool());
+  EXPECT_EQ(p.find("name")->asString(), "keepout");
+  ASSERT_TRUE(p.find("list")->isList());
+  ASSERT_EQ(p.find("list")->asList().size(), 2u);
+  EXPECT_EQ(p.find("list")->asList()[1].asString(), "two");
+  EXPECT_DOUBLE_EQ(p.find("nested")->find("deeper")->find("x")->asDouble(), -1.5);
+}
