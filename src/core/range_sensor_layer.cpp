@@ -250,15 +250,32 @@ void RangeSensorLayer::updateBounds(double robot_x, double robot_y, double /*rob
     work_.swap(queue_);
     std::swap(dropped, dropped_);
   }
+  // Bound the work of this cycle, which runs under the costmap's lock: keep the newest readings whose
+  // cones fit kMaxCellsPerUpdate cells (a cone costs at most its bounding box, clipped to the grid).
+  const double res = costmap_.getResolution();
+  const double grid_cells = static_cast<double>(costmap_.getSizeInCellsX()) * costmap_.getSizeInCellsY();
+  double budget = static_cast<double>(kMaxCellsPerUpdate);
+  std::size_t first = work_.size();
+  while (first > 0)
+  {
+    const Pending& r = work_[first - 1];
+    const double side = 2.4 * std::hypot(r.tx - r.ox, r.ty - r.oy) / res + 2.0;
+    const double cells = std::min(grid_cells, side * side);
+    if (cells > budget && first != work_.size()) break;  // the newest one is always applied
+    budget -= cells;
+    --first;
+  }
+  dropped += first;
   if (dropped != 0)
     context_->report(Severity::Warn, "flood",
                      name_ + ": range readings arrive faster than the update loop applies them: dropped the " +
                          std::to_string(dropped) + " oldest since the last update (at most " +
-                         std::to_string(kMaxPending) + " are applied per update)");
+                         std::to_string(kMaxPending) + " readings or " + std::to_string(kMaxCellsPerUpdate) +
+                         " cells are applied per update)");
   const uint64_t now = context_->nowNs();
   const bool got_readings = !work_.empty();
-  for (const Pending& r : work_)
-    applyReading(r);
+  for (std::size_t k = first; k < work_.size(); ++k)
+    applyReading(work_[k]);
   work_.clear();
   if (touched_)
   {

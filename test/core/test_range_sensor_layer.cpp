@@ -266,3 +266,34 @@ TEST(RangeSensorLayer, AFloodIsBoundedAndReported)
   r.update(1.5, 5.0);
   EXPECT_EQ(r.ctx->countReports("oldest"), 0);
 }
+
+// Readings with big cones on a big grid: the readings' count alone does not bound a cycle's work, the
+// cells their cones cover do. The oldest are dropped once kMaxCellsPerUpdate cells are spent.
+TEST(RangeSensorLayer, TheWorkOfOneUpdateIsBoundedByCells)
+{
+  LayeredCostmap lc("map", false, false);
+  lc.resizeMap(2000, 2000, 0.05, 0.0, 0.0);  // 100 m square, 4 M cells
+  auto ctx = std::make_shared<FakeContext>(nav2Params());
+  auto layer = std::make_shared<RangeSensorLayer>();
+  layer->initialize(&lc, "range", ctx);
+  lc.addPlugin(layer);
+  RangeData wide = sonar(6.0f, 0.1f, 7.0f);
+  wide.field_of_view = 1.5f;
+  // Each cone's bounding box is about (2 x 1.2 x 6 m / 0.05 m)^2 = 82 944 cells: 100 of them are 8 M.
+  const double box = std::pow(2 * 1.2 * 6.0 / 0.05, 2);
+  ASSERT_GT(100 * box, static_cast<double>(RangeSensorLayer::kMaxCellsPerUpdate));
+  for (int k = 0; k < 100; ++k)
+    ASSERT_EQ(ctx->publishRange("/range/topic", wide, poseAt(50.0, 50.0, 0.0, 0.0)), 1);
+  lc.updateMap(50.0, 50.0, 0.0);
+  ASSERT_EQ(ctx->countReports("oldest since the last update"), 1);
+  std::string report;
+  for (const auto& r : ctx->reports)
+    if (r.message.find("oldest") != std::string::npos) report = r.message;
+  const int dropped = std::stoi(report.substr(report.find("dropped the ") + 12));
+  // At most the budget was spent (each applied cone costs at least its box within a few cells).
+  EXPECT_GE(dropped, 100 - static_cast<int>(RangeSensorLayer::kMaxCellsPerUpdate / (0.9 * box))) << report;
+  EXPECT_LT(dropped, 100) << report;  // the newest readings were applied
+  unsigned mx, my;
+  ASSERT_TRUE(lc.getCostmap().worldToMap(56.0, 50.0, mx, my));
+  EXPECT_GT(lc.getCostmap().getCost(mx, my), 0u);
+}

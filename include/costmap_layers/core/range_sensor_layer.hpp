@@ -80,6 +80,9 @@ public:
   /// reported (throttled) at the next update.
   std::string addRange(const RangeData& range, const SensorPose& pose);
   static constexpr std::size_t kMaxPending = 128;
+  /// The most cells one update may visit for range readings (each cone costs the cells of its bounding
+  /// box on the grid): past that, the oldest readings of the cycle are dropped, counted and reported.
+  static constexpr uint64_t kMaxCellsPerUpdate = 2'000'000;
   /// Readings waiting for the next update.
   std::size_t pending() const;
 
