@@ -271,6 +271,9 @@ void CostmapFilter::updateBounds(double robot_x, double robot_y, double robot_ya
     }
     if (have_transform_ && filter_enabled_) processPose(*active_mask_, to_mask_, robot_x, robot_y, robot_yaw);
   }
+  if (!active_mask_ && filter_enabled_)
+    context_->report(Severity::Warn, "waiting",
+                     name_ + ": no mask yet on " + mask_topic_ + ": the filter does nothing until one arrives");
   if (!active_mask_ || !filter_enabled_) processInactive();
   if (!changed) return;
   for (const auto* m : {&active_mask_, &old})

@@ -231,7 +231,16 @@ void StaticLayer::updateBounds(double, double, double, double* min_x, double* mi
   for (const auto& u : updates)
     processUpdate(u);
   useExtraBounds(min_x, min_y, max_x, max_y);
-  if (!map_received_) return;
+  if (!map_received_)
+  {
+    // costmap_2d waits for the map, saying so; here the costmap runs without it, so say it every
+    // throttle period: a costmap with no static map is all free (or all unknown) where walls are.
+    if (enabled_)
+      context_->report(Severity::Warn, "waiting",
+                       name_ + ": waiting for the map on " + config_.map_topic +
+                           " (nothing received yet): the costmap has no walls from the map");
+    return;
+  }
 
   if (!layered_costmap_->isRolling())
   {

@@ -313,3 +313,25 @@ TEST(KeepoutFilter, OutOfOrderMaskIsDroppedAndThePreviousKept)
   EXPECT_EQ(r.filter->setMask(std::make_shared<const OccupancyGridData>(older)), "");
   EXPECT_EQ(r.filter->getMask()->stamp_ns, older.stamp_ns);
 }
+
+// A filter whose mask never came did nothing and said nothing. Now each update says so, naming the topic.
+TEST(KeepoutFilter, WaitingForTheMaskIsReported)
+{
+  Rig r;
+  r.lc.resizeMap(10, 10, 1.0, 0.0, 0.0);
+  r.lc.addFilter(r.filter);
+  r.lc.updateMap(0, 0, 0);
+  ASSERT_EQ(r.ctx->countReports("keepout: no mask yet on /map_filter"), 1);
+  EXPECT_EQ(r.ctx->reports.back().key, "waiting");
+  r.ctx->publishGrid(GridKind::Mask, makeMask(3, 3, 1.0, 3.0, 3.0, 100));
+  r.ctx->reports.clear();
+  r.lc.updateMap(0, 0, 0);
+  EXPECT_EQ(r.ctx->countReports("no mask yet"), 0);
+  // Switched off, it waits for nothing.
+  Rig off;
+  off.lc.resizeMap(10, 10, 1.0, 0.0, 0.0);
+  off.lc.addFilter(off.filter);
+  off.filter->setFilterEnabled(false);
+  off.lc.updateMap(0, 0, 0);
+  EXPECT_EQ(off.ctx->countReports("no mask yet"), 0);
+}

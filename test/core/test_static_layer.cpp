@@ -463,3 +463,25 @@ TEST(StaticLayer, OutOfOrderMapsAndUpdatesAreDropped)
   rig.update();
   EXPECT_EQ(rig.at(2, 3), FREE_SPACE);
 }
+
+// A map topic that never publishes left an all-free costmap and said nothing. Now each update without
+// a map says what it waits for (the adapter throttles it), and the layer is not current.
+TEST(StaticLayer, WaitingForTheMapIsReported)
+{
+  Rig r;
+  r.update();
+  r.update();
+  EXPECT_EQ(r.ctx->countReports("static_layer: waiting for the map on map (nothing received yet)"), 2);
+  for (const auto& rep : r.ctx->reports)
+  {
+    EXPECT_EQ(rep.key, "waiting");
+    EXPECT_EQ(rep.severity, Severity::Warn);
+  }
+  EXPECT_FALSE(r.layer->isCurrent());
+  EXPECT_FALSE(r.lc.isCurrent());
+  r.publish(makeMap(3, 3, 1.0, 0, 0));
+  r.ctx->reports.clear();
+  r.update();
+  EXPECT_EQ(r.ctx->countReports("waiting"), 0);
+  EXPECT_TRUE(r.layer->isCurrent());
+}
