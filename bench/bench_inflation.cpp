@@ -24,7 +24,7 @@ using namespace costmap_layers;
 
 namespace
 {
-/// Parameters from a ParamValue, no inputs of its own; grids are pushed by the benchmark.
+/// Parameters from a ParamValue; the benchmark hands grids to the layers directly.
 class BenchContext : public LayerContext
 {
 public:
@@ -32,13 +32,6 @@ public:
   const ParamValue& params() const override { return params_; }
   const std::string& globalFrame() const override { return frame_; }
   double transformTolerance() const override { return 0.3; }
-  void subscribeGrid(const std::string&, GridKind, GridCallback cb) override { grid_cb = std::move(cb); }
-  void subscribeSpeedLimits(const std::string&, SpeedLimitsCallback) override {}
-  MaxSpeedPublisher advertiseMaxSpeed(const std::string&) override
-  {
-    return [](double) {};
-  }
-  void advertiseToggle(std::function<void(bool)>) override {}
   std::optional<Transform2D> lookupTransform(const std::string&, const std::string&, std::string*) override
   {
     return Transform2D{};
@@ -48,8 +41,6 @@ public:
   {
     std::fprintf(stderr, "report: %s\n", message.c_str());
   }
-  GridCallback grid_cb;
-
 private:
   ParamValue params_;
   std::string frame_ = "map";
@@ -117,7 +108,7 @@ struct StaticRig
     inflation->initialize(&lc, "inflation", std::make_shared<BenchContext>(inflationParams()));
     lc.addPlugin(inflation);
     lc.setFootprint(squareFootprint());
-    static_ctx->grid_cb(std::make_shared<const OccupancyGridData>(syntheticMap().grid));
+    static_layer->setMap(std::make_shared<const OccupancyGridData>(syntheticMap().grid));
     lc.updateMap(0, 0, 0);
   }
   LayeredCostmap lc;

@@ -10,39 +10,68 @@
 
 namespace costmap_layers
 {
-std::string validateGrid(const OccupancyGridData& grid, uint64_t max_cells)
+InputError validateGrid(const OccupancyGridData& grid, uint64_t max_cells)
 {
   std::ostringstream err;
+  std::string field;
   const uint64_t cells = static_cast<uint64_t>(grid.width) * grid.height;
   if (grid.width == 0 || grid.height == 0)
+  {
+    field = "info.width";
     err << "info.width/info.height must be positive (got " << grid.width << "x" << grid.height << ")";
+  }
   else if (cells > max_cells)
+  {
+    field = "info.cells";
     err << "info.width x info.height = " << grid.width << "x" << grid.height << " exceeds the limit of " << max_cells
         << " cells";
+  }
   else if (grid.data.size() != cells)
+  {
+    field = "data";
     err << "data has " << grid.data.size() << " values, expected info.width x info.height = " << cells;
+  }
   else if (!std::isfinite(grid.resolution) || grid.resolution <= 0.0)
+  {
+    field = "info.resolution";
     err << "info.resolution must be finite and positive (got " << grid.resolution << ")";
+  }
   else if (!std::isfinite(grid.origin_x) || !std::isfinite(grid.origin_y) || !std::isfinite(grid.origin_yaw))
+  {
+    field = "info.origin";
     err << "info.origin must be finite (got x=" << grid.origin_x << " y=" << grid.origin_y << " yaw=" << grid.origin_yaw
         << ")";
+  }
   else if (std::fabs(grid.origin_x) > 1e7 || std::fabs(grid.origin_y) > 1e7)
+  {
+    field = "info.origin";
     err << "info.origin is absurdly far away (got x=" << grid.origin_x << " y=" << grid.origin_y << ")";
-  return err.str();
+  }
+  return InputError::of(field, err.str());
 }
 
-std::string validateGridUpdate(int64_t x, int64_t y, uint32_t width, uint32_t height, std::size_t data_size,
-                               uint32_t grid_width, uint32_t grid_height)
+InputError validateGridUpdate(int64_t x, int64_t y, uint32_t width, uint32_t height, std::size_t data_size,
+                              uint32_t grid_width, uint32_t grid_height)
 {
   std::ostringstream err;
+  std::string field;
   if (x < 0 || y < 0)
+  {
+    field = "x";
     err << "x/y must not be negative (got x=" << x << " y=" << y << ")";
+  }
   else if (static_cast<uint64_t>(data_size) != static_cast<uint64_t>(width) * height)
+  {
+    field = "data";
     err << "data has " << data_size << " values, expected width x height = " << width << "x" << height;
+  }
   else if (static_cast<uint64_t>(x) + width > grid_width || static_cast<uint64_t>(y) + height > grid_height)
+  {
+    field = "width";
     err << "rectangle x=" << x << " y=" << y << " " << width << "x" << height << " leaves the " << grid_width << "x"
         << grid_height << " grid";
-  return err.str();
+  }
+  return InputError::of(field, err.str());
 }
 
 void MaskMapping::build(const Costmap2D& master, const CellWindow& window, const OccupancyGridData& mask,
@@ -155,24 +184,13 @@ void CostmapFilter::onInitialize()
   filter_enabled_ = enabled_;
   enabled_ = true;
   onInitializeFilter(params);
-  context_->subscribeGrid(mask_topic_, GridKind::Mask,
-                          [this](const std::shared_ptr<const OccupancyGridData>& mask)
-                          {
-                            const std::string error = setMask(mask);
-                            // Throttled per field, so that each distinct problem is still reported once.
-                            if (!error.empty())
-                              context_->report(Severity::Error, "mask/" + error.substr(0, error.find(' ')),
-                                               name_ + ": mask on " + mask_topic_ +
-                                                   " rejected, keeping the "
-                                                   "previous one: " +
-                                                   error);
-                          });
-  context_->advertiseToggle([this](bool on) { setFilterEnabled(on); });
+  addInput(InputPort::grid(InputKind::Mask, mask_topic_,
+                           [this](const std::shared_ptr<const OccupancyGridData>& mask) { setMask(mask); }));
 }
 
-void CostmapFilter::reconfigure(const ParamValue& params)
+void CostmapFilter::setEnabled(bool on)
 {
-  setFilterEnabled(ParamReader(params, name_).getBool("enabled", true));
+  setFilterEnabled(on);
 }
 
 void CostmapFilter::setFilterEnabled(bool on)
@@ -187,17 +205,24 @@ void CostmapFilter::setFilterEnabled(bool on)
 
 std::string CostmapFilter::setMask(std::shared_ptr<const OccupancyGridData> mask)
 {
-  if (!mask) return "no mask";
-  std::string error = validateGrid(*mask);
-  if (!error.empty()) return error;
-  const uint64_t now = context_ ? context_->nowNs() : UINT64_MAX;
-  std::lock_guard<std::mutex> lock(mask_mutex_);
-  if (mask_ && isOutOfOrder(mask->stamp_ns, mask_->stamp_ns, now))
-    return outOfOrderError(mask->stamp_ns, mask_->stamp_ns, "mask");
-  if (!mask_changed_) pending_old_ = mask_;
-  mask_ = std::move(mask);
-  mask_changed_ = true;
-  return {};
+  InputError error = mask ? validateGrid(*mask) : InputError::of("data", "no mask");
+  if (error.ok())
+  {
+    const uint64_t now = context_ ? context_->nowNs() : UINT64_MAX;
+    std::lock_guard<std::mutex> lock(mask_mutex_);
+    if (!mask_ || !isOutOfOrder(mask->stamp_ns, mask_->stamp_ns, now))
+    {
+      if (!mask_changed_) pending_old_ = mask_;
+      mask_ = std::move(mask);
+      mask_changed_ = true;
+      return {};
+    }
+    error = InputError::of("header.stamp", outOfOrderError(mask->stamp_ns, mask_->stamp_ns, "mask"));
+  }
+  if (context_)
+    context_->report(Severity::Error, "mask/" + error.field,
+                     name_ + ": mask on " + mask_topic_ + " rejected, keeping the previous one: " + error.message);
+  return error.message;
 }
 
 std::shared_ptr<const OccupancyGridData> CostmapFilter::getMask() const

@@ -29,22 +29,15 @@ void GradientLayer::onInitialize()
   need_recalculation_ = true;
 }
 
-void GradientLayer::reconfigure(const ParamValue& params)
+void GradientLayer::onReconfigure(const ParamValue& params)
 {
-  const GradientConfig next = parseGradientConfig(ParamReader(params, name_));  // validates first
-  Layer::reconfigure(params);
-  config_ = next;
+  config_ = parseGradientConfig(ParamReader(params, name_));  // throws before anything changes
   need_recalculation_ = true;
 }
 
-std::vector<ParamSpec> GradientLayer::tunableParameters(const ParamValue& params) const
+std::vector<ParamSpec> GradientLayer::tunableLayerParameters(const ParamValue& params) const
 {
-  return recordParameters(params, name_,
-                          [](const ParamReader& r)
-                          {
-                            r.getBool("enabled", true);
-                            parseGradientConfig(r);
-                          });
+  return recordParameters(params, name_, [](const ParamReader& r) { parseGradientConfig(r); });
 }
 
 void GradientLayer::updateBounds(double, double, double, double* min_x, double* min_y, double* max_x, double* max_y)

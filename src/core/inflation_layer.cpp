@@ -28,7 +28,6 @@ constexpr uint64_t kMaxTableSize = uint64_t{1} << 22;
 InflationConfig parseInflationConfig(const ParamReader& params)
 {
   InflationConfig cfg;
-  cfg.enabled = params.getBool("enabled", cfg.enabled);
   cfg.inflation_radius = params.getDouble("inflation_radius", cfg.inflation_radius, 0.0, 1e6);
   cfg.cost_scaling_factor = params.getDouble("cost_scaling_factor", cfg.cost_scaling_factor, 0.0);
   cfg.inflate_unknown = params.getBool("inflate_unknown", cfg.inflate_unknown);
@@ -48,7 +47,6 @@ uint8_t inflationCost(double dist_cells, double resolution, double inscribed_rad
 void InflationLayer::onInitialize()
 {
   config_ = parseInflationConfig(ParamReader(context_->params(), name_));
-  enabled_ = config_.enabled;
   inscribed_radius_ = layered_costmap_->getInscribedRadius();
   resolution_ = layered_costmap_->getCostmap().getResolution();
   rebuildTable();
@@ -58,7 +56,6 @@ void InflationLayer::onInitialize()
 void InflationLayer::setConfig(const InflationConfig& config)
 {
   config_ = config;
-  enabled_ = config.enabled;
   rebuildTable();
   need_reinflation_ = true;
 }
@@ -82,12 +79,12 @@ void InflationLayer::reset()
   need_reinflation_ = true;
 }
 
-void InflationLayer::reconfigure(const ParamValue& params)
+void InflationLayer::onReconfigure(const ParamValue& params)
 {
   setConfig(parseInflationConfig(ParamReader(params, name_)));
 }
 
-std::vector<ParamSpec> InflationLayer::tunableParameters(const ParamValue& params) const
+std::vector<ParamSpec> InflationLayer::tunableLayerParameters(const ParamValue& params) const
 {
   return recordParameters(params, name_, [](const ParamReader& r) { parseInflationConfig(r); });
 }

@@ -283,24 +283,15 @@ void LanesFilter::onInitializeFilter(const ParamReader& params)
   config_ = parseLanesFilterConfig(params);
 }
 
-void LanesFilter::reconfigure(const ParamValue& params)
+void LanesFilter::onReconfigure(const ParamValue& params)
 {
-  const ParamReader reader(params, name_);
-  const LanesFilterConfig next = parseLanesFilterConfig(reader);  // validates first
-  const bool enabled = reader.getBool("enabled", true);
-  config_ = next;
+  config_ = parseLanesFilterConfig(ParamReader(params, name_));  // throws before anything changes
   invalidateCosts();
-  setFilterEnabled(enabled);
 }
 
-std::vector<ParamSpec> LanesFilter::tunableParameters(const ParamValue& params) const
+std::vector<ParamSpec> LanesFilter::tunableLayerParameters(const ParamValue& params) const
 {
-  return recordParameters(params, name_,
-                          [](const ParamReader& r)
-                          {
-                            r.getBool("enabled", true);
-                            parseLanesFilterConfig(r);
-                          });
+  return recordParameters(params, name_, [](const ParamReader& r) { parseLanesFilterConfig(r); });
 }
 
 std::size_t LanesFilter::computeCosts(const OccupancyGridData& mask, std::vector<uint8_t>& costs)

@@ -1,5 +1,7 @@
 #include "costmap_layers/core/layer.hpp"
 
+#include <algorithm>
+
 #include "costmap_layers/core/layered_costmap.hpp"
 #include "costmap_layers/core/param_reader.hpp"
 
@@ -17,12 +19,40 @@ void Layer::initialize(LayeredCostmap* parent, const std::string& name, std::sha
 
 void Layer::reconfigure(const ParamValue& params)
 {
-  enabled_ = ParamReader(params, name_).getBool("enabled", true);
+  const bool on = ParamReader(params, name_).getBool("enabled", true);
+  onReconfigure(params);
+  setEnabled(on);
 }
 
 std::vector<ParamSpec> Layer::tunableParameters(const ParamValue& params) const
 {
-  return recordParameters(params, name_, [](const ParamReader& r) { r.getBool("enabled", true); });
+  std::vector<ParamSpec> specs =
+      recordParameters(params, name_, [](const ParamReader& r) { r.getBool("enabled", true); });
+  for (auto& spec : tunableLayerParameters(params))
+    specs.push_back(std::move(spec));
+  return specs;
+}
+
+void Layer::setOutputListener(OutputListener listener)
+{
+  std::lock_guard<std::mutex> lock(output_mutex_);
+  listener_ = std::move(listener);
+  if (listener_)
+    for (const auto& e : latest_)
+      listener_(e);
+}
+
+void Layer::emit(OutputKind kind, const std::string& topic, double value)
+{
+  std::lock_guard<std::mutex> lock(output_mutex_);
+  const OutputEvent event{kind, topic, value};
+  auto it = std::find_if(latest_.begin(), latest_.end(),
+                         [&](const OutputEvent& e) { return e.kind == kind && e.topic == topic; });
+  if (it == latest_.end())
+    latest_.push_back(event);
+  else
+    *it = event;
+  if (listener_) listener_(event);
 }
 
 const std::vector<Eigen::Vector2d>& Layer::getFootprint() const

@@ -88,7 +88,6 @@ ObservationSourceConfig parseObservationSourceConfig(const ParamReader& p, const
 ObstacleConfig parseObstacleConfig(const ParamReader& p, bool default_track_unknown)
 {
   ObstacleConfig c;
-  c.enabled = p.getBool("enabled", c.enabled);
   c.footprint_clearing_enabled = p.getBool("footprint_clearing_enabled", c.footprint_clearing_enabled);
   c.max_obstacle_height = p.getDouble("max_obstacle_height", c.max_obstacle_height);
   c.combination_method = p.getInt("combination_method", c.combination_method, 0, 2);
@@ -106,7 +105,6 @@ ObstacleConfig parseObstacleConfig(const ParamReader& p, bool default_track_unkn
 void ObstacleLayer::onInitialize()
 {
   config_ = parseObstacleConfig(ParamReader(context_->params(), name_), layered_costmap_->isTrackingUnknown());
-  enabled_ = config_.enabled;
   costmap_.setDefaultValue(config_.track_unknown_space ? NO_INFORMATION : FREE_SPACE);
   matchSize();
   const uint64_t now = context_->nowNs();
@@ -124,18 +122,18 @@ void ObstacleLayer::onInitialize()
   {
     const ObservationSourceConfig& s = config_.sources[i];
     if (s.data_type == SensorDataType::LaserScan)
-      context_->subscribeLaserScan(s.topic, s.sensor_frame,
-                                   [this, i](const std::shared_ptr<const LaserScanData>& scan, const SensorPose& pose)
-                                   {
-                                     if (scan) addLaserScan(i, *scan, pose);
-                                   });
+      addInput(InputPort::laserScan(s.topic, s.sensor_frame,
+                                    [this, i](const std::shared_ptr<const LaserScanData>& scan, const SensorPose& pose)
+                                    {
+                                      if (scan) addLaserScan(i, *scan, pose);
+                                    }));
     else
-      context_->subscribePointCloud2(
+      addInput(InputPort::pointCloud2(
           s.topic, s.sensor_frame,
           [this, i](const std::shared_ptr<const PointCloud2Data>& cloud, const SensorPose& pose)
           {
             if (cloud) addPointCloud2(i, *cloud, pose);
-          });
+          }));
   }
   if (config_.sources.empty())
     context_->report(Severity::Warn, "no_sources",

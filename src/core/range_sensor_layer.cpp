@@ -15,7 +15,6 @@ namespace costmap_layers
 RangeSensorConfig parseRangeSensorConfig(const ParamReader& p)
 {
   RangeSensorConfig c;
-  c.enabled = p.getBool("enabled", c.enabled);
   if (const ParamValue* t = p.raw("topics"))
   {
     if (t->type() == ParamValue::Type::String)
@@ -90,7 +89,6 @@ double sensorModel(double r, double phi, double theta, double max_angle, double 
 void RangeSensorLayer::onInitialize()
 {
   config_ = parseRangeSensorConfig(ParamReader(context_->params(), name_));
-  enabled_ = config_.enabled;
   costmap_.setDefaultValue(range_model::toCost(0.5));
   matchSize();
   last_reading_ns_ = context_->nowNs();
@@ -98,11 +96,11 @@ void RangeSensorLayer::onInitialize()
     context_->report(Severity::Warn, "no_topics", name_ + ": no range topics given (parameter 'topics')");
   for (const auto& topic : config_.topics)
   {
-    context_->subscribeRange(topic,
-                             [this](const std::shared_ptr<const RangeData>& range, const SensorPose& pose)
-                             {
-                               if (range) addRange(*range, pose);
-                             });
+    addInput(InputPort::range(topic,
+                              [this](const std::shared_ptr<const RangeData>& range, const SensorPose& pose)
+                              {
+                                if (range) addRange(*range, pose);
+                              }));
   }
 }
 

@@ -83,13 +83,13 @@ SpeedLimitTable buildSpeedLimitTable(const SpeedLimitsData& limits, const SpeedF
 void SpeedFilter::onInitializeFilter(const ParamReader& params)
 {
   config_ = parseSpeedFilterConfig(params);
-  publish_ = context_->advertiseMaxSpeed(config_.max_speed_topic);
+  addOutput(OutputPort{OutputKind::MaxSpeed, config_.max_speed_topic});
   if (config_.mask_mode == SpeedMaskMode::AreaId)
-    context_->subscribeSpeedLimits(config_.features_topic,
-                                   [this](const std::shared_ptr<const SpeedLimitsData>& m)
-                                   {
-                                     if (m) setSpeedLimits(*m);
-                                   });
+    addInput(InputPort::speedLimits(config_.features_topic,
+                                    [this](const std::shared_ptr<const SpeedLimitsData>& m)
+                                    {
+                                      if (m) setSpeedLimits(*m);
+                                    }));
 }
 
 std::size_t SpeedFilter::setSpeedLimits(const SpeedLimitsData& limits)
@@ -152,11 +152,10 @@ bool runTimeTunable(const std::string& name)
 }
 }  // namespace
 
-void SpeedFilter::reconfigure(const ParamValue& params)
+void SpeedFilter::onReconfigure(const ParamValue& params)
 {
   const ParamReader reader(params, name_);
   const SpeedFilterConfig next = parseSpeedFilterConfig(reader);  // validates first
-  const bool enabled = reader.getBool("enabled", true);
   if (next.features_topic != config_.features_topic || next.max_speed_topic != config_.max_speed_topic ||
       next.mask_mode != config_.mask_mode)
     throw std::invalid_argument(name_ + ": features_topic, max_speed_topic and mask_mode cannot change at run time");
@@ -167,17 +166,11 @@ void SpeedFilter::reconfigure(const ParamValue& params)
     features = last_features_;
   }
   if (features) setSpeedLimits(*features);  // percentages depend on default_max_speed
-  setFilterEnabled(enabled);
 }
 
-std::vector<ParamSpec> SpeedFilter::tunableParameters(const ParamValue& params) const
+std::vector<ParamSpec> SpeedFilter::tunableLayerParameters(const ParamValue& params) const
 {
-  std::vector<ParamSpec> all = recordParameters(params, name_,
-                                                [](const ParamReader& r)
-                                                {
-                                                  r.getBool("enabled", true);
-                                                  parseSpeedFilterConfig(r);
-                                                });
+  std::vector<ParamSpec> all = recordParameters(params, name_, [](const ParamReader& r) { parseSpeedFilterConfig(r); });
   std::vector<ParamSpec> tunable;
   for (auto& p : all)
     if (runTimeTunable(p.name)) tunable.push_back(std::move(p));
@@ -259,6 +252,6 @@ void SpeedFilter::publishIfChanged(double speed)
 {
   if (last_published_ && *last_published_ == speed) return;
   last_published_ = speed;
-  if (publish_) publish_(speed);
+  emit(OutputKind::MaxSpeed, config_.max_speed_topic, speed);
 }
 }  // namespace costmap_layers

@@ -15,7 +15,6 @@ namespace costmap_layers
 StaticConfig parseStaticConfig(const ParamReader& params, bool default_track_unknown)
 {
   StaticConfig cfg;
-  cfg.enabled = params.getBool("enabled", cfg.enabled);
   cfg.map_topic = params.getString("map_topic", cfg.map_topic);
   if (cfg.map_topic.empty()) params.fail("map_topic", "must not be empty");
   cfg.first_map_only = params.getBool("first_map_only", cfg.first_map_only);
@@ -45,15 +44,16 @@ uint8_t interpretStaticValue(int8_t value, const StaticConfig& config)
 void StaticLayer::onInitialize()
 {
   config_ = parseStaticConfig(ParamReader(context_->params(), name_), layered_costmap_->isTrackingUnknown());
-  enabled_ = config_.enabled;
   rebuildTable();
   current_ = false;  // until the first map
-  context_->subscribeGrid(config_.map_topic, GridKind::Map,
-                          [this](const std::shared_ptr<const OccupancyGridData>& map) { setMap(map); });
+  addInput(InputPort::grid(InputKind::Map, config_.map_topic,
+                           [this](const std::shared_ptr<const OccupancyGridData>& map) { setMap(map); }));
   if (config_.subscribe_to_updates)
-    context_->subscribeGridUpdates(config_.map_topic + "_updates",
+    addInput(InputPort::mapUpdates(config_.map_topic + "_updates",
                                    [this](const std::shared_ptr<const OccupancyGridUpdateData>& u)
-                                   { applyUpdate(u->x, u->y, u->width, u->height, u->data, u->stamp_ns); });
+                                   {
+                                     if (u) applyUpdate(u->x, u->y, u->width, u->height, u->data, u->stamp_ns);
+                                   }));
 }
 
 void StaticLayer::rebuildTable()
@@ -64,15 +64,15 @@ void StaticLayer::rebuildTable()
 
 std::string StaticLayer::setMap(std::shared_ptr<const OccupancyGridData> map)
 {
-  std::string error = map ? validateGrid(*map) : std::string("no map");
+  InputError error = map ? validateGrid(*map) : InputError::of("data", "no map");
   const uint64_t now = context_ ? context_->nowNs() : UINT64_MAX;
-  if (error.empty())
+  if (error.ok())
   {
     // The stamp check and the hand-over under one lock: two maps arriving together cannot both pass
     // the check and then install the older one last.
     std::lock_guard<std::mutex> lock(mutex_);
     if (isOutOfOrder(map->stamp_ns, map_stamp_ns_, now))
-      error = outOfOrderError(map->stamp_ns, map_stamp_ns_, "map");
+      error = InputError::of("header.stamp", outOfOrderError(map->stamp_ns, map_stamp_ns_, "map"));
     else
     {
       if (config_.first_map_only && accepted_any_) return {};
@@ -87,10 +87,9 @@ std::string StaticLayer::setMap(std::shared_ptr<const OccupancyGridData> map)
     }
   }
   // Throttled per field, so that each distinct problem is still reported once.
-  const std::string key = "map/" + error.substr(0, error.find(' '));
-  error = name_ + ": map on " + config_.map_topic + " rejected, keeping the previous one: " + error;
-  context_->report(Severity::Error, key, error);
-  return error;
+  const std::string text = name_ + ": map on " + config_.map_topic + " rejected, keeping the previous one: " + error.message;
+  if (context_) context_->report(Severity::Error, "map/" + error.field, text);
+  return text;
 }
 
 std::string StaticLayer::applyUpdate(int64_t x, int64_t y, uint32_t width, uint32_t height,
@@ -107,8 +106,9 @@ std::string StaticLayer::applyUpdate(int64_t x, int64_t y, uint32_t width, uint3
       why = "no map yet", key = "no_map";
     else if (isOutOfOrder(stamp_ns, map_stamp_ns_, now))
       why = outOfOrderError(stamp_ns, map_stamp_ns_, "map"), key = "header.stamp";
-    else if (!(why = validateGridUpdate(x, y, width, height, data.size(), latest_width_, latest_height_)).empty())
-      key = "rectangle";
+    else if (const InputError e = validateGridUpdate(x, y, width, height, data.size(), latest_width_, latest_height_);
+             !e.ok())
+      why = e.message, key = e.field;
     else
     {
       const uint64_t cells = static_cast<uint64_t>(width) * height;

@@ -28,8 +28,17 @@ int main(int argc, char** argv)
                                                    [&](const nav_msgs::OccupancyGrid::ConstPtr& msg)
                                                    {
                                                      // Sizes checked before any cell is touched.
-                                                     const std::string error =
-                                                         costmap_layers::validateGrid(costmap_layers_ros::fromMsg(*msg));
+                                                     std::string error;
+                                                     try
+                                                     {
+                                                       error = costmap_layers::validateGrid(
+                                                                   costmap_layers_ros::fromMsg(*msg))
+                                                                   .message;
+                                                     }
+                                                     catch (const std::exception& e)
+                                                     {
+                                                       error = e.what();
+                                                     }
                                                      if (!error.empty())
                                                      {
                                                        ROS_ERROR_THROTTLE(5.0, "costmap_snapshot: grid on %s dropped: %s",
@@ -48,7 +57,8 @@ int main(int argc, char** argv)
         std::lock_guard<std::mutex> lock(mutex);
         if (!have_grid) return;
         const std::string error = costmap_layers::validateGridUpdate(u->x, u->y, u->width, u->height, u->data.size(),
-                                                                     grid.info.width, grid.info.height);
+                                                                     grid.info.width, grid.info.height)
+                                      .message;
         if (!error.empty())
         {
           ROS_ERROR_THROTTLE(5.0, "costmap_snapshot: update on %s_updates dropped: %s", topic.c_str(), error.c_str());

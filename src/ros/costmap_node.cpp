@@ -62,15 +62,21 @@ void CostmapNode::setUp()
   auto contexts = [&](const costmap_layers::PluginSpec& spec)
   {
     const ParamValue* sub = params.find(spec.name);
-    return std::make_shared<RosLayerContext>(nh_, ros::NodeHandle(private_nh_, spec.name),
+    return std::make_shared<RosLayerContext>(ros::NodeHandle(private_nh_, spec.name),
                                              sub != nullptr ? *sub : ParamValue::makeMap(), config_.global_frame,
                                              config_.transform_tolerance, tf_, log_);
   };
   costmap_layers::loadPlugins(
       *costmap_, lists, [this](const std::string& type) { return factory_.create(type); }, contexts);
+  // The node owns every subscription and publication: each layer's ports, wired here.
   for (const auto* list : {&lists.plugins, &lists.filters})
     for (const auto& spec : *list)
+    {
       ROS_INFO("costmap: using plugin \"%s\" (%s)", spec.name.c_str(), spec.type.c_str());
+      ports_.push_back(std::make_unique<LayerPorts>(nh_, ros::NodeHandle(private_nh_, spec.name),
+                                                    *costmap_->findLayer(spec.name), config_.global_frame, tf_,
+                                                    log_));
+    }
   costmap_->setFootprint(config_.footprint.padded());
   const LayerReconfigure::RunLocked run_locked = [this](const std::function<void()>& fn)
   {
@@ -117,7 +123,9 @@ void CostmapNode::setUp()
 
 CostmapNode::~CostmapNode()
 {
-  // Layers first, while the plugin library that made them is still loaded.
+  // Subscriptions first (their callbacks reach into the layers), then the layers, while the plugin
+  // library that made them is still loaded.
+  ports_.clear();
   reconfigure_.clear();
   costmap_.reset();
 }

@@ -111,7 +111,8 @@ ToolArgs parseArgs(const std::vector<std::string>& args)
   return a;
 }
 
-/// The tool's LayerContext: files instead of topics, no tf (every frame is the global frame).
+/// The tool's LayerContext: no tf (every frame is the global frame), reports to stderr. The tool itself
+/// plays the host's part for inputs and outputs: files to the layers' input ports.
 class FileContext : public LayerContext
 {
 public:
@@ -126,20 +127,6 @@ public:
   const ParamValue& params() const override { return params_; }
   const std::string& globalFrame() const override { return global_frame_; }
   double transformTolerance() const override { return tolerance_; }
-  void subscribeGrid(const std::string&, GridKind kind, GridCallback cb) override
-  {
-    grids.push_back({kind, std::move(cb)});
-  }
-  void subscribeSpeedLimits(const std::string&, SpeedLimitsCallback cb) override
-  {
-    speed_limits.push_back(std::move(cb));
-  }
-  MaxSpeedPublisher advertiseMaxSpeed(const std::string&) override
-  {
-    publishes_speed = true;
-    return [this](double v) { last_max_speed = v; };
-  }
-  void advertiseToggle(std::function<void(bool)>) override {}
   std::optional<Transform2D> lookupTransform(const std::string& target, const std::string& source,
                                              std::string* error) override
   {
@@ -159,16 +146,6 @@ public:
     static const char* names[] = {"debug", "info", "warning", "error"};
     err_ << "costmap_tool: " << names[static_cast<int>(severity)] << ": " << message << "\n";
   }
-
-  struct GridSub
-  {
-    GridKind kind;
-    GridCallback cb;
-  };
-  std::vector<GridSub> grids;
-  std::vector<SpeedLimitsCallback> speed_limits;
-  bool publishes_speed = false;
-  std::optional<double> last_max_speed;
 
 private:
   std::string name_;
@@ -244,46 +221,63 @@ int run(const ToolArgs& a, std::ostream& out, std::ostream& err)
   const Footprint footprint = config.footprint.padded();
   costmap->setFootprint(footprint);
 
-  // Inputs: the map to every map subscription, masks and features to the named plugins.
-  std::vector<std::pair<std::shared_ptr<FileContext>, std::shared_ptr<const OccupancyGridData>>> masks;
+  // Inputs: the map to every map input, masks and features to the named plugins' inputs.
+  auto layerNamed = [&](const std::string& name, const char* flag)
+  {
+    auto layer = contexts.count(name) ? costmap->findLayer(name) : nullptr;
+    if (!layer) throw std::runtime_error(std::string(flag) + " names plugin '" + name + "', which is not configured");
+    return layer;
+  };
+  auto portsOf = [](const Layer& layer, InputKind kind)
+  {
+    std::vector<const InputPort*> ports;
+    for (const auto& in : layer.inputs())
+      if (in.kind == kind) ports.push_back(&in);
+    return ports;
+  };
+  std::vector<std::pair<const InputPort*, std::shared_ptr<const OccupancyGridData>>> masks;
   for (const auto& [name, file] : a.masks)
   {
-    auto it = contexts.find(name);
-    if (it == contexts.end()) throw std::runtime_error("--mask names plugin '" + name + "', which is not configured");
+    const auto ports = portsOf(*layerNamed(name, "--mask"), InputKind::Mask);
+    if (ports.empty()) throw std::runtime_error("--mask names plugin '" + name + "', which takes no mask");
     auto mask = std::make_shared<OccupancyGridData>(io::loadMapFile(file));
     mask->frame_id = config.global_frame;
-    masks.emplace_back(it->second, mask);
+    for (const InputPort* port : ports)
+      masks.emplace_back(port, mask);
   }
-  std::vector<std::pair<std::shared_ptr<FileContext>, std::shared_ptr<const SpeedLimitsData>>> features;
   for (const auto& [name, file] : a.features)
   {
-    auto it = contexts.find(name);
-    if (it == contexts.end())
-      throw std::runtime_error("--features names plugin '" + name + "', which is not configured");
-    if (it->second->speed_limits.empty())
-      throw std::runtime_error("--features names plugin '" + name + "', which takes no speed limits");
+    const auto ports = portsOf(*layerNamed(name, "--features"), InputKind::SpeedLimits);
+    if (ports.empty()) throw std::runtime_error("--features names plugin '" + name + "', which takes no speed limits");
     auto limits = std::make_shared<SpeedLimitsData>(io::loadFeaturesFile(file));
     limits->frame_id = config.global_frame;
-    features.emplace_back(it->second, limits);
+    for (const InputPort* port : ports)
+      port->on_limits(limits);
   }
-  for (const auto& [ctx, mask] : masks)
+  auto deliverMasks = [&]
   {
-    bool taken = false;
-    for (auto& sub : ctx->grids)
-      if (sub.kind == GridKind::Mask) sub.cb(mask), taken = true;
-    if (!taken) throw std::runtime_error("--mask names a plugin that takes no mask");
-  }
-  for (const auto& [ctx, limits] : features)
-    for (auto& cb : ctx->speed_limits)
-      cb(limits);
-
+    for (const auto& [port, mask] : masks)
+      port->on_grid(mask);
+  };
+  deliverMasks();
   auto deliverMaps = [&]
   {
-    for (auto& [name, ctx] : contexts)
-      for (auto& sub : ctx->grids)
-        if (sub.kind == GridKind::Map) sub.cb(map);
+    for (const auto& [name, ctx] : contexts)
+      for (const InputPort* port : portsOf(*costmap->findLayer(name), InputKind::Map))
+        port->on_grid(map);
   };
   deliverMaps();
+  // Outputs: the last max speed of each plugin that has one.
+  std::map<std::string, double> max_speeds;
+  for (const auto& [name, ctx] : contexts)
+  {
+    auto layer = costmap->findLayer(name);
+    if (layer->outputs().empty()) continue;
+    layer->setOutputListener([&max_speeds, name = name](const OutputEvent& e)
+                             {
+                               if (e.kind == OutputKind::MaxSpeed) max_speeds[name] = e.value;
+                             });
+  }
 
   auto pose = [&](double& x, double& y, double& yaw)
   {
@@ -305,9 +299,7 @@ int run(const ToolArgs& a, std::ostream& out, std::ostream& err)
       // Redo every layer's full work, as when a new map (and new masks) arrive.
       costmap->setFootprint(footprint);
       deliverMaps();
-      for (const auto& [ctx, mask] : masks)
-        for (auto& sub : ctx->grids)
-          if (sub.kind == GridKind::Mask) sub.cb(mask);
+      deliverMasks();
     }
     pose(x, y, yaw);
     costmap->updateMap(x, y, yaw);
@@ -332,9 +324,9 @@ int run(const ToolArgs& a, std::ostream& out, std::ostream& err)
   {
     for (const auto& spec : *list)
     {
-      const auto& ctx = contexts[spec.name];
-      if (!ctx->publishes_speed || !ctx->last_max_speed) continue;
-      json << (first ? "" : ", ") << jsonString(spec.name) << ": " << jsonNumber(*ctx->last_max_speed);
+      const auto it = max_speeds.find(spec.name);
+      if (it == max_speeds.end()) continue;
+      json << (first ? "" : ", ") << jsonString(spec.name) << ": " << jsonNumber(it->second);
       first = false;
     }
   }

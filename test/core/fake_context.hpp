@@ -1,5 +1,6 @@
-// A LayerContext for core tests: parameters from a ParamValue, inputs pushed by the test, outputs and
-// reports recorded, transforms from a table. No ROS.
+// A LayerContext for core tests: parameters from a ParamValue, reports recorded, transforms from a
+// table; and, once bound to a layer (bind()), the host's part: inputs pushed by the test to the
+// layer's ports, output events recorded. No ROS.
 #pragma once
 
 #include <map>
@@ -8,11 +9,20 @@
 #include <utility>
 #include <vector>
 
+#include "costmap_layers/core/costmap_filter.hpp"
+#include "costmap_layers/core/layer.hpp"
 #include "costmap_layers/core/layer_context.hpp"
 
 namespace costmap_layers_test
 {
 using namespace costmap_layers;
+
+/// What a grid input is for, as tests name it.
+enum class GridKind
+{
+  Map,
+  Mask
+};
 
 class FakeContext : public LayerContext
 {
@@ -26,33 +36,40 @@ public:
   const std::string& globalFrame() const override { return global_frame_; }
   double transformTolerance() const override { return 0.3; }
 
-  void subscribeGrid(const std::string& topic, GridKind kind, GridCallback cb) override
+  /// Plays the host's part for a layer that has initialised: takes its input ports (so that the test
+  /// can publish to them), its output events and, for a filter, its switch (the ~toggle service).
+  void bind(Layer& layer)
   {
-    grid_subs.push_back({topic, kind, std::move(cb)});
-  }
-  void subscribeSpeedLimits(const std::string& topic, SpeedLimitsCallback cb) override
-  {
-    speed_subs.push_back({topic, std::move(cb)});
-  }
-  MaxSpeedPublisher advertiseMaxSpeed(const std::string& topic) override
-  {
-    max_speed_topic = topic;
-    return [this](double v) { published_speeds.push_back(v); };
-  }
-  void advertiseToggle(std::function<void(bool)> cb) override { toggle = std::move(cb); }
-  void subscribeLaserScan(const std::string& topic, const std::string& sensor_frame,
-                          SensorCallback<LaserScanData> cb) override
-  {
-    scan_subs.push_back({topic, sensor_frame, std::move(cb)});
-  }
-  void subscribePointCloud2(const std::string& topic, const std::string& sensor_frame,
-                            SensorCallback<PointCloud2Data> cb) override
-  {
-    cloud_subs.push_back({topic, sensor_frame, std::move(cb)});
-  }
-  void subscribeRange(const std::string& topic, SensorCallback<RangeData> cb) override
-  {
-    range_subs.push_back({topic, "", std::move(cb)});
+    for (const InputPort& in : layer.inputs())
+    {
+      switch (in.kind)
+      {
+        case InputKind::Map:
+        case InputKind::Mask:
+          grid_subs.push_back({in.topic, in.kind == InputKind::Map ? GridKind::Map : GridKind::Mask, in.on_grid});
+          break;
+        case InputKind::MapUpdates:
+          update_subs.push_back({in.topic, in.on_update});
+          break;
+        case InputKind::SpeedLimits:
+          speed_subs.push_back({in.topic, in.on_limits});
+          break;
+        case InputKind::LaserScan:
+          scan_subs.push_back({in.topic, in.sensor_frame, in.on_scan});
+          break;
+        case InputKind::PointCloud2:
+          cloud_subs.push_back({in.topic, in.sensor_frame, in.on_cloud});
+          break;
+        case InputKind::Range:
+          range_subs.push_back({in.topic, "", in.on_range});
+          break;
+      }
+    }
+    for (const OutputPort& out : layer.outputs())
+      max_speed_topic = out.topic;
+    if (!layer.outputs().empty())
+      layer.setOutputListener([this](const OutputEvent& e) { published_speeds.push_back(e.value); });
+    if (auto* filter = dynamic_cast<CostmapFilter*>(&layer)) toggle = [filter](bool on) { filter->setEnabled(on); };
   }
   /// Delivers a reading to every subscription of its topic (as the node would once tf had the pose).
   template <class Reading, class Subs>
@@ -99,6 +116,13 @@ public:
     for (auto& s : grid_subs)
       if (s.kind == kind) s.cb(shared);
   }
+  /// Delivers a map update to every map update input.
+  void publishGridUpdate(const OccupancyGridUpdateData& update)
+  {
+    auto shared = std::make_shared<const OccupancyGridUpdateData>(update);
+    for (auto& s : update_subs)
+      s.cb(shared);
+  }
   void publishSpeedLimits(const SpeedLimitsData& limits)
   {
     auto shared = std::make_shared<const SpeedLimitsData>(limits);
@@ -125,6 +149,11 @@ public:
     std::string topic;
     SpeedLimitsCallback cb;
   };
+  struct UpdateSub
+  {
+    std::string topic;
+    GridUpdateCallback cb;
+  };
   template <class Reading>
   struct SensorSub
   {
@@ -147,6 +176,7 @@ public:
   std::string global_frame_;
   std::vector<GridSub> grid_subs;
   std::vector<SpeedSub> speed_subs;
+  std::vector<UpdateSub> update_subs;
   std::string max_speed_topic;
   std::vector<double> published_speeds;
   std::function<void(bool)> toggle;

@@ -16,6 +16,7 @@
 
 using namespace costmap_layers;
 using costmap_layers_test::FakeContext;
+using costmap_layers_test::GridKind;
 
 namespace
 {
@@ -165,7 +166,7 @@ struct Rig
 
   explicit Rig(ParamValue params = ParamValue::makeMap()) : ctx(std::make_shared<FakeContext>(std::move(params)))
   {
-    filter->initialize(&lc, "test_filter", ctx);
+    filter->initialize(&lc, "test_filter", ctx); ctx->bind(*filter);
   }
   /// Calls updateBounds with "nothing yet" bounds and returns what came back.
   std::array<double, 4> bounds(double x0 = std::numeric_limits<double>::max(),
@@ -250,16 +251,17 @@ TEST(CostmapFilterBase, InvalidMasksAreRejectedAndThePreviousOneKept)
   }
   for (const auto& b : bad)
   {
-    const std::string direct = validateGrid(b.mask);
-    EXPECT_NE(direct.find(b.needle), std::string::npos) << b.what << ": " << direct;
+    const InputError direct = validateGrid(b.mask);
+    EXPECT_NE(direct.message.find(b.needle), std::string::npos) << b.what << ": " << direct.message;
+    EXPECT_FALSE(direct.field.empty()) << b.what;
     const std::string err = r.filter->setMask(share(b.mask));
     EXPECT_FALSE(err.empty()) << b.what;
     EXPECT_EQ(r.filter->getMask(), good) << b.what;
   }
   EXPECT_FALSE(r.filter->setMask(nullptr).empty());
   EXPECT_EQ(r.filter->getMask(), good);
-  EXPECT_EQ(validateGrid(makeMask(4, 3, 0.5, 1.0, 2.0)), "");
-  EXPECT_NE(validateGrid(makeMask(10, 10, 1.0, 0, 0), 99), "");  // custom cell limit
+  EXPECT_TRUE(validateGrid(makeMask(4, 3, 0.5, 1.0, 2.0)).ok());
+  EXPECT_FALSE(validateGrid(makeMask(10, 10, 1.0, 0, 0), 99).ok());  // custom cell limit
 }
 
 TEST(CostmapFilterBase, RejectedMaskOnTopicIsReportedAndIgnored)

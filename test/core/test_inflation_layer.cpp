@@ -98,7 +98,7 @@ struct Rig
     if (fill != FREE_SPACE) marks->fillAll(fill);
     lc.addPlugin(marks);
     inflation = std::make_shared<InflationLayer>();
-    inflation->initialize(&lc, "inflation", ctx);
+    inflation->initialize(&lc, "inflation", ctx); ctx->bind(*inflation);
     lc.addPlugin(inflation);
     lc.setFootprint(square(inscribed));
   }
@@ -179,16 +179,13 @@ TEST(InflationConfig, DefaultsAndValidation)
 {
   const ParamValue empty = ParamValue::makeMap();
   const InflationConfig d = parseInflationConfig(ParamReader(empty, "inflation"));
-  EXPECT_TRUE(d.enabled);
   EXPECT_DOUBLE_EQ(d.inflation_radius, 0.55);
   EXPECT_DOUBLE_EQ(d.cost_scaling_factor, 10.0);
   EXPECT_FALSE(d.inflate_unknown);
   EXPECT_FALSE(d.inflate_around_unknown);
 
   ParamValue p = inflationParams(1.5, 3.0, true, true);
-  p.set("enabled", ParamValue::makeBool(false));
   const InflationConfig c = parseInflationConfig(ParamReader(p, "inflation"));
-  EXPECT_FALSE(c.enabled);
   EXPECT_DOUBLE_EQ(c.inflation_radius, 1.5);
   EXPECT_DOUBLE_EQ(c.cost_scaling_factor, 3.0);
   EXPECT_TRUE(c.inflate_unknown);

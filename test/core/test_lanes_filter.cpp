@@ -20,6 +20,7 @@
 
 using namespace costmap_layers;
 using costmap_layers_test::FakeContext;
+using costmap_layers_test::GridKind;
 
 namespace
 {
@@ -66,7 +67,7 @@ struct Rig
 
   explicit Rig(const Params& p = Params{}) : ctx(std::make_shared<FakeContext>(p.value()))
   {
-    filter->initialize(&lc, "lanes", ctx);
+    filter->initialize(&lc, "lanes", ctx); ctx->bind(*filter);
   }
   void cycle()
   {

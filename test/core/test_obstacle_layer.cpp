@@ -74,13 +74,13 @@ struct Rig
     {
       static_ctx = std::make_shared<FakeContext>(ParamValue::makeMap());
       static_layer = std::make_shared<StaticLayer>();
-      static_layer->initialize(&lc, "static_layer", static_ctx);
+      static_layer->initialize(&lc, "static_layer", static_ctx); static_ctx->bind(*static_layer);
       lc.addPlugin(static_layer);
       static_ctx->publishGrid(GridKind::Map, staticMap());
     }
     ctx = std::make_shared<FakeContext>(std::move(params));
     layer = std::make_shared<ObstacleLayer>();
-    layer->initialize(&lc, "obstacles", ctx);
+    layer->initialize(&lc, "obstacles", ctx); ctx->bind(*layer);
     lc.addPlugin(layer);
   }
   /// Publishes points given in the global frame, seen from a sensor at pose (translation only).
@@ -104,7 +104,6 @@ struct Rig
 TEST(ObstacleConfig, DefaultsAndSources)
 {
   const ObstacleConfig none = parseObstacleConfig(ParamReader(ParamValue::makeMap(), "o"), true);
-  EXPECT_TRUE(none.enabled);
   EXPECT_TRUE(none.footprint_clearing_enabled);
   EXPECT_DOUBLE_EQ(none.max_obstacle_height, 2.0);
   EXPECT_EQ(none.combination_method, 1);

@@ -167,14 +167,25 @@ TEST(PublishSchedule, StallsAndClockJumpsNeitherBurstNorStop)
 
 TEST(ValidateGridUpdate, OverflowFreeAtEveryEdge)
 {
-  EXPECT_EQ(validateGridUpdate(0, 0, 10, 10, 100, 10, 10), "");
-  EXPECT_EQ(validateGridUpdate(9, 9, 1, 1, 1, 10, 10), "");
-  EXPECT_EQ(validateGridUpdate(0, 0, 0, 0, 0, 10, 10), "");
-  // x = -5 with a width that wraps int32 + uint32 back into range.
-  EXPECT_NE(validateGridUpdate(-5, 0, 10, 1, 10, 10, 10).find("x=-5"), std::string::npos);
-  EXPECT_NE(validateGridUpdate(0, INT32_MIN, 1, 1, 1, 10, 10).find("y="), std::string::npos);
-  EXPECT_NE(validateGridUpdate(1, 0, UINT32_MAX, 1, UINT32_MAX, 10, 10).find("leaves"), std::string::npos);
-  EXPECT_NE(validateGridUpdate(INT32_MAX, 0, UINT32_MAX, 0, 0, 10, 10).find("leaves"), std::string::npos);
-  EXPECT_NE(validateGridUpdate(0, 0, 65536, 65536, 0, 10, 10).find("data has 0"), std::string::npos);
-  EXPECT_NE(validateGridUpdate(0, 0, 2, 2, 3, 10, 10).find("data has 3"), std::string::npos);
+  EXPECT_TRUE(validateGridUpdate(0, 0, 10, 10, 100, 10, 10).ok());
+  EXPECT_TRUE(validateGridUpdate(9, 9, 1, 1, 1, 10, 10).ok());
+  EXPECT_TRUE(validateGridUpdate(0, 0, 0, 0, 0, 10, 10).ok());
+  struct Bad
+  {
+    int64_t x, y;
+    uint32_t w, h;
+    std::size_t n;
+    const char* field;
+    const char* needle;
+  };
+  // x = -5 with a width that wraps int32 + uint32 back into range; sizes whose product overflows 32 bits.
+  for (const Bad& b : {Bad{-5, 0, 10, 1, 10, "x", "x=-5"}, Bad{0, INT32_MIN, 1, 1, 1, "x", "y=-2147483648"},
+                       Bad{1, 0, UINT32_MAX, 1, UINT32_MAX, "width", "leaves"},
+                       Bad{INT32_MAX, 0, UINT32_MAX, 0, 0, "width", "leaves"},
+                       Bad{0, 0, 65536, 65536, 0, "data", "data has 0"}, Bad{0, 0, 2, 2, 3, "data", "data has 3"}})
+  {
+    const InputError e = validateGridUpdate(b.x, b.y, b.w, b.h, b.n, 10, 10);
+    EXPECT_EQ(e.field, b.field) << e.message;
+    EXPECT_NE(e.message.find(b.needle), std::string::npos) << e.message;
+  }
 }

@@ -17,6 +17,7 @@
 
 using namespace costmap_layers;
 using costmap_layers_test::FakeContext;
+using costmap_layers_test::GridKind;
 
 namespace
 {
@@ -77,7 +78,7 @@ struct Rig
 
   explicit Rig(ParamValue p = params()) : ctx(std::make_shared<FakeContext>(std::move(p)))
   {
-    filter->initialize(&lc, "speed_filter", ctx);
+    filter->initialize(&lc, "speed_filter", ctx); ctx->bind(*filter);
   }
   /// One update cycle with the robot at (x, y); returns how many values were published by it.
   std::size_t at(double x, double y)
@@ -154,7 +155,7 @@ TEST(SpeedFilterConfig, PercentModeWithoutDefaultIsRefusedAtStartUp)
   auto filter = std::make_shared<SpeedFilter>();
   try
   {
-    filter->initialize(&lc, "speed_filter", ctx);
+    filter->initialize(&lc, "speed_filter", ctx); ctx->bind(*filter);
     ADD_FAILURE() << "percent mode with default_max_speed 0 accepted";
   }
   catch (const std::invalid_argument& e)

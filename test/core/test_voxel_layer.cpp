@@ -47,7 +47,7 @@ struct Rig
     lc.resizeMap(10, 10, 1.0, 0.0, 0.0);
     ctx = std::make_shared<FakeContext>(std::move(params));
     layer = std::make_shared<VoxelLayer>();
-    layer->initialize(&lc, "voxels", ctx);
+    layer->initialize(&lc, "voxels", ctx); ctx->bind(*layer);
     lc.addPlugin(layer);
   }
   /// Points in the global frame seen from a sensor at `o` (no rotation).

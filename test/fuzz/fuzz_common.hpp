@@ -30,24 +30,8 @@ namespace costmap_layers_fuzz
 {
 using namespace costmap_layers;
 
-/// FakeContext plus the OccupancyGridUpdate subscriptions StaticLayer makes.
-class FuzzContext : public costmap_layers_test::FakeContext
-{
-public:
-  using FakeContext::FakeContext;
-  void subscribeGridUpdates(const std::string& topic, GridUpdateCallback cb) override
-  {
-    (void)topic;
-    update_subs.push_back(std::move(cb));
-  }
-  void publishUpdate(const OccupancyGridUpdateData& u)
-  {
-    auto shared = std::make_shared<const OccupancyGridUpdateData>(u);
-    for (auto& cb : update_subs)
-      cb(shared);
-  }
-  std::vector<GridUpdateCallback> update_subs;
-};
+/// The fuzz targets' host: FakeContext, bound to each layer after it initialises.
+using FuzzContext = costmap_layers_test::FakeContext;
 
 /// A double from the input that tf or the robot's localisation could deliver: finite (non-finite
 /// values become 0), any magnitude.
@@ -178,7 +162,7 @@ inline std::shared_ptr<ObstacleLayer> makeSensorLayer(LayeredCostmap& lc, const 
     layer = std::make_shared<ObstacleLayer>();
   try
   {
-    layer->initialize(&lc, "obstacles", ctx);
+    layer->initialize(&lc, "obstacles", ctx); ctx->bind(*layer);
   }
   catch (const std::invalid_argument&)
   {

@@ -55,7 +55,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
   auto filter = std::make_shared<SpeedFilter>();
   try
   {
-    filter->initialize(&lc, "speed_filter", ctx);
+    filter->initialize(&lc, "speed_filter", ctx); ctx->bind(*filter);
   }
   catch (const std::invalid_argument&)
   {

@@ -19,6 +19,7 @@
 #endif
 
 #include "costmap_layers/core/costmap_2d.hpp"
+#include "costmap_layers/core/input_error.hpp"
 #include "costmap_layers/core/layer.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
 
@@ -27,13 +28,13 @@ namespace costmap_layers
 class ParamReader;
 
 /// Checks a mask or map: data size, finite positive resolution, finite origin, sane dimensions.
-/// @return an empty string when valid, else one line naming the field and its value.
-std::string validateGrid(const OccupancyGridData& grid, uint64_t max_cells = 400'000'000ull);
+/// @return ok() when valid, else the field at fault and one line naming it and its value.
+InputError validateGrid(const OccupancyGridData& grid, uint64_t max_cells = 400'000'000ull);
 
 /// Checks a partial update (x, y, width x height, data_size values) against a grid of
 /// grid_width x grid_height cells, in arithmetic that cannot overflow or wrap for any field values.
-/// @return an empty string when it fits, else one line naming the field and its value.
-std::string validateGridUpdate(int64_t x, int64_t y, uint32_t width, uint32_t height, std::size_t data_size,
+/// @return ok() when it fits, else the field at fault and one line naming it and its value.
+InputError validateGridUpdate(int64_t x, int64_t y, uint32_t width, uint32_t height, std::size_t data_size,
                                uint32_t grid_width, uint32_t grid_height);
 
 /// How master cells of one update window map to cells of the mask: per master column a mask column
@@ -108,12 +109,13 @@ public:
   /// Calls process(); skips (writing nothing) when disabled, without a mask, or without a transform.
   void updateCosts(Costmap2D& master_grid, int min_i, int min_j, int max_i, int max_j) final;
   bool isClearable() override { return false; }
-  /// `enabled` at run time is the same switch as the toggle service (setFilterEnabled()): the filter
-  /// keeps taking part in updates, so that switching it off clears its cells at the next update.
-  void reconfigure(const ParamValue& params) override;
+  /// The filter's one switch, set by `enabled` (at start and at run time) and by the ~<name>/toggle
+  /// service alike: it is setFilterEnabled(). The filter keeps taking part in updates (enabled() stays
+  /// true), so that switching it off clears its cells at the next update.
+  void setEnabled(bool on) final;
 
   /// Replaces the mask, unless it is invalid or stamped before the mask in force (isOutOfOrder()): then
-  /// the previous mask stays and the reason is returned.
+  /// the previous mask stays, and the reason is reported (an Error keyed by the field) and returned.
   /// Safe to call from another thread than the update loop.
   /// @return an empty string when accepted, else the error.
   std::string setMask(std::shared_ptr<const OccupancyGridData> mask);
@@ -126,7 +128,7 @@ public:
   bool filterEnabled() const { return filter_enabled_; }
 
 protected:
-  /// Reads the base's parameters (mask_topic), subscribes to the mask, then calls onInitializeFilter().
+  /// Reads the base's parameters (mask_topic), declares the mask input, then calls onInitializeFilter().
   void onInitialize() final;
   virtual void onInitializeFilter(const ParamReader& params) { (void)params; }
   /// The subclass's meaning of the mask. `mapping` maps the window onto `mask`.

@@ -31,12 +31,12 @@ public:
   void updateCosts(Costmap2D& master_grid, int min_i, int min_j, int max_i, int max_j) override;
   void onFootprintChanged() override { need_recalculation_ = true; }
   void reset() override { need_recalculation_ = true; }
-  void reconfigure(const ParamValue& params) override;
-  std::vector<ParamSpec> tunableParameters(const ParamValue& params) const override;
   const GradientConfig& config() const { return config_; }
 
 protected:
   void onInitialize() override;
+  void onReconfigure(const ParamValue& params) override;
+  std::vector<ParamSpec> tunableLayerParameters(const ParamValue& params) const override;
 
 private:
   GradientConfig config_;

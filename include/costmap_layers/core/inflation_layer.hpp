@@ -16,14 +16,13 @@ class ParamReader;
 
 struct InflationConfig
 {
-  bool enabled = true;
   double inflation_radius = 0.55;       ///< [m]
   double cost_scaling_factor = 10.0;    ///< [1/m]
   bool inflate_unknown = false;         ///< an unknown cell takes any cost > 0, not only >= 253
   bool inflate_around_unknown = false;  ///< unknown cells are sources like lethal ones
 };
 
-/// Reads enabled, inflation_radius (>= 0), cost_scaling_factor (>= 0), inflate_unknown and
+/// Reads inflation_radius (>= 0), cost_scaling_factor (>= 0), inflate_unknown and
 /// inflate_around_unknown. Throws std::invalid_argument naming the parameter.
 InflationConfig parseInflationConfig(const ParamReader& params);
 
@@ -40,13 +39,17 @@ public:
   void matchSize() override;
   void onFootprintChanged() override;
   void reset() override;
-  void reconfigure(const ParamValue& params) override;
-  std::vector<ParamSpec> tunableParameters(const ParamValue& params) const override;
   bool isClearable() override { return false; }
 
   const InflationConfig& config() const { return config_; }
   /// Replaces the parameters (as a reconfigure would); the next update covers the whole map.
   void setConfig(const InflationConfig& config);
+
+protected:
+  void onReconfigure(const ParamValue& params) override;
+  std::vector<ParamSpec> tunableLayerParameters(const ParamValue& params) const override;
+
+public:
   /// ceil(inflation_radius / resolution): cells farther than this are not written.
   int cellInflationRadius() const { return cell_inflation_radius_; }
   double inscribedRadius() const { return inscribed_radius_; }

@@ -83,12 +83,11 @@ public:
   const LanesFilterConfig& config() const { return config_; }
   /// How many times the per-mask costs were computed (once per new mask). For tests and diagnostics.
   std::size_t costComputations() const { return cost_computations_; }
-  /// Changes lane_border_width, border_cost, cost_profile, decay and enabled at run time; the costs
-  /// are recomputed at the next update.
-  void reconfigure(const ParamValue& params) override;
-  std::vector<ParamSpec> tunableParameters(const ParamValue& params) const override;
-
 protected:
+  /// Changes lane_border_width, border_cost, cost_profile and decay at run time; the costs are
+  /// recomputed at the next update.
+  void onReconfigure(const ParamValue& params) override;
+  std::vector<ParamSpec> tunableLayerParameters(const ParamValue& params) const override;
   void onInitializeFilter(const ParamReader& params) override;
   std::size_t computeCosts(const OccupancyGridData& mask, std::vector<uint8_t>& costs) override;
 

@@ -4,12 +4,14 @@
 #pragma once
 
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "costmap_layers/core/layer_context.hpp"
+#include "costmap_layers/core/layer_io.hpp"
 #include "costmap_layers/core/param_reader.hpp"
 
 namespace costmap_layers
@@ -28,9 +30,18 @@ public:
   /// Called once by the host after construction; ends by calling onInitialize().
   /// @param parent   the costmap that owns this layer (not owned here; it outlives the layer)
   /// @param name     the instance name from the plugin list
-  /// @param context  parameters, inputs, outputs and transforms for this instance
-  /// Throws std::invalid_argument on a bad configuration.
+  /// @param context  parameters, transforms, the clock and problem reports for this instance
+  /// Throws std::invalid_argument on a bad configuration. Reads `enabled` (the one place it is read).
   void initialize(LayeredCostmap* parent, const std::string& name, std::shared_ptr<LayerContext> context);
+
+  /// What the layer takes from outside (declared while it initialised): the host subscribes to each
+  /// port and hands every message to its handler.
+  const std::vector<InputPort>& inputs() const { return inputs_; }
+  /// What the layer gives out: the host advertises each port and publishes the events the layer emits.
+  const std::vector<OutputPort>& outputs() const { return outputs_; }
+  /// Where emitted events go. The latest event of each port emitted before a listener is set is
+  /// delivered to it at once (outputs are latched).
+  void setOutputListener(OutputListener listener);
 
   /// Grows the window [m] this layer wants updated; the robot pose is in the global frame [m, rad].
   virtual void updateBounds(double robot_x, double robot_y, double robot_yaw, double* min_x, double* min_y,
@@ -51,26 +62,40 @@ public:
   virtual bool isClearable() { return false; }
 
   /// Run-time reconfiguration (dynamic_reconfigure in the node): `params` is the layer's whole
-  /// namespace with the changes applied. Validates everything first and throws std::invalid_argument
-  /// (keeping the current configuration) on a bad value. The host then redraws the whole map. The
-  /// default handles `enabled` only.
-  virtual void reconfigure(const ParamValue& params);
-  /// What reconfigure() accepts: each tunable parameter's type, range, default and current value
-  /// (as read from params), recorded from the same parse function that reads them.
-  virtual std::vector<ParamSpec> tunableParameters(const ParamValue& params) const;
+  /// namespace with the changes applied. Reads `enabled`, lets the layer validate and apply the rest
+  /// (onReconfigure(), which throws std::invalid_argument and keeps the current configuration on a
+  /// bad value), then sets the switch (setEnabled()). The host then redraws the whole map.
+  void reconfigure(const ParamValue& params);
+  /// What reconfigure() accepts: `enabled`, then each parameter tunableLayerParameters() records.
+  std::vector<ParamSpec> tunableParameters(const ParamValue& params) const;
 
   /// Whether the layer's inputs are up to date.
   bool isCurrent() const { return current_; }
+  /// Whether the layer takes part in updates (a filter always does: its switch is its own).
   bool enabled() const { return enabled_; }
-  void setEnabled(bool enabled) { enabled_ = enabled; }
+  /// The layer's one on/off switch: what `enabled` and (for filters) the ~toggle service set.
+  virtual void setEnabled(bool enabled) { enabled_ = enabled; }
   bool isInitialized() const { return initialized_; }
   const std::string& getName() const { return name_; }
   /// The padded footprint of the parent costmap, in the robot frame [m].
   const std::vector<Eigen::Vector2d>& getFootprint() const;
 
 protected:
-  /// Reads parameters and sets up inputs. Throws std::invalid_argument on a bad configuration.
+  /// Reads parameters and declares inputs and outputs. Throws std::invalid_argument on a bad configuration.
   virtual void onInitialize() {}
+  /// Validates and applies a new configuration (everything but `enabled`); throws std::invalid_argument
+  /// before changing anything. The default accepts nothing else.
+  virtual void onReconfigure(const ParamValue& params) { (void)params; }
+  /// The run-time tunable parameters besides `enabled`, recorded from the layer's parse function.
+  virtual std::vector<ParamSpec> tunableLayerParameters(const ParamValue& params) const
+  {
+    (void)params;
+    return {};
+  }
+  void addInput(InputPort port) { inputs_.push_back(std::move(port)); }
+  void addOutput(OutputPort port) { outputs_.push_back(std::move(port)); }
+  /// Emits an event on an output port (any thread); the host publishes it.
+  void emit(OutputKind kind, const std::string& topic, double value);
 
   LayeredCostmap* layered_costmap_ = nullptr;
   std::shared_ptr<LayerContext> context_;
@@ -80,5 +105,10 @@ protected:
 
 private:
   bool initialized_ = false;
+  std::vector<InputPort> inputs_;
+  std::vector<OutputPort> outputs_;
+  std::mutex output_mutex_;
+  OutputListener listener_;
+  std::vector<OutputEvent> latest_;  ///< the latest event of each port, for a listener set later
 };
 }  // namespace costmap_layers

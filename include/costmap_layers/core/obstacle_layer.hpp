@@ -51,7 +51,6 @@ struct ObservationSourceConfig
 
 struct ObstacleConfig
 {
-  bool enabled = true;
   bool footprint_clearing_enabled = true;
   double max_obstacle_height = 2.0;  ///< [m] hits above are never marked
   /// 0: overwrite (own cost unless unknown), 1: max, 2: max without overwriting unknown master cells.
@@ -62,7 +61,7 @@ struct ObstacleConfig
 
 /// Reads one source from its own namespace. Throws std::invalid_argument naming the parameter.
 ObservationSourceConfig parseObservationSourceConfig(const ParamReader& params, const std::string& name);
-/// Reads enabled, footprint_clearing_enabled, max_obstacle_height, combination_method (0..2),
+/// Reads footprint_clearing_enabled, max_obstacle_height, combination_method (0..2),
 /// track_unknown_space and observation_sources (a space-separated string or a list of names; each
 /// name's parameters in the sub-namespace of that name). Throws std::invalid_argument.
 ObstacleConfig parseObstacleConfig(const ParamReader& params, bool default_track_unknown);

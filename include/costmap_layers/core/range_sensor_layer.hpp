@@ -22,7 +22,6 @@ class ParamReader;
 
 struct RangeSensorConfig
 {
-  bool enabled = true;
   std::vector<std::string> topics;    ///< a list, or one space-separated string
   double phi = 1.2;                   ///< [m] distance where delta() falls to one half (Nav2's phi_v_)
   double inflate_cone = 1.0;          ///< 0..1: 1 updates the cone's whole bounding box

@@ -106,16 +106,16 @@ public:
   /// @return the number of dropped entries
   std::size_t setSpeedLimits(const SpeedLimitsData& limits);
 
-  /// Changes default_max_speed, speed_limit_in_percent, base, multiplier and enabled at run time (the
-  /// topics and mask_mode cannot change); the last features message is re-evaluated.
-  void reconfigure(const ParamValue& params) override;
-  std::vector<ParamSpec> tunableParameters(const ParamValue& params) const override;
 
   /// The value published last [m/s], nullopt before the first publication. Update thread only.
   std::optional<double> lastPublished() const { return last_published_; }
 
 protected:
   void onInitializeFilter(const ParamReader& params) override;
+  /// Changes default_max_speed, speed_limit_in_percent, base and multiplier at run time (the topics and
+  /// mask_mode cannot change); the last features message is re-evaluated.
+  void onReconfigure(const ParamValue& params) override;
+  std::vector<ParamSpec> tunableLayerParameters(const ParamValue& params) const override;
   /// Writes nothing: the speed filter acts through its MaxSpeed output only.
   void process(Costmap2D&, const CellWindow&, const OccupancyGridData&, const MaskMapping&, double, double,
                double) override
@@ -133,7 +133,6 @@ private:
   void warnValueOnce(int8_t v, const std::string& message);
 
   SpeedFilterConfig config_;
-  MaxSpeedPublisher publish_;
 
   mutable std::mutex limits_mutex_;
   std::shared_ptr<const SpeedLimitTable> limits_;         ///< guarded by limits_mutex_

@@ -20,7 +20,6 @@ class ParamReader;
 
 struct StaticConfig
 {
-  bool enabled = true;
   std::string map_topic = "map";
   bool first_map_only = false;        ///< ignore every map after the first accepted one
   bool subscribe_to_updates = false;  ///< accept applyUpdate() (the adapter subscribes <map_topic>_updates)

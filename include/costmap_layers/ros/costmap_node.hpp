@@ -15,6 +15,7 @@
 #include "costmap_layers/core/layered_costmap.hpp"
 #include "costmap_layers/core/publish_schedule.hpp"
 #include "costmap_layers/core/transform2d.hpp"
+#include "costmap_layers/ros/layer_ports.hpp"
 #include "costmap_layers/ros/layer_reconfigure.hpp"
 #include "costmap_layers/ros/plugin_factory.hpp"
 #include "costmap_layers/ros/ros_layer_context.hpp"
@@ -65,6 +66,7 @@ private:
   ros::Publisher costmap_pub_;
   ros::Publisher update_pub_;
   ros::Publisher footprint_pub_;
+  std::vector<std::unique_ptr<LayerPorts>> ports_;  ///< every layer's subscriptions and publications
   std::vector<std::unique_ptr<LayerReconfigure>> reconfigure_;  ///< one dynamic_reconfigure server per layer
   ros::ServiceServer clear_srv_;
   ros::ServiceServer clear_around_srv_;

@@ -1,6 +1,6 @@
-// LayerContext on ROS 1: parameters from the plugin's namespace on the parameter server, inputs from
-// topics, outputs to latched topics and a toggle service, transforms from tf2, reports to rosconsole
-// throttled per key.
+// LayerContext on ROS 1: parameters from the plugin's namespace on the parameter server, transforms
+// from tf2, the ROS clock, reports to rosconsole throttled per key. (Subscriptions and publications
+// are LayerPorts'.)
 #pragma once
 
 #include <ros/ros.h>
@@ -49,23 +49,12 @@ class RosLayerContext : public costmap_layers::LayerContext
 {
 public:
   /// @param private_nh  the plugin's own namespace (~<name>); params is its parameter tree
-  RosLayerContext(ros::NodeHandle public_nh, ros::NodeHandle private_nh, costmap_layers::ParamValue params,
-                  std::string global_frame, double transform_tolerance, tf2_ros::Buffer& tf,
-                  std::shared_ptr<ThrottledLog> log);
+  RosLayerContext(ros::NodeHandle private_nh, costmap_layers::ParamValue params, std::string global_frame,
+                  double transform_tolerance, tf2_ros::Buffer& tf, std::shared_ptr<ThrottledLog> log);
 
   const costmap_layers::ParamValue& params() const override { return params_; }
   const std::string& globalFrame() const override { return global_frame_; }
   double transformTolerance() const override { return transform_tolerance_; }
-  void subscribeGrid(const std::string& topic, costmap_layers::GridKind kind, costmap_layers::GridCallback cb) override;
-  void subscribeGridUpdates(const std::string& topic, costmap_layers::GridUpdateCallback cb) override;
-  void subscribeSpeedLimits(const std::string& topic, costmap_layers::SpeedLimitsCallback cb) override;
-  void subscribeLaserScan(const std::string& topic, const std::string& sensor_frame,
-                          costmap_layers::SensorCallback<costmap_layers::LaserScanData> cb) override;
-  void subscribePointCloud2(const std::string& topic, const std::string& sensor_frame,
-                            costmap_layers::SensorCallback<costmap_layers::PointCloud2Data> cb) override;
-  void subscribeRange(const std::string& topic, costmap_layers::SensorCallback<costmap_layers::RangeData> cb) override;
-  costmap_layers::MaxSpeedPublisher advertiseMaxSpeed(const std::string& topic) override;
-  void advertiseToggle(std::function<void(bool)> cb) override;
   std::optional<costmap_layers::Transform2D> lookupTransform(const std::string& target_frame,
                                                              const std::string& source_frame,
                                                              std::string* error) override;
@@ -73,22 +62,11 @@ public:
   void report(costmap_layers::Severity severity, const std::string& key, const std::string& message) override;
 
 private:
-  /// Subscribes through a tf gate (see ros_layer_context.cpp): a reading is delivered once its frame
-  /// can be transformed into the global frame at its stamp, or dropped with a throttled warning.
-  template <class Msg, class Reading>
-  void subscribeSensor(const std::string& topic, const std::string& sensor_frame,
-                       costmap_layers::SensorCallback<Reading> cb);
-
-  ros::NodeHandle public_nh_;
   ros::NodeHandle private_nh_;
   costmap_layers::ParamValue params_;
   std::string global_frame_;
   double transform_tolerance_;
   tf2_ros::Buffer& tf_;
   std::shared_ptr<ThrottledLog> log_;
-  std::vector<ros::Subscriber> subscribers_;
-  std::vector<ros::Publisher> publishers_;
-  std::vector<ros::ServiceServer> services_;
-  std::vector<std::shared_ptr<void>> sensor_inputs_;  ///< tf gates with their subscribers
 };
 }  // namespace costmap_layers_ros

@@ -1,0 +1,18 @@
+// What is wrong with an input, as a small result: the field at fault (a stable key for throttling and
+// for tests, never a value from the message) and one line naming the field and its value.
+#pragma once
+
+#include <string>
+
+namespace costmap_layers
+{
+struct InputError
+{
+  std::string field;    ///< e.g. "info.resolution", "data", "header.stamp"; empty when the input is fine
+  std::string message;  ///< e.g. "info.resolution must be finite and positive (got nan)"
+
+  bool ok() const { return message.empty(); }
+  static InputError none() { return {}; }
+  static InputError of(std::string field, std::string message) { return {std::move(field), std::move(message)}; }
+};
+}  // namespace costmap_layers

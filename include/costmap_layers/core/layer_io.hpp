@@ -1,0 +1,81 @@
+// What a layer takes from and gives to the world, as data. A layer declares its input ports (a kind,
+// a topic, a typed handler) and output ports (a kind and a topic) while it initialises; the host (the
+// ROS node, costmap_tool, a test) owns every subscription and publication: it subscribes to each
+// input port and hands the typed message to the handler, and publishes the events the layer emits.
+// The core never subscribes, advertises or publishes anything itself.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "costmap_layers/core/grid_data.hpp"
+#include "costmap_layers/core/sensor_data.hpp"
+
+namespace costmap_layers
+{
+/// What an input carries, so that a host knows the message type (and an offline host which file).
+enum class InputKind
+{
+  Map,          ///< nav_msgs/OccupancyGrid: a map
+  Mask,         ///< nav_msgs/OccupancyGrid: a filter mask
+  MapUpdates,   ///< map_msgs/OccupancyGridUpdate
+  SpeedLimits,  ///< costmap_layers/SpeedLimits
+  LaserScan,    ///< sensor_msgs/LaserScan, delivered with the sensor pose
+  PointCloud2,  ///< sensor_msgs/PointCloud2, delivered with the sensor pose
+  Range         ///< sensor_msgs/Range, delivered with the sensor pose
+};
+
+using GridCallback = std::function<void(const std::shared_ptr<const OccupancyGridData>&)>;
+using GridUpdateCallback = std::function<void(const std::shared_ptr<const OccupancyGridUpdateData>&)>;
+using SpeedLimitsCallback = std::function<void(const std::shared_ptr<const SpeedLimitsData>&)>;
+template <class Reading>
+using SensorCallback = std::function<void(const std::shared_ptr<const Reading>&, const SensorPose&)>;
+
+/// One input of a layer. Exactly the handler of its kind is set. Handlers may be called from any
+/// thread; sensor handlers only once the host has the transform from the reading's frame into the
+/// global frame at the reading's stamp (it waits a bounded time for tf, then drops the reading with a
+/// throttled warning naming the frames).
+struct InputPort
+{
+  InputKind kind = InputKind::Map;
+  std::string topic;
+  /// Sensors: when not empty, the frame whose origin is the sensor origin (else the reading's frame).
+  std::string sensor_frame;
+  GridCallback on_grid;              ///< Map, Mask
+  GridUpdateCallback on_update;      ///< MapUpdates
+  SpeedLimitsCallback on_limits;     ///< SpeedLimits
+  SensorCallback<LaserScanData> on_scan;
+  SensorCallback<PointCloud2Data> on_cloud;
+  SensorCallback<RangeData> on_range;
+
+  static InputPort grid(InputKind kind, std::string topic, GridCallback cb);
+  static InputPort mapUpdates(std::string topic, GridUpdateCallback cb);
+  static InputPort speedLimits(std::string topic, SpeedLimitsCallback cb);
+  static InputPort laserScan(std::string topic, std::string sensor_frame, SensorCallback<LaserScanData> cb);
+  static InputPort pointCloud2(std::string topic, std::string sensor_frame, SensorCallback<PointCloud2Data> cb);
+  static InputPort range(std::string topic, SensorCallback<RangeData> cb);
+};
+
+/// What an output carries.
+enum class OutputKind
+{
+  MaxSpeed  ///< costmap_layers/MaxSpeed, latched: the speed limit in force [m/s] (0 = none)
+};
+
+/// One output of a layer: the host advertises it when the layer is loaded.
+struct OutputPort
+{
+  OutputKind kind = OutputKind::MaxSpeed;
+  std::string topic;
+};
+
+/// An event on an output port, emitted by the layer (on the update thread) for the host to publish.
+struct OutputEvent
+{
+  OutputKind kind = OutputKind::MaxSpeed;
+  std::string topic;
+  double value = 0.0;
+};
+using OutputListener = std::function<void(const OutputEvent&)>;
+}  // namespace costmap_layers

@@ -1,0 +1,54 @@
+// The ROS side of one layer's ports: every subscription and publication of the layer lives here, not
+// in the core. Each input port becomes a subscription (sensors through a tf gate: a reading reaches
+// the layer once tf can place it), each output port a latched publisher of the layer's events, and a
+// filter's switch a ~<name>/toggle service.
+#pragma once
+
+#include <ros/ros.h>
+#include <tf2_ros/buffer.h>
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "costmap_layers/core/layer.hpp"
+#include "costmap_layers/ros/ros_layer_context.hpp"
+
+namespace costmap_layers_ros
+{
+class LayerPorts
+{
+public:
+  /// @param public_nh   resolves the layers' topics
+  /// @param private_nh  the layer's own namespace (~<name>): its toggle service
+  /// The layer must outlive this object; the destructor detaches from the layer's outputs.
+  LayerPorts(ros::NodeHandle public_nh, ros::NodeHandle private_nh, costmap_layers::Layer& layer,
+             std::string global_frame, tf2_ros::Buffer& tf, std::shared_ptr<ThrottledLog> log);
+  ~LayerPorts();
+  LayerPorts(const LayerPorts&) = delete;
+  LayerPorts& operator=(const LayerPorts&) = delete;
+
+private:
+  void subscribeGrid(const std::string& topic, costmap_layers::GridCallback cb);
+  void subscribeGridUpdates(const std::string& topic, costmap_layers::GridUpdateCallback cb);
+  void subscribeSpeedLimits(const std::string& topic, costmap_layers::SpeedLimitsCallback cb);
+  /// Subscribes through a tf gate (see layer_ports.cpp): a reading is delivered once its frame can be
+  /// transformed into the global frame at its stamp, or dropped with a throttled warning.
+  template <class Msg, class Reading>
+  void subscribeSensor(const std::string& topic, const std::string& sensor_frame,
+                       costmap_layers::SensorCallback<Reading> cb);
+  void publish(const costmap_layers::OutputEvent& event);
+
+  ros::NodeHandle public_nh_;
+  ros::NodeHandle private_nh_;
+  costmap_layers::Layer& layer_;
+  std::string global_frame_;
+  tf2_ros::Buffer& tf_;
+  std::shared_ptr<ThrottledLog> log_;
+  std::vector<ros::Subscriber> subscribers_;
+  std::vector<std::shared_ptr<void>> sensor_inputs_;  ///< tf gates with their subscribers
+  std::map<std::string, ros::Publisher> publishers_;  ///< by topic
+  ros::ServiceServer toggle_;
+};
+}  // namespace costmap_layers_ros

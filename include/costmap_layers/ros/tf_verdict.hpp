@@ -1,0 +1,29 @@
+// The rule of the sensor inputs' tf gate, apart from its subscriptions and timers so that it can be
+// unit-tested on a hand-filled tf2::BufferCore: can tf place a reading now, later, or never?
+#pragma once
+
+#include <ros/time.h>
+#include <tf2/buffer_core.h>
+
+#include <string>
+
+namespace costmap_layers_ros
+{
+enum class TfVerdict
+{
+  Ready,     ///< tf can transform the reading's frame at its stamp
+  Wait,      ///< not yet: the transform may still arrive
+  TooOld,    ///< older than every transform tf keeps: it never will
+  Future,    ///< stamped more than max_ahead after now: a wrong clock, or the clock jumped back
+  NoFrame,   ///< header.frame_id is empty
+  PushedOut  ///< waited until the gate's queue was full of newer readings
+};
+
+/// Whether tf can transform `frame` into `target` at `stamp`, given the time `now`.
+/// @param max_ahead  [s] how far a stamp may lie ahead of now: tf's canTransform() is true at any
+///                   stamp between a frame and itself, so a reading from the future would pass.
+/// Uses only tf2's public, locked calls (canTransform, lookupTransform, getCacheLength; the last is not
+/// const in tf2, hence the non-const buffer).
+TfVerdict tfVerdict(tf2::BufferCore& tf, const std::string& target, const std::string& frame,
+                    const ros::Time& stamp, const ros::Time& now, double max_ahead);
+}  // namespace costmap_layers_ros

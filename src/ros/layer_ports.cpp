@@ -1,0 +1,323 @@
+#include "costmap_layers/ros/layer_ports.hpp"
+
+#include <map_msgs/OccupancyGridUpdate.h>
+#include <nav_msgs/OccupancyGrid.h>
+#include <sensor_msgs/LaserScan.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <sensor_msgs/Range.h>
+#include <std_srvs/SetBool.h>
+#include <tf2/exceptions.h>
+
+#include <cmath>
+#include <cstdio>
+#include <deque>
+#include <mutex>
+
+#include "costmap_layers/MaxSpeed.h"
+#include "costmap_layers/SpeedLimits.h"
+#include "costmap_layers/core/costmap_filter.hpp"
+#include "costmap_layers/ros/conversions.hpp"
+#include "costmap_layers/ros/tf_verdict.hpp"
+
+namespace costmap_layers_ros
+{
+using costmap_layers::InputKind;
+using costmap_layers::Severity;
+
+TfVerdict tfVerdict(tf2::BufferCore& tf, const std::string& target, const std::string& frame,
+                    const ros::Time& stamp, const ros::Time& now, double max_ahead)
+{
+  if (frame.empty()) return TfVerdict::NoFrame;
+  if ((stamp - now).toSec() > max_ahead) return TfVerdict::Future;
+  if (tf.canTransform(target, frame, stamp)) return TfVerdict::Ready;
+  try
+  {
+    // The newest transform tf has between the frames; the reading is beyond hope when even the
+    // oldest one tf still keeps is newer than it.
+    const ros::Time latest = tf.lookupTransform(target, frame, ros::Time(0)).header.stamp;
+    if (!latest.isZero() && stamp + tf.getCacheLength() < latest) return TfVerdict::TooOld;
+  }
+  catch (const tf2::TransformException&)
+  {
+    // frames not connected (yet): wait
+  }
+  return TfVerdict::Wait;
+}
+
+LayerPorts::LayerPorts(ros::NodeHandle public_nh, ros::NodeHandle private_nh, costmap_layers::Layer& layer,
+                       std::string global_frame, tf2_ros::Buffer& tf, std::shared_ptr<ThrottledLog> log)
+    : public_nh_(std::move(public_nh)),
+      private_nh_(std::move(private_nh)),
+      layer_(layer),
+      global_frame_(std::move(global_frame)),
+      tf_(tf),
+      log_(std::move(log))
+{
+  for (const costmap_layers::InputPort& in : layer.inputs())
+  {
+    switch (in.kind)
+    {
+      case InputKind::Map:
+      case InputKind::Mask:
+        subscribeGrid(in.topic, in.on_grid);
+        break;
+      case InputKind::MapUpdates:
+        subscribeGridUpdates(in.topic, in.on_update);
+        break;
+      case InputKind::SpeedLimits:
+        subscribeSpeedLimits(in.topic, in.on_limits);
+        break;
+      case InputKind::LaserScan:
+        subscribeSensor<sensor_msgs::LaserScan>(in.topic, in.sensor_frame, in.on_scan);
+        break;
+      case InputKind::PointCloud2:
+        subscribeSensor<sensor_msgs::PointCloud2>(in.topic, in.sensor_frame, in.on_cloud);
+        break;
+      case InputKind::Range:
+        subscribeSensor<sensor_msgs::Range>(in.topic, "", in.on_range);
+        break;
+    }
+  }
+  for (const costmap_layers::OutputPort& out : layer.outputs())
+    if (out.kind == costmap_layers::OutputKind::MaxSpeed)
+      publishers_[out.topic] = public_nh_.advertise<costmap_layers::MaxSpeed>(out.topic, 1, true);
+  if (!publishers_.empty())
+    layer.setOutputListener([this](const costmap_layers::OutputEvent& e) { publish(e); });
+  // A filter's one switch, as a service: the same flag as its `enabled` parameter.
+  if (auto* filter = dynamic_cast<costmap_layers::CostmapFilter*>(&layer))
+    toggle_ = private_nh_.advertiseService<std_srvs::SetBool::Request, std_srvs::SetBool::Response>(
+        "toggle",
+        [filter](std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res)
+        {
+          filter->setEnabled(req.data);
+          res.success = true;
+          res.message = req.data ? "enabled" : "disabled";
+          return true;
+        });
+}
+
+LayerPorts::~LayerPorts()
+{
+  if (!publishers_.empty()) layer_.setOutputListener({});
+}
+
+void LayerPorts::publish(const costmap_layers::OutputEvent& e)
+{
+  const auto it = publishers_.find(e.topic);
+  if (it == publishers_.end()) return;
+  costmap_layers::MaxSpeed msg;
+  msg.header.frame_id = global_frame_;
+  msg.header.stamp = ros::Time::now();
+  msg.max_speed = e.value;
+  it->second.publish(msg);
+}
+
+void LayerPorts::subscribeGrid(const std::string& topic, costmap_layers::GridCallback cb)
+{
+  const std::string owner = private_nh_.getNamespace();
+  subscribers_.push_back(public_nh_.subscribe<nav_msgs::OccupancyGrid>(
+      topic, 1,
+      [cb, owner, topic, log = log_](const nav_msgs::OccupancyGrid::ConstPtr& msg)
+      {
+        try
+        {
+          std::string note;
+          auto grid = std::make_shared<const costmap_layers::OccupancyGridData>(fromMsg(*msg, &note));
+          if (!note.empty())
+            log->log(Severity::Warn, owner + topic + "/info.origin.orientation", owner + ": grid on " + topic + ": " + note);
+          cb(grid);
+        }
+        catch (const std::exception& e)
+        {
+          log->log(Severity::Error, owner + topic, owner + ": dropped a grid on " + topic + ": " + e.what());
+        }
+      }));
+}
+
+void LayerPorts::subscribeGridUpdates(const std::string& topic, costmap_layers::GridUpdateCallback cb)
+{
+  const std::string owner = private_nh_.getNamespace();
+  subscribers_.push_back(public_nh_.subscribe<map_msgs::OccupancyGridUpdate>(
+      topic, 10,
+      [cb, owner, topic, log = log_](const map_msgs::OccupancyGridUpdate::ConstPtr& msg)
+      {
+        try
+        {
+          cb(std::make_shared<const costmap_layers::OccupancyGridUpdateData>(fromMsg(*msg)));
+        }
+        catch (const std::exception& e)
+        {
+          log->log(Severity::Error, owner + topic, owner + ": dropped a map update on " + topic + ": " + e.what());
+        }
+      }));
+}
+
+void LayerPorts::subscribeSpeedLimits(const std::string& topic, costmap_layers::SpeedLimitsCallback cb)
+{
+  const std::string owner = private_nh_.getNamespace();
+  subscribers_.push_back(public_nh_.subscribe<costmap_layers::SpeedLimits>(
+      topic, 1,
+      [cb, owner, topic, log = log_](const costmap_layers::SpeedLimits::ConstPtr& msg)
+      {
+        try
+        {
+          cb(std::make_shared<const costmap_layers::SpeedLimitsData>(fromMsg(*msg)));
+        }
+        catch (const std::exception& e)
+        {
+          log->log(Severity::Error, owner + topic, owner + ": dropped speed limits on " + topic + ": " + e.what());
+        }
+      }));
+}
+
+namespace
+{
+/// Holds each reading until tf can place it, then hands it on in arrival order; the readings tf will
+/// never place are handed to the failure callback. This replaces tf2_ros::MessageFilter, whose
+/// addTransformableRequest() in Debian's tf2 (0.7.6) reads tf's frame table without tf's lock, a race
+/// with the tf listener adding frames that TSan reports (fixed upstream in 0.7.10, ros/geometry2#539).
+/// Only tf2's public, locked calls are used here: canTransform(), lookupTransform(), getCacheLength().
+template <class Msg>
+class TfGate : public std::enable_shared_from_this<TfGate<Msg>>
+{
+public:
+  using Ptr = typename Msg::ConstPtr;
+  static constexpr std::size_t kQueue = 10;     ///< readings that may wait for tf at once
+  static constexpr double kRetryPeriod = 0.02;  ///< [s] how often waiting readings are retried
+  /// [s] how far a reading's stamp may lie ahead of now. tf's canTransform() is true at any stamp
+  /// between a frame and itself, so without this a reading from the future would pass (and, buffered,
+  /// look fresh until the clock caught up with it).
+  static constexpr double kMaxAhead = 1.0;
+
+  static std::shared_ptr<TfGate> create(ros::NodeHandle& nh, const std::string& topic, tf2_ros::Buffer& tf,
+                                        std::string target, std::function<void(const Ptr&)> ready,
+                                        std::function<void(const Ptr&, TfVerdict)> failed)
+  {
+    std::shared_ptr<TfGate> gate(new TfGate(tf, std::move(target), std::move(ready), std::move(failed)));
+    std::weak_ptr<TfGate> weak = gate;  // callbacks still in flight after destruction do nothing
+    gate->subscriber_ = nh.subscribe<Msg>(topic, 5,
+                                          [weak](const Ptr& msg)
+                                          {
+                                            if (auto g = weak.lock()) g->arrive(msg);
+                                          });
+    gate->timer_ = nh.createWallTimer(ros::WallDuration(kRetryPeriod),
+                                      [weak](const ros::WallTimerEvent&)
+                                      {
+                                        if (auto g = weak.lock()) g->arrive(nullptr);
+                                      });
+    return gate;
+  }
+
+private:
+  TfGate(tf2_ros::Buffer& tf, std::string target, std::function<void(const Ptr&)> ready,
+         std::function<void(const Ptr&, TfVerdict)> failed)
+      : tf_(tf), target_(std::move(target)), ready_(std::move(ready)), failed_(std::move(failed))
+  {
+  }
+
+  TfVerdict check(const Msg& msg) const
+  {
+    return tfVerdict(tf_, target_, msg.header.frame_id, msg.header.stamp, ros::Time::now(), kMaxAhead);
+  }
+
+  /// Queues msg (when not null) and hands on, in order, every waiting reading tf can now place. One
+  /// lock for queue and delivery: the layer sees one input's readings one at a time and in order.
+  void arrive(const Ptr& msg)
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (msg) waiting_.push_back(msg);
+    std::deque<Ptr> still;
+    for (const Ptr& m : waiting_)
+    {
+      const TfVerdict v = check(*m);
+      if (v == TfVerdict::Ready)
+        ready_(m);
+      else if (v == TfVerdict::Wait)
+        still.push_back(m);
+      else
+        failed_(m, v);
+    }
+    while (still.size() > kQueue)
+    {
+      failed_(still.front(), TfVerdict::PushedOut);
+      still.pop_front();
+    }
+    waiting_.swap(still);
+  }
+
+  tf2_ros::Buffer& tf_;
+  const std::string target_;
+  const std::function<void(const Ptr&)> ready_;
+  const std::function<void(const Ptr&, TfVerdict)> failed_;
+  std::mutex mutex_;
+  std::deque<Ptr> waiting_;
+  ros::Subscriber subscriber_;
+  ros::WallTimer timer_;
+};
+}  // namespace
+
+template <class Msg, class Reading>
+void LayerPorts::subscribeSensor(const std::string& topic, const std::string& sensor_frame,
+                                      costmap_layers::SensorCallback<Reading> cb)
+{
+  const std::string owner = private_nh_.getNamespace();
+  const std::string global = global_frame_;
+  tf2_ros::Buffer& tf = tf_;
+  auto log = log_;
+  auto ready = [=, &tf](const typename Msg::ConstPtr& msg)
+  {
+    try
+    {
+      costmap_layers::SensorPose pose;
+      const std::string& frame = msg->header.frame_id;
+      pose.to_global = fromMsg(tf.lookupTransform(global, frame, msg->header.stamp).transform);
+      const std::string origin_frame = sensor_frame.empty() ? frame : sensor_frame;
+      const auto origin = tf.lookupTransform(global, origin_frame, msg->header.stamp, ros::Duration(0.1));
+      pose.origin_x = origin.transform.translation.x;
+      pose.origin_y = origin.transform.translation.y;
+      pose.origin_z = origin.transform.translation.z;
+      cb(std::make_shared<const Reading>(fromMsg(*msg)), pose);
+    }
+    catch (const std::exception& e)
+    {
+      log->log(Severity::Warn, owner + topic + "/tf",
+               owner + ": dropped a reading on " + topic + " (frame " + msg->header.frame_id + "): " + e.what());
+    }
+  };
+  auto failed = [=](const typename Msg::ConstPtr& msg, TfVerdict verdict)
+  {
+    // Each reason is its own throttled report, so that a stale stamp does not hide a wrong frame.
+    std::string key = owner + topic + "/tf/", why;
+    const ros::Time stamp = msg->header.stamp;
+    const double behind = (ros::Time::now() - stamp).toSec();
+    char when[96];
+    std::snprintf(when, sizeof(when), "header.stamp %.3f s (%.3f s %s now)", stamp.toSec(), std::fabs(behind),
+                  behind >= 0.0 ? "before" : "after");
+    switch (verdict)
+    {
+      case TfVerdict::NoFrame:
+        key += "frame_id";
+        why = "header.frame_id is empty";
+        break;
+      case TfVerdict::TooOld:
+        key += "stamp";
+        why = std::string(when) + " is older than every transform tf keeps";
+        break;
+      case TfVerdict::Future:
+        key += "future";
+        why = std::string(when) + " is more than " + std::to_string(TfGate<Msg>::kMaxAhead) +
+              " s ahead of the clock (a wrong sensor clock, or the clock jumped back)";
+        break;
+      default:
+        key += "wait";
+        why = std::string("no transform at ") + when + " arrived while " + std::to_string(TfGate<Msg>::kQueue) +
+              " newer readings waited";
+        break;
+    }
+    log->log(Severity::Warn, key,
+             owner + ": dropped a reading on " + topic + ": cannot transform frame '" + msg->header.frame_id +
+                 "' into '" + global + "': " + why);
+  };
+  sensor_inputs_.push_back(TfGate<Msg>::create(public_nh_, topic, tf_, global_frame_, ready, failed));
+}
+}  // namespace costmap_layers_ros

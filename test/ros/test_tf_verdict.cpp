@@ -1,0 +1,82 @@
+// The tf gate's rule on a hand-filled tf2::BufferCore: no master, no listener, no waiting.
+#include <geometry_msgs/TransformStamped.h>
+#include <gtest/gtest.h>
+
+#include "costmap_layers/ros/tf_verdict.hpp"
+
+using costmap_layers_ros::TfVerdict;
+using costmap_layers_ros::tfVerdict;
+
+namespace
+{
+geometry_msgs::TransformStamped tf(const std::string& parent, const std::string& child, double t, double x)
+{
+  geometry_msgs::TransformStamped m;
+  m.header.frame_id = parent;
+  m.header.stamp = ros::Time(t);
+  m.child_frame_id = child;
+  m.transform.translation.x = x;
+  m.transform.rotation.w = 1.0;
+  return m;
+}
+
+struct Rig
+{
+  tf2::BufferCore buffer{ros::Duration(10.0)};  // keeps 10 s of transforms
+  Rig()
+  {
+    // map -> base_link from t = 100 s to t = 120 s, every second; base_link -> laser is static.
+    for (int t = 100; t <= 120; ++t)
+      buffer.setTransform(tf("map", "base_link", t, 0.1 * t), "test");
+    buffer.setTransform(tf("base_link", "laser", 0.0, 0.2), "test", true);
+  }
+  TfVerdict at(const std::string& frame, double stamp, double now = 120.0)
+  {
+    return tfVerdict(buffer, "map", frame, ros::Time(stamp), ros::Time(now), 1.0);
+  }
+};
+}  // namespace
+
+TEST(TfVerdict, ReadyWhereTfHasTheTransform)
+{
+  Rig r;
+  EXPECT_EQ(r.at("base_link", 115.5), TfVerdict::Ready);
+  EXPECT_EQ(r.at("laser", 119.0), TfVerdict::Ready);  // through the static transform
+  EXPECT_EQ(r.at("map", 119.0), TfVerdict::Ready);
+}
+
+TEST(TfVerdict, WaitForATransformThatMayStillArrive)
+{
+  Rig r;
+  EXPECT_EQ(r.at("base_link", 120.5, 120.6), TfVerdict::Wait);  // newer than the newest transform
+  EXPECT_EQ(r.at("unknown_frame", 119.0), TfVerdict::Wait);     // not connected yet
+}
+
+TEST(TfVerdict, TooOldForEveryTransformTfKeeps)
+{
+  Rig r;
+  // The buffer keeps the last 10 s before its newest transform (120 s): 105 s and earlier are gone.
+  EXPECT_EQ(r.at("base_link", 100.0), TfVerdict::TooOld);
+  EXPECT_EQ(r.at("laser", 50.0), TfVerdict::TooOld);
+}
+
+// canTransform() between a frame and itself is true at any stamp, so without the clock check a
+// reading from the future would pass (and look fresh in the buffers until the clock caught up).
+TEST(TfVerdict, StampsAheadOfTheClockAreRefused)
+{
+  Rig r;
+  EXPECT_EQ(r.at("map", 121.5, 120.0), TfVerdict::Future);
+  EXPECT_EQ(r.at("map", 3600.0 + 120.0, 120.0), TfVerdict::Future);
+  EXPECT_EQ(r.at("base_link", 130.0, 120.0), TfVerdict::Future);
+  // Within the allowance it is tf's call: map to itself is ready, base_link waits for tf.
+  EXPECT_EQ(r.at("map", 120.9, 120.0), TfVerdict::Ready);
+  EXPECT_EQ(r.at("base_link", 120.9, 120.0), TfVerdict::Wait);
+  // After the clock jumped back (a restarted simulation), readings of the old timeline are future.
+  EXPECT_EQ(r.at("map", 119.0, 5.0), TfVerdict::Future);
+}
+
+TEST(TfVerdict, AnEmptyFrameIsNamed)
+{
+  Rig r;
+  EXPECT_EQ(r.at("", 119.0), TfVerdict::NoFrame);
+}
