@@ -10,6 +10,7 @@
 #include "costmap_layers/core/cost_values.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
 #include "costmap_layers/core/param_reader.hpp"
+#include "costmap_layers/core/stamp_order.hpp"
 
 namespace costmap_layers
 {
@@ -167,8 +168,7 @@ std::string ObstacleLayer::addLaserScan(std::size_t source, const LaserScanData&
                      sourceLabel(source) + ": reading rejected: " + r.error);
     return r.error;
   }
-  bufferPoints(source, local, local_clear, scan.stamp_ns, pose);
-  return {};
+  return bufferPoints(source, local, local_clear, scan.stamp_ns, pose);
 }
 
 std::string ObstacleLayer::addPointCloud2(std::size_t source, const PointCloud2Data& cloud, const SensorPose& pose)
@@ -185,15 +185,22 @@ std::string ObstacleLayer::addPointCloud2(std::size_t source, const PointCloud2D
                      sourceLabel(source) + ": reading rejected: " + r.error);
     return r.error;
   }
-  bufferPoints(source, local, local_clear, cloud.stamp_ns, pose);
-  return {};
+  return bufferPoints(source, local, local_clear, cloud.stamp_ns, pose);
 }
 
-void ObstacleLayer::bufferPoints(std::size_t source, const std::vector<Point3f>& local,
-                                 const std::vector<Point3f>& local_clear, uint64_t stamp_ns, const SensorPose& pose)
+std::string ObstacleLayer::bufferPoints(std::size_t source, const std::vector<Point3f>& local,
+                                        const std::vector<Point3f>& local_clear, uint64_t stamp_ns,
+                                        const SensorPose& pose)
 {
   const ObservationSourceConfig& s = config_.sources[source];
   const uint64_t now = context_->nowNs();
+  // Buffered, it would count as fresh until the clock caught up with it: a ghost re-marked every cycle.
+  if (isAheadOfNow(stamp_ns, now))
+  {
+    const std::string error = aheadOfNowError(stamp_ns, now);
+    context_->report(Severity::Warn, "future/" + s.name, sourceLabel(source) + ": reading rejected: " + error);
+    return error;
+  }
   auto obs = std::make_shared<Observation>();
   obs->origin_x = pose.origin_x;
   obs->origin_y = pose.origin_y;
@@ -220,6 +227,7 @@ void ObstacleLayer::bufferPoints(std::size_t source, const std::vector<Point3f>&
   project(local, obs->points);
   project(local_clear, obs->clear_only);
   buffers_[source]->add(std::move(obs), now);
+  return {};
 }
 
 void ObstacleLayer::addStaticObservation(const Observation& observation, bool marking, bool clearing)
@@ -275,6 +283,7 @@ void ObstacleLayer::updateBounds(double robot_x, double robot_y, double robot_ya
     clearing_.insert(clearing_.end(), static_clearing_.begin(), static_clearing_.end());
   }
   current_ = current;
+  reportClockJump();
 
   for (const auto& obs : clearing_)
     raytraceFreespace(*obs, min_x, min_y, max_x, max_y);
@@ -292,6 +301,31 @@ void ObstacleLayer::updateBounds(double robot_x, double robot_y, double robot_ya
     for (const auto& v : transformed_footprint_)
       touch(v.x(), v.y(), min_x, min_y, max_x, max_y);
   }
+}
+
+void ObstacleLayer::reportClockJump()
+{
+  // The buffers saw the jump (on this thread or a sensor thread) and dropped their readings: one warning
+  // for all of them.
+  std::optional<ObservationBuffer::ClockJump> jump;
+  for (auto& b : buffers_)
+  {
+    const auto j = b->takeClockJump();
+    if (!j) continue;
+    if (!jump)
+      jump = j;
+    else
+    {
+      jump->from_ns = std::max(jump->from_ns, j->from_ns);
+      jump->to_ns = std::min(jump->to_ns, j->to_ns);
+      jump->dropped += j->dropped;
+    }
+  }
+  if (!jump) return;
+  context_->report(Severity::Warn, "clock_jump",
+                   name_ + ": " + clockJumpMessage(jump->from_ns, jump->to_ns) + ": dropped " +
+                       std::to_string(jump->dropped) +
+                       " buffered reading(s); the expected_update_rate checks restart now (the grid is kept)");
 }
 
 bool ObstacleLayer::clipRay2D(double ox, double oy, double wx, double wy, double max_range, double& t) const

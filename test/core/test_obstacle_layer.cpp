@@ -540,3 +540,66 @@ TEST(ObstacleLayer, ReadingsFromAnotherThread)
   EXPECT_EQ(rig.master().getCost(6, 2), LETHAL_OBSTACLE);
   EXPECT_EQ(rig.master().getCost(2, 8), LETHAL_OBSTACLE);
 }
+
+TEST(ObstacleLayer, ReadingStampedAheadOfNowIsRejectedNotAGhost)
+{
+  // A reading stamped 90 s ahead of the clock would count as fresh until the clock caught up: a ghost
+  // obstacle re-marked every cycle, which clearing cannot remove. It is refused with a report naming
+  // header.stamp and now.
+  Rig rig(obstacleParams({{"footprint_clearing_enabled", B(false)}}, {{"observation_persistence", D(1.0)}}), false,
+          true);
+  rig.ctx->now_ns = 10'000'000'000;
+  rig.cloud({{5.5, 5.5, 0.5}}, poseAt(5.5, 2.5, 0.5), 100'000'000'000);
+  rig.update();
+  EXPECT_EQ(rig.master().getCost(5, 5), NO_INFORMATION);
+  EXPECT_EQ(rig.ctx->countReports("header.stamp 100.000 s"), 1);
+  EXPECT_EQ(rig.ctx->countReports("now 10.000 s"), 1);
+  // Up to half a second ahead (clock skew between hosts) is accepted, and expires like any other.
+  rig.cloud({{5.5, 5.5, 0.5}}, poseAt(5.5, 2.5, 0.5), 10'400'000'000);
+  rig.update();
+  EXPECT_EQ(rig.master().getCost(5, 5), LETHAL_OBSTACLE);
+  rig.ctx->now_ns = 11'500'000'000;  // 1.1 s after its stamp: expired, a crossing ray clears the cell
+  rig.cloud({{8.5, 5.5, 0.5}}, poseAt(0.5, 5.5, 0.5), 11'500'000'000);
+  rig.update();
+  EXPECT_EQ(rig.master().getCost(5, 5), FREE_SPACE);
+  // The worst stamp a sender can put there.
+  rig.cloud({{2.5, 7.5, 0.5}}, poseAt(0.5, 5.5, 0.5), UINT64_MAX);
+  rig.update();
+  EXPECT_EQ(rig.master().getCost(2, 7), NO_INFORMATION);
+  EXPECT_EQ(rig.layer->buffer(0).size(), 1u);
+}
+
+TEST(ObstacleLayer, ClockJumpBackDropsBufferedReadingsWithOneWarning)
+{
+  // A looping bag or a restarted simulator: /clock goes from 1000 s back to 5 s. The reading buffered at
+  // 1000 s must not look future-stamped (fresh) for the next 995 s.
+  ParamValue p = obstacleParams({{"footprint_clearing_enabled", B(false)}},
+                                {{"observation_persistence", D(10.0)}, {"expected_update_rate", D(1.0)}});
+  Rig rig(p, false, true);
+  rig.ctx->now_ns = 1000'000'000'000;
+  rig.cloud({{5.5, 5.5, 0.5}}, poseAt(5.5, 2.5, 0.5), 1000'000'000'000);
+  rig.update();
+  ASSERT_EQ(rig.master().getCost(5, 5), LETHAL_OBSTACLE);
+  rig.ctx->now_ns = 5'000'000'000;
+  rig.cloud({{8.5, 5.5, 0.5}}, poseAt(0.5, 5.5, 0.5), 5'000'000'000);  // its ray crosses (5, 5)
+  rig.update();
+  EXPECT_EQ(rig.master().getCost(5, 5), FREE_SPACE);
+  EXPECT_EQ(rig.master().getCost(8, 5), LETHAL_OBSTACLE);
+  EXPECT_EQ(rig.layer->buffer(0).size(), 1u);
+  EXPECT_TRUE(rig.layer->isCurrent());
+  rig.ctx->now_ns = 5'500'000'000;
+  rig.update();
+  EXPECT_EQ(rig.ctx->countReports("jumped back"), 1);
+  // The update-rate check runs on the new clock: silent for 1.5 s, the source is late.
+  rig.ctx->now_ns = 6'500'000'000;
+  rig.update();
+  EXPECT_FALSE(rig.layer->isCurrent());
+  // A jump back with no reading since: late from the jump on, not current forever nor stale forever.
+  rig.ctx->now_ns = 2'000'000'000;
+  rig.update();
+  EXPECT_TRUE(rig.layer->isCurrent());
+  rig.ctx->now_ns = 3'100'000'000;
+  rig.update();
+  EXPECT_FALSE(rig.layer->isCurrent());
+  EXPECT_EQ(rig.ctx->countReports("jumped back"), 2);
+}
