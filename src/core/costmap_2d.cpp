@@ -51,7 +51,9 @@ void Costmap2D::worldToMapEnforceBounds(double wx, double wy, int& mx, int& my) 
 
 unsigned int Costmap2D::cellDistance(double world_dist) const
 {
-  const double cells = std::max(0.0, std::ceil(world_dist / resolution_));
+  const double cells = std::ceil(world_dist / resolution_);
+  if (!(cells > 0.0)) return 0;                   // also NaN
+  if (cells >= 4294967295.0) return 0xFFFFFFFFu;  // saturates: a double -> unsigned overflow is undefined
   return static_cast<unsigned int>(cells);
 }
 

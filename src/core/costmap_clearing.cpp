@@ -34,8 +34,9 @@ int resetClearableLayers(LayeredCostmap& costmap)
 
 int clearClearableLayersAround(LayeredCostmap& costmap, double x, double y, double keep_size)
 {
+  if (!std::isfinite(x) || !std::isfinite(y) || !(keep_size >= 0.0)) return -1;
+  const double half = keep_size / 2.0;
   int n = 0;
-  const double half = std::max(0.0, keep_size) / 2.0;
   for (const auto& layer : costmap.getPlugins())
   {
     if (!layer->isClearable()) continue;
@@ -47,15 +48,32 @@ int clearClearableLayersAround(LayeredCostmap& costmap, double x, double y, doub
       continue;
     }
     Costmap2D& grid = grid_layer->costmap();
-    int kx0, ky0, kx1, ky1;
-    grid.worldToMapEnforceBounds(x - half, y - half, kx0, ky0);
-    grid.worldToMapEnforceBounds(x + half, y + half, kx1, ky1);
     const unsigned sx = grid.getSizeInCellsX(), sy = grid.getSizeInCellsY();
+    // The kept square in cell coordinates, in double: the robot may be off the grid by any distance
+    // (worldToMapEnforceBounds would pull a square lying off the grid onto its edge cells). Then cut to
+    // the grid; only the clamped values are converted to integers.
+    const double res = grid.getResolution();
+    auto cells = [res](double lo_m, double hi_m, double origin, unsigned size, unsigned& lo, unsigned& hi)
+    {
+      const double lo_c = std::floor((lo_m - origin) / res), hi_c = std::floor((hi_m - origin) / res);
+      if (!(lo_c <= hi_c) || hi_c < 0.0 || lo_c >= static_cast<double>(size)) return false;  // off the grid
+      lo = static_cast<unsigned>(std::max(lo_c, 0.0));
+      hi = static_cast<unsigned>(std::min(hi_c, static_cast<double>(size) - 1.0));
+      return true;
+    };
+    unsigned kx0, kx1, ky0, ky1;
+    if (!cells(x - half, x + half, grid.getOriginX(), sx, kx0, kx1) ||
+        !cells(y - half, y + half, grid.getOriginY(), sy, ky0, ky1))
+    {
+      grid.resetMap(0, 0, sx, sy);  // the square keeps nothing of this grid
+      redrawAll(*grid_layer);
+      continue;
+    }
     // Everything but the kept square [kx0, kx1] x [ky0, ky1]: the bands below, above, left and right.
-    grid.resetMap(0, 0, sx, static_cast<unsigned>(ky0));
-    grid.resetMap(0, static_cast<unsigned>(ky1) + 1, sx, sy);
-    grid.resetMap(0, static_cast<unsigned>(ky0), static_cast<unsigned>(kx0), static_cast<unsigned>(ky1) + 1);
-    grid.resetMap(static_cast<unsigned>(kx1) + 1, static_cast<unsigned>(ky0), sx, static_cast<unsigned>(ky1) + 1);
+    grid.resetMap(0, 0, sx, ky0);
+    grid.resetMap(0, ky1 + 1, sx, sy);
+    grid.resetMap(0, ky0, kx0, ky1 + 1);
+    grid.resetMap(kx1 + 1, ky0, sx, ky1 + 1);
     redrawAll(*grid_layer);
   }
   return n;

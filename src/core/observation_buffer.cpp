@@ -1,5 +1,6 @@
 #include "costmap_layers/core/observation_buffer.hpp"
 
+#include <algorithm>
 #include <utility>
 
 namespace costmap_layers
@@ -7,34 +8,62 @@ namespace costmap_layers
 ObservationBuffer::ObservationBuffer(std::string name, const ObservationBufferConfig& config, uint64_t now_ns)
     : name_(std::move(name)), config_(config), last_updated_ns_(now_ns)
 {
+  clock_.jumpedBack(now_ns);
 }
 
-void ObservationBuffer::add(std::shared_ptr<const Observation> observation, uint64_t now_ns)
+void ObservationBuffer::noteTimeLocked(uint64_t now_ns) const
 {
-  if (!observation) return;
+  const uint64_t before = clock_.latest();
+  if (!clock_.jumpedBack(now_ns)) return;
+  if (jump_)
+  {
+    jump_->to_ns = now_ns;
+    jump_->dropped += observations_.size();
+  }
+  else
+  {
+    jump_ = ClockJump{before, now_ns, observations_.size()};
+  }
+  observations_.clear();
+  last_updated_ns_ = now_ns;
+}
+
+bool ObservationBuffer::add(std::shared_ptr<const Observation> observation, uint64_t now_ns)
+{
+  if (!observation) return false;
   std::lock_guard<std::mutex> lock(mutex_);
+  noteTimeLocked(now_ns);
+  if (isAheadOfNow(observation->stamp_ns, now_ns))
+  {
+    purgeLocked(now_ns);
+    return false;
+  }
   observations_.push_back(std::move(observation));
   last_updated_ns_ = now_ns;
   purgeLocked(now_ns);
+  return true;
 }
 
 void ObservationBuffer::purgeLocked(uint64_t now_ns)
 {
-  if (observations_.empty()) return;
-  if (config_.observation_persistence <= 0.0)
+  // Every entry is checked, not only the front ones: the buffer is in arrival order, and a reading can
+  // arrive after a newer one.
+  const bool keep_newest_only = config_.observation_persistence <= 0.0;
+  const double keep_ns = config_.observation_persistence * 1e9;
+  auto stale = [&](const std::shared_ptr<const Observation>& o)
+  {
+    const uint64_t stamp = o->stamp_ns;
+    if (isAheadOfNow(stamp, now_ns)) return true;  // from another time line, or a sender's bad clock
+    if (keep_newest_only) return false;
+    // Stamped a little ahead (within the tolerance) counts as age 0: it expires that much later.
+    const double age_ns = stamp >= now_ns ? 0.0 : static_cast<double>(now_ns - stamp);
+    return age_ns > keep_ns;
+  };
+  observations_.erase(std::remove_if(observations_.begin(), observations_.end(), stale), observations_.end());
+  if (keep_newest_only)
   {
     while (observations_.size() > 1)
       observations_.pop_front();
-    return;
-  }
-  const double keep_ns = config_.observation_persistence * 1e9;
-  while (!observations_.empty())
-  {
-    const uint64_t stamp = observations_.front()->stamp_ns;
-    // A stamp in the future (clock skew) counts as fresh.
-    const double age_ns = stamp >= now_ns ? 0.0 : static_cast<double>(now_ns - stamp);
-    if (age_ns <= keep_ns) break;
-    observations_.pop_front();
   }
 }
 
@@ -42,6 +71,7 @@ void ObservationBuffer::getObservations(std::vector<std::shared_ptr<const Observ
                                         double robot_x, double robot_y)
 {
   std::lock_guard<std::mutex> lock(mutex_);
+  noteTimeLocked(now_ns);
   purgeLocked(now_ns);
   if (config_.observation_keep_distance > 0.0)
   {
@@ -67,13 +97,15 @@ bool ObservationBuffer::isCurrent(uint64_t now_ns) const
 double ObservationBuffer::secondsSinceUpdate(uint64_t now_ns) const
 {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (now_ns <= last_updated_ns_) return 0.0;
+  noteTimeLocked(now_ns);
+  if (now_ns <= last_updated_ns_) return 0.0;  // a step back within the tolerance
   return static_cast<double>(now_ns - last_updated_ns_) * 1e-9;
 }
 
 void ObservationBuffer::resetLastUpdated(uint64_t now_ns)
 {
   std::lock_guard<std::mutex> lock(mutex_);
+  noteTimeLocked(now_ns);
   last_updated_ns_ = now_ns;
 }
 
@@ -87,5 +119,13 @@ std::size_t ObservationBuffer::size() const
 {
   std::lock_guard<std::mutex> lock(mutex_);
   return observations_.size();
+}
+
+std::optional<ObservationBuffer::ClockJump> ObservationBuffer::takeClockJump()
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::optional<ClockJump> j;
+  j.swap(jump_);
+  return j;
 }
 }  // namespace costmap_layers

@@ -10,6 +10,7 @@
 #include "costmap_layers/core/cost_values.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
 #include "costmap_layers/core/param_reader.hpp"
+#include "costmap_layers/core/stamp_order.hpp"
 
 namespace costmap_layers
 {
@@ -165,8 +166,7 @@ std::string ObstacleLayer::addLaserScan(std::size_t source, const LaserScanData&
                      sourceLabel(source) + ": reading rejected: " + r.error);
     return r.error;
   }
-  bufferPoints(source, local, local_clear, scan.stamp_ns, pose);
-  return {};
+  return bufferPoints(source, local, local_clear, scan.stamp_ns, pose);
 }
 
 std::string ObstacleLayer::addPointCloud2(std::size_t source, const PointCloud2Data& cloud, const SensorPose& pose)
@@ -183,15 +183,22 @@ std::string ObstacleLayer::addPointCloud2(std::size_t source, const PointCloud2D
                      sourceLabel(source) + ": reading rejected: " + r.error);
     return r.error;
   }
-  bufferPoints(source, local, local_clear, cloud.stamp_ns, pose);
-  return {};
+  return bufferPoints(source, local, local_clear, cloud.stamp_ns, pose);
 }
 
-void ObstacleLayer::bufferPoints(std::size_t source, const std::vector<Point3f>& local,
-                                 const std::vector<Point3f>& local_clear, uint64_t stamp_ns, const SensorPose& pose)
+std::string ObstacleLayer::bufferPoints(std::size_t source, const std::vector<Point3f>& local,
+                                        const std::vector<Point3f>& local_clear, uint64_t stamp_ns,
+                                        const SensorPose& pose)
 {
   const ObservationSourceConfig& s = config_.sources[source];
   const uint64_t now = context_->nowNs();
+  // Buffered, it would count as fresh until the clock caught up with it: a ghost re-marked every cycle.
+  if (isAheadOfNow(stamp_ns, now))
+  {
+    const std::string error = aheadOfNowError(stamp_ns, now);
+    context_->report(Severity::Warn, "future/" + s.name, sourceLabel(source) + ": reading rejected: " + error);
+    return error;
+  }
   auto obs = std::make_shared<Observation>();
   obs->origin_x = pose.origin_x;
   obs->origin_y = pose.origin_y;
@@ -218,6 +225,7 @@ void ObstacleLayer::bufferPoints(std::size_t source, const std::vector<Point3f>&
   project(local, obs->points);
   project(local_clear, obs->clear_only);
   buffers_[source]->add(std::move(obs), now);
+  return {};
 }
 
 void ObstacleLayer::addStaticObservation(const Observation& observation, bool marking, bool clearing)
@@ -273,6 +281,7 @@ void ObstacleLayer::updateBounds(double robot_x, double robot_y, double robot_ya
     clearing_.insert(clearing_.end(), static_clearing_.begin(), static_clearing_.end());
   }
   current_ = current;
+  reportClockJump();
 
   for (const auto& obs : clearing_)
     raytraceFreespace(*obs, min_x, min_y, max_x, max_y);
@@ -290,6 +299,31 @@ void ObstacleLayer::updateBounds(double robot_x, double robot_y, double robot_ya
     for (const auto& v : transformed_footprint_)
       touch(v.x(), v.y(), min_x, min_y, max_x, max_y);
   }
+}
+
+void ObstacleLayer::reportClockJump()
+{
+  // The buffers saw the jump (on this thread or a sensor thread) and dropped their readings: one warning
+  // for all of them.
+  std::optional<ObservationBuffer::ClockJump> jump;
+  for (auto& b : buffers_)
+  {
+    const auto j = b->takeClockJump();
+    if (!j) continue;
+    if (!jump)
+      jump = j;
+    else
+    {
+      jump->from_ns = std::max(jump->from_ns, j->from_ns);
+      jump->to_ns = std::min(jump->to_ns, j->to_ns);
+      jump->dropped += j->dropped;
+    }
+  }
+  if (!jump) return;
+  context_->report(Severity::Warn, "clock_jump",
+                   name_ + ": " + clockJumpMessage(jump->from_ns, jump->to_ns) + ": dropped " +
+                       std::to_string(jump->dropped) +
+                       " buffered reading(s); the expected_update_rate checks restart now (the grid is kept)");
 }
 
 bool ObstacleLayer::clipRay2D(double ox, double oy, double wx, double wy, double max_range, double& t) const
@@ -322,29 +356,62 @@ void ObstacleLayer::raytraceFreespace(const Observation& obs, double* min_x, dou
     return;
   }
   touch(ox, oy, min_x, min_y, max_x, max_y);
-  const unsigned int min_cells = costmap_.cellDistance(obs.raytrace_min_range);
+  const double min_cells = costmap_.cellDistance(obs.raytrace_min_range);
+  const double max_cells = obs.raytrace_max_range / costmap_.getResolution();  // NaN clears nothing
+  // The walk itself stops a little beyond (cellDistance saturates for huge ranges).
+  const unsigned int range_cells = costmap_.cellDistance(obs.raytrace_max_range);
+  const unsigned int walk_cells = range_cells < 0xFFFFFFFDu ? range_cells + 2 : 0xFFFFFFFFu;
+  const unsigned int size_x = costmap_.getSizeInCellsX();
   uint8_t* grid = costmap_.data();
-  auto clear = [grid](unsigned int index) { grid[index] = FREE_SPACE; };
-  double ex_min = ox, ey_min = oy, ex_max = ox, ey_max = oy;
+  unsigned int ex_min = x0, ey_min = y0, ex_max = x0, ey_max = y0;  // cells visited
   auto ray = [&](const Point3f& p)
   {
+    // As costmap_2d: the line runs towards the reading's own cell (cut at the grid's border only) and
+    // stops after raytrace_max_range in cells, so a beam longer than the range keeps its direction
+    // (a line to the cell of the point cut at the range would bend by up to a cell over the range).
     double t;
-    if (!clipRay2D(ox, oy, p.x, p.y, obs.raytrace_max_range, t)) return;
-    const double ex = ox + t * (p.x - ox), ey = oy + t * (p.y - oy);
+    if (!clipRay2D(ox, oy, p.x, p.y, std::numeric_limits<double>::infinity(), t)) return;
     int cx, cy;
-    costmap_.worldToMapEnforceBounds(ex, ey, cx, cy);
-    costmap_.raytraceLine(clear, x0, y0, static_cast<unsigned>(cx), static_cast<unsigned>(cy), 0xFFFFFFFFu, min_cells);
-    ex_min = std::min(ex_min, ex);
-    ey_min = std::min(ey_min, ey);
-    ex_max = std::max(ex_max, ex);
-    ey_max = std::max(ey_max, ey);
+    costmap_.worldToMapEnforceBounds(ox + t * (p.x - ox), oy + t * (p.y - oy), cx, cy);
+    const int dx = cx - static_cast<int>(x0), dy = cy - static_cast<int>(y0);
+    const int major = std::max(std::abs(dx), std::abs(dy));
+    if (major == 0) return;  // the reading is in the origin's cell: the end cell is never cleared
+    // The walk makes one step of the major axis per cell; step k lies k * step cells along the line
+    // from the origin's cell. Cleared: min_cells <= k * step < raytrace_max_range in cells. Both ends
+    // are applied on the same line (costmap_2d restarts the line from a rounded cell at the minimum
+    // range, which bends it, and rounds the maximum down to whole steps of the major axis).
+    const double step = std::hypot(static_cast<double>(dx), static_cast<double>(dy)) / major;
+    unsigned int k = 0, last = 0;
+    bool visited = false;
+    costmap_.raytraceLine(
+        [&](unsigned int index)
+        {
+          const double along = static_cast<double>(k++) * step;
+          if (along >= min_cells && along < max_cells)
+          {
+            grid[index] = FREE_SPACE;
+            last = index;
+            visited = true;
+          }
+        },
+        x0, y0, static_cast<unsigned>(cx), static_cast<unsigned>(cy), walk_cells, 0);
+    if (!visited) return;
+    // Bresenham stays in the box of its first and last cells: that box is what changed.
+    const unsigned int lx = last % size_x, ly = last / size_x;
+    ex_min = std::min(ex_min, lx);
+    ey_min = std::min(ey_min, ly);
+    ex_max = std::max(ex_max, lx);
+    ey_max = std::max(ey_max, ly);
   };
   for (const Point3f& p : obs.points)
     ray(p);
   for (const Point3f& p : obs.clear_only)
     ray(p);
-  touch(ex_min, ey_min, min_x, min_y, max_x, max_y);
-  touch(ex_max, ey_max, min_x, min_y, max_x, max_y);
+  double wx, wy;
+  costmap_.mapToWorld(ex_min, ey_min, wx, wy);
+  touch(wx, wy, min_x, min_y, max_x, max_y);
+  costmap_.mapToWorld(ex_max, ey_max, wx, wy);
+  touch(wx, wy, min_x, min_y, max_x, max_y);
 }
 
 void ObstacleLayer::markObservation(const Observation& obs, double* min_x, double* min_y, double* max_x, double* max_y)

@@ -114,6 +114,14 @@ std::string RangeSensorLayer::addRange(const RangeData& range, const SensorPose&
     return r.error;
   }
   if (!r.use) return {};
+  const uint64_t now = context_->nowNs();
+  if (isAheadOfNow(range.stamp_ns, now))
+  {
+    const std::string error = aheadOfNowError(range.stamp_ns, now);
+    context_->report(Severity::Warn, "future_range",
+                     name_ + ": range reading in frame '" + range.frame_id + "' rejected: " + error);
+    return error;
+  }
   Pending p;
   double oz, tz;
   pose.to_global.apply(0.0, 0.0, 0.0, p.ox, p.oy, oz);
@@ -271,6 +279,15 @@ void RangeSensorLayer::updateBounds(double robot_x, double robot_y, double /*rob
                          std::to_string(kMaxPending) + " readings or " + std::to_string(kMaxCellsPerUpdate) +
                          " cells are applied per update)");
   const uint64_t now = context_->nowNs();
+  const uint64_t before = clock_.latest();
+  if (clock_.jumpedBack(now))
+  {
+    // Readings are applied once, at the next update, whatever their stamp: nothing here is kept by time
+    // but the silence timer, which would otherwise read 0 s until the clock is back at `before`.
+    last_reading_ns_ = now;
+    context_->report(Severity::Warn, "clock_jump",
+                     name_ + ": " + clockJumpMessage(before, now) + ": no_readings_timeout restarts now");
+  }
   const bool got_readings = !work_.empty();
   for (std::size_t k = first; k < work_.size(); ++k)
     applyReading(work_[k]);

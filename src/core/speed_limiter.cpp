@@ -36,4 +36,21 @@ std::optional<std::string> checkMaxSpeed(double max_speed)
   s << "max_speed must be finite and >= 0 (got " << max_speed << ")";
   return s.str();
 }
+
+CommandWatchdog::Event CommandWatchdog::check(uint64_t now_ns)
+{
+  // Noted even while stale; commandReceived() notes its times too, so a jump back below the last
+  // command is seen here.
+  const bool jumped = clock_.jumpedBack(now_ns);
+  if (stale_) return Event::None;
+  if (jumped)
+  {
+    last_command_ns_ = now_ns;
+    return Event::ClockJumpedBack;
+  }
+  if (now_ns <= last_command_ns_) return Event::None;  // a step back within the tolerance
+  if (static_cast<double>(now_ns - last_command_ns_) * 1e-9 <= timeout_s_) return Event::None;
+  stale_ = true;
+  return Event::WentStale;
+}
 }  // namespace costmap_layers

@@ -19,4 +19,17 @@ std::string outOfOrderError(uint64_t stamp_ns, uint64_t in_force_ns, const std::
   return "header.stamp " + seconds(stamp_ns) + " is older than the " + what + " in force (stamped " +
          seconds(in_force_ns) + "): an out-of-order or replayed message";
 }
+
+std::string aheadOfNowError(uint64_t stamp_ns, uint64_t now_ns)
+{
+  return "header.stamp " + seconds(stamp_ns) + " is " + seconds(stamp_ns > now_ns ? stamp_ns - now_ns : 0) +
+         " ahead of now " + seconds(now_ns) +
+         " (clock skew between hosts, or a reading from before the clock jumped back)";
+}
+
+std::string clockJumpMessage(uint64_t from_ns, uint64_t to_ns)
+{
+  return "the clock jumped back from " + seconds(from_ns) + " to " + seconds(to_ns) +
+         " (a looping bag or a restarted simulator?)";
+}
 }  // namespace costmap_layers

@@ -43,8 +43,9 @@ int main(int argc, char** argv)
 
   std::mutex mutex;
   double limit = 0.0;  // no limit until one is known
-  ros::Time last_command;
-  bool stale = true;
+  // Staleness is decided by the core (a clock jump back restarts the timeout instead of keeping the last
+  // command fresh until the clock is back at its time).
+  costmap_layers::CommandWatchdog input_watch(cfg.command_timeout);
   ros::Publisher out = nh.advertise<geometry_msgs::Twist>("cmd_vel", 10);
   auto limits = nh.subscribe<costmap_layers::MaxSpeed>(
       max_speed_topic, 1,
@@ -71,16 +72,18 @@ int main(int argc, char** argv)
         }
         std::lock_guard<std::mutex> lock(mutex);
         out.publish(toMsg(costmap_layers::limitTwist(in, limit)));
-        last_command = ros::Time::now();
-        stale = false;
+        input_watch.commandReceived(ros::Time::now().toNSec());
       });
   auto watchdog =
       nh.createTimer(ros::Duration(0.05),
                      [&](const ros::TimerEvent&)
                      {
                        std::lock_guard<std::mutex> lock(mutex);
-                       if (stale || (ros::Time::now() - last_command).toSec() <= cfg.command_timeout) return;
-                       stale = true;
+                       const auto event = input_watch.check(ros::Time::now().toNSec());
+                       if (event == costmap_layers::CommandWatchdog::Event::ClockJumpedBack)
+                         ROS_WARN("speed_limiter: the clock jumped back: the %.2f s command timeout restarts now",
+                                  cfg.command_timeout);
+                       if (event != costmap_layers::CommandWatchdog::Event::WentStale) return;
                        if (cfg.publish_zero_when_stale) out.publish(geometry_msgs::Twist());
                        ROS_WARN("speed_limiter: no command on cmd_vel_in for %.2f s: %s", cfg.command_timeout,
                                 cfg.publish_zero_when_stale ? "published a zero command" : "stopped publishing");

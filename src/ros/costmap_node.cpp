@@ -116,6 +116,12 @@ void CostmapNode::setUp()
       {
         std::lock_guard<std::mutex> lock(update_mutex_);
         const int n = costmap_layers::clearClearableLayersAround(*costmap_, last_x_, last_y_, config_.reset_distance);
+        if (n < 0)
+        {
+          ROS_ERROR("costmap: clear_around_robot refused: robot position (%f, %f) or reset_distance %f not valid",
+                    last_x_, last_y_, config_.reset_distance);
+          return false;
+        }
         ROS_INFO("costmap: cleared %d clearable layer(s) outside %.2f m around the robot", n, config_.reset_distance);
         return true;
       });

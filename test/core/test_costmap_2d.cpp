@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <limits>
 #include <set>
 #include <utility>
 #include <vector>
@@ -190,6 +191,22 @@ TEST(Costmap2DCoords, CellDistanceRoundsUp)
   Costmap2D h(10, 10, 1.0, 0, 0);
   EXPECT_EQ(h.cellDistance(2.0), 2u);
   EXPECT_EQ(h.cellDistance(2.0001), 3u);
+}
+
+TEST(Costmap2DCoords, CellDistanceOfHugeOrNonFiniteDistances)
+{
+  // raytrace_max_range may be any finite number up to DBL_MAX: the count saturates instead of an
+  // undefined double -> unsigned conversion.
+  Costmap2D g(10, 10, 0.1, 0, 0);
+  EXPECT_EQ(g.cellDistance(1e300), 0xFFFFFFFFu);
+  EXPECT_EQ(g.cellDistance(std::numeric_limits<double>::max()), 0xFFFFFFFFu);
+  EXPECT_EQ(g.cellDistance(std::numeric_limits<double>::infinity()), 0xFFFFFFFFu);
+  Costmap2D m(10, 10, 1.0, 0, 0);
+  EXPECT_EQ(m.cellDistance(4294967294.0), 4294967294u);
+  EXPECT_EQ(m.cellDistance(4294967294.5), 0xFFFFFFFFu);  // 2^32 - 1 cells
+  EXPECT_EQ(m.cellDistance(4294967296.0), 0xFFFFFFFFu);
+  EXPECT_EQ(g.cellDistance(std::numeric_limits<double>::quiet_NaN()), 0u);
+  EXPECT_EQ(g.cellDistance(-std::numeric_limits<double>::infinity()), 0u);
 }
 
 // ---------------------------------------------------------------- resize, reset, fill, copy

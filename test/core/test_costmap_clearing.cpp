@@ -1,6 +1,7 @@
 // The "clear costmaps" helpers behind the node's ~clear and ~clear_around_robot services.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <memory>
 
 #include "costmap_layers/core/cost_values.hpp"
@@ -94,4 +95,103 @@ TEST(CostmapClearing, AroundTheRobotKeepsTheSquare)
   EXPECT_EQ(r.lc.getCostmap().getCost(9, 10), LETHAL_OBSTACLE);
   EXPECT_EQ(r.lc.getCostmap().getCost(12, 10), LETHAL_OBSTACLE);
   EXPECT_EQ(r.lc.getCostmap().getCost(13, 10), FREE_SPACE);
+}
+
+namespace
+{
+/// A 20 x 20 grid of 0.5 m cells from (-3, 2), every cell of the clearable layer marked.
+struct EdgeRig
+{
+  LayeredCostmap lc{"map", false, false};
+  std::shared_ptr<MarkLayer> sensor = std::make_shared<MarkLayer>(true);
+  EdgeRig()
+  {
+    lc.resizeMap(20, 20, 0.5, -3.0, 2.0);
+    sensor->initialize(&lc, "sensor", std::make_shared<FakeContext>());
+    lc.addPlugin(sensor);
+    sensor->matchSize();
+    for (unsigned j = 0; j < 20; ++j)
+      for (unsigned i = 0; i < 20; ++i)
+        sensor->mark(i, j);
+  }
+  /// Cells of the layer that differ from the reference: a cell is kept when it meets the closed square of
+  /// side keep centred on (x, y), i.e. its centre lies within keep / 2 + half a cell on both axes (the
+  /// cell's upper edges excluded). Computed from cell centres only.
+  int mismatches(double x, double y, double keep) const
+  {
+    const Costmap2D& g = sensor->costmap();
+    const double h = 0.5, half = keep / 2;
+    int bad = 0;
+    for (unsigned j = 0; j < 20; ++j)
+      for (unsigned i = 0; i < 20; ++i)
+      {
+        const double cx = -3.0 + (i + 0.5) * h, cy = 2.0 + (j + 0.5) * h;
+        const bool kept_x = cx - h / 2 <= x + half && cx + h / 2 > x - half;
+        const bool kept_y = cy - h / 2 <= y + half && cy + h / 2 > y - half;
+        const uint8_t want = kept_x && kept_y ? LETHAL_OBSTACLE : FREE_SPACE;
+        bad += g.getCost(i, j) != want;
+      }
+    return bad;
+  }
+  int lethal() const
+  {
+    int n = 0;
+    for (std::size_t k = 0; k < sensor->costmap().cellCount(); ++k)
+      n += sensor->costmap().data()[k] == LETHAL_OBSTACLE;
+    return n;
+  }
+};
+}  // namespace
+
+TEST(CostmapClearing, AroundARobotOutsideTheGridKeepsNothingOfTheEdges)
+{
+  // The grid covers x in [-3, 7), y in [2, 12). The robot off each side and each corner: the kept
+  // square lies wholly outside, so every cell is cleared (the edge row / column used to be kept).
+  const double cases[][2] = {
+      {-5.3, 7.1},  {9.2, 7.1},  {2.1, 0.2},  {2.1, 13.9},    {-5.0, 0.0},     {9.0, 0.0},
+      {-5.0, 14.0}, {9.0, 14.0}, {1e12, 7.0}, {-1e12, -1e12}, {7.0 + 1.5, 7.0}};  // just off the right edge: the square
+                                                                                  // ends at 7.0
+  for (const auto& c : cases)
+  {
+    EdgeRig r;
+    EXPECT_EQ(clearClearableLayersAround(r.lc, c[0], c[1], 3.0), 1);
+    EXPECT_EQ(r.lethal(), 0) << c[0] << ", " << c[1];
+    EXPECT_EQ(r.mismatches(c[0], c[1], 3.0), 0) << c[0] << ", " << c[1];
+  }
+}
+
+TEST(CostmapClearing, AroundASquarePartlyOutsideOrDegenerate)
+{
+  const double cases[][3] = {
+      {-2.7, 6.3, 3.0},    // partly off the left edge
+      {6.6, 11.8, 3.0},    // partly off the top right corner
+      {-3.4, 1.9, 1.0},    // just outside the bottom left corner, square reaching in
+      {2.1, 7.3, 0.0},     // keep_size 0: the robot's cell alone
+      {2.0, 7.0, 0.0},     // ... on a cell corner: the cell above and right of it (upper edges excluded)
+      {2.1, 7.3, 0.2},     // smaller than a cell
+      {1e12, 0.0, 1e300},  // huge: everything kept however far the robot
+      {2.1, 7.3, 1e300},  {1e12, 0.0, 1e6},  // a big square far away still keeps nothing
+  };
+  for (const auto& c : cases)
+  {
+    EdgeRig r;
+    EXPECT_EQ(clearClearableLayersAround(r.lc, c[0], c[1], c[2]), 1);
+    EXPECT_EQ(r.mismatches(c[0], c[1], c[2]), 0) << c[0] << ", " << c[1] << " keep " << c[2];
+  }
+  EdgeRig all;
+  clearClearableLayersAround(all.lc, 1e12, -1e12, std::numeric_limits<double>::infinity());
+  EXPECT_EQ(all.lethal(), 400);
+}
+
+TEST(CostmapClearing, AroundAnInvalidPoseIsRefused)
+{
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  const double cases[][3] = {{nan, 7.0, 3.0},  {2.0, nan, 3.0}, {inf, 7.0, 3.0},
+                             {2.0, -inf, 3.0}, {2.0, 7.0, nan}, {2.0, 7.0, -1.0}};
+  for (const auto& c : cases)
+  {
+    EdgeRig r;
+    EXPECT_LT(clearClearableLayersAround(r.lc, c[0], c[1], c[2]), 0) << c[0] << ", " << c[1] << " keep " << c[2];
+    EXPECT_EQ(r.lethal(), 400) << "nothing is cleared";
+  }
 }

@@ -54,7 +54,7 @@ TEST(ObservationBuffer, PersistenceDropsOldObservations)
   EXPECT_EQ(fetch(b, 11 * kSec), 2u);             // ages 1.0 and 0.5: both kept
   EXPECT_EQ(fetch(b, 11 * kSec + kSec / 4), 1u);  // 1.25 s old: dropped
   EXPECT_EQ(fetch(b, 12 * kSec), 0u);
-  b.add(obs(20 * kSec), 15 * kSec);  // stamped in the future: fresh
+  b.add(obs(15 * kSec + kSec / 4), 15 * kSec);  // stamped a little ahead (skew between hosts): fresh
   EXPECT_EQ(fetch(b, 15 * kSec), 1u);
 }
 
@@ -116,4 +116,86 @@ TEST(ObservationBuffer, ConcurrentAddAndGet)
   EXPECT_EQ(fetch(b, now.load() + kSec), 0u);  // all older than the 1 ms persistence by then
   b.clear();
   EXPECT_EQ(b.size(), 0u);
+}
+
+TEST(ObservationBuffer, StampsFarAheadOfNowExpireAndDoNotShieldOthers)
+{
+  ObservationBufferConfig c;
+  c.observation_persistence = 1.0;
+  ObservationBuffer b("cloud", c, 0);
+  // 90 s ahead of the clock: not a reading of this time line. It used to count as fresh and, at the
+  // front of the buffer, to stop the purge: the 10 s reading behind it never expired either.
+  b.add(obs(100 * kSec), 10 * kSec);
+  b.add(obs(10 * kSec), 10 * kSec);
+  EXPECT_EQ(fetch(b, 10 * kSec), 1u);
+  EXPECT_EQ(fetch(b, 12 * kSec), 0u);
+  // Within half a second ahead (skew between hosts): kept, and aged from its stamp.
+  b.add(obs(20 * kSec + 400'000'000), 20 * kSec);
+  EXPECT_EQ(fetch(b, 20 * kSec), 1u);
+  EXPECT_EQ(fetch(b, 21 * kSec + 300'000'000), 1u);
+  EXPECT_EQ(fetch(b, 21 * kSec + 500'000'000), 0u);
+  // The worst stamp a sender can write.
+  b.add(obs(UINT64_MAX), 30 * kSec);
+  EXPECT_EQ(fetch(b, 30 * kSec), 0u);
+}
+
+TEST(ObservationBuffer, PurgeDropsEveryExpiredReadingNotOnlyTheFrontOnes)
+{
+  ObservationBufferConfig c;
+  c.observation_persistence = 1.0;
+  ObservationBuffer b("cloud", c, 0);
+  b.add(obs(11 * kSec), 11 * kSec);
+  b.add(obs(9 * kSec), 11 * kSec);  // arrived late: older than the one before it
+  EXPECT_EQ(fetch(b, 11 * kSec + kSec / 2), 1u);
+}
+
+TEST(ObservationBuffer, ClockJumpBackClearsTheBufferAndRestartsTheUpdateRateCheck)
+{
+  ObservationBufferConfig c;
+  c.observation_persistence = 5.0;
+  c.expected_update_rate = 1.0;
+  ObservationBuffer b("scan", c, 990 * kSec);
+  b.add(obs(1000 * kSec), 1000 * kSec);
+  // The clock restarts at 3 s: the reading of 1000 s is from another time line.
+  EXPECT_EQ(fetch(b, 3 * kSec), 0u);
+  EXPECT_EQ(b.size(), 0u);
+  EXPECT_TRUE(b.isCurrent(3 * kSec));                                 // the check restarts at the jump
+  EXPECT_NEAR(b.secondsSinceUpdate(4 * kSec + kSec / 2), 1.5, 1e-9);  // not 0 until 1000 s again
+  EXPECT_FALSE(b.isCurrent(4 * kSec + kSec / 2));
+  b.add(obs(5 * kSec), 5 * kSec);
+  EXPECT_TRUE(b.isCurrent(5 * kSec));
+  EXPECT_EQ(fetch(b, 5 * kSec), 1u);
+}
+
+TEST(ObservationBuffer, ClockJumpBackSeenFirstByTheUpdateRateCheck)
+{
+  ObservationBufferConfig c;
+  c.expected_update_rate = 1.0;
+  ObservationBuffer b("scan", c, 0);
+  b.add(obs(1000 * kSec), 1000 * kSec);
+  EXPECT_TRUE(b.isCurrent(5 * kSec));
+  EXPECT_FALSE(b.isCurrent(6 * kSec + kSec / 2));  // silent for 1.5 s on the new clock
+  EXPECT_EQ(fetch(b, 6 * kSec + kSec / 2), 0u);
+}
+
+TEST(ObservationBuffer, SmallStepsBackAndForwardJumps)
+{
+  ObservationBufferConfig c;
+  c.observation_persistence = 2.0;
+  c.expected_update_rate = 1.0;
+  ObservationBuffer b("scan", c, 0);
+  b.add(obs(100 * kSec), 100 * kSec);
+  // 0.2 s back: threads reading the clock a moment apart, not a jump.
+  EXPECT_EQ(fetch(b, 100 * kSec - 200'000'000), 1u);
+  EXPECT_TRUE(b.isCurrent(100 * kSec - 200'000'000));
+  // A jump forward: everything aged by it.
+  EXPECT_EQ(fetch(b, 10'000 * kSec), 0u);
+  EXPECT_FALSE(b.isCurrent(10'000 * kSec));
+  // The clock at its extremes.
+  b.add(obs(0), UINT64_MAX);
+  EXPECT_EQ(fetch(b, UINT64_MAX), 0u);  // stamped 0, now at the end of time: ~584 years old
+  EXPECT_TRUE(b.isCurrent(UINT64_MAX));
+  b.add(obs(kSec), kSec);  // and back to the start: a jump
+  EXPECT_EQ(fetch(b, kSec), 1u);
+  EXPECT_TRUE(b.isCurrent(kSec));
 }

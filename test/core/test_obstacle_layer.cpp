@@ -1,11 +1,17 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cmath>
+#include <limits>
 #include <memory>
+#include <random>
+#include <sstream>
 #include <stdexcept>
 #include <thread>
 #include <vector>
 
+#include "beam_reference.hpp"
 #include "costmap_layers/core/cost_values.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
 #include "costmap_layers/core/obstacle_layer.hpp"
@@ -538,4 +544,125 @@ TEST(ObstacleLayer, ReadingsFromAnotherThread)
   EXPECT_EQ(rig.master().getCost(3, 3), LETHAL_OBSTACLE);
   EXPECT_EQ(rig.master().getCost(6, 2), LETHAL_OBSTACLE);
   EXPECT_EQ(rig.master().getCost(2, 8), LETHAL_OBSTACLE);
+}
+
+TEST(ObstacleLayer, ClearingRaysFollowTheBeamPropertyTest)
+{
+  // Random beams (seeded, so deterministic) from origins with sub-cell offsets, in every octant, with
+  // readings nearer and farther than raytrace_max_range and beyond the grid.
+  std::mt19937 rng(20240611);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  const double ranges[][2] = {{0.0, 0.45}, {0.0, 1.0}, {0.5, 2.35}, {1.2, 3.0}};  // {min, max} [m]
+  int failures = 0, beams = 0;
+  for (const auto& range : ranges)
+  {
+    ParamValue p = obstacleParams(
+        {{"footprint_clearing_enabled", B(false)}},
+        {{"marking", B(false)}, {"raytrace_min_range", D(range[0])}, {"raytrace_max_range", D(range[1])}});
+    Rig rig(p, false, true, false, 80, 0.1, -4.0, -4.0);
+    for (int k = 0; k < 150; ++k)
+    {
+      const double ox = -2.0 + 4.0 * uni(rng), oy = -2.0 + 4.0 * uni(rng);
+      // Every eighth beam exactly along an octant boundary, the rest anywhere.
+      const double angle = k % 8 == 0 ? (k / 8 % 8) * M_PI / 4 : 2 * M_PI * uni(rng);
+      const double dist = k % 5 == 0 ? 30.0 : range[1] * (0.2 + 3.8 * uni(rng));
+      const float lx = static_cast<float>(dist * std::cos(angle)), ly = static_cast<float>(dist * std::sin(angle));
+      rig.layer->reset();
+      ASSERT_EQ(rig.ctx->publishCloud("cloud", makeCloud({{lx, ly, 0.0}}), poseAt(ox, oy, 0.5)), 1);
+      rig.update();
+      const BeamCase b{ox, oy, static_cast<float>(ox + lx), static_cast<float>(oy + ly), range[0], range[1]};
+      // The grid moves the origin to its cell's centre (<= sqrt(2)/2 cell) and Bresenham steps up to half
+      // a cell beside the line between cell centres: 1.25 cells beside the beam at most.
+      const std::string err = checkBeam(b, rig.layer->costmap(), FREE_SPACE, 1.25, true);
+      ++beams;
+      if (!err.empty() && ++failures <= 10)
+        ADD_FAILURE() << "origin (" << ox << ", " << oy << ") angle " << angle << " dist " << dist << " range ["
+                      << range[0] << ", " << range[1] << "]:" << err;
+    }
+  }
+  EXPECT_EQ(failures, 0) << "of " << beams << " beams";
+}
+
+TEST(ObstacleLayer, ReadingStampedAheadOfNowIsRejectedNotAGhost)
+{
+  // A reading stamped 90 s ahead of the clock would count as fresh until the clock caught up: a ghost
+  // obstacle re-marked every cycle, which clearing cannot remove. It is refused with a report naming
+  // header.stamp and now.
+  Rig rig(obstacleParams({{"footprint_clearing_enabled", B(false)}}, {{"observation_persistence", D(1.0)}}), false,
+          true);
+  rig.ctx->now_ns = 10'000'000'000;
+  rig.cloud({{5.5, 5.5, 0.5}}, poseAt(5.5, 2.5, 0.5), 100'000'000'000);
+  rig.update();
+  EXPECT_EQ(rig.master().getCost(5, 5), NO_INFORMATION);
+  EXPECT_EQ(rig.ctx->countReports("header.stamp 100.000 s"), 1);
+  EXPECT_EQ(rig.ctx->countReports("now 10.000 s"), 1);
+  // Up to half a second ahead (clock skew between hosts) is accepted, and expires like any other.
+  rig.cloud({{5.5, 5.5, 0.5}}, poseAt(5.5, 2.5, 0.5), 10'400'000'000);
+  rig.update();
+  EXPECT_EQ(rig.master().getCost(5, 5), LETHAL_OBSTACLE);
+  rig.ctx->now_ns = 11'500'000'000;  // 1.1 s after its stamp: expired, a crossing ray clears the cell
+  rig.cloud({{8.5, 5.5, 0.5}}, poseAt(0.5, 5.5, 0.5), 11'500'000'000);
+  rig.update();
+  EXPECT_EQ(rig.master().getCost(5, 5), FREE_SPACE);
+  // The worst stamp a sender can put there.
+  rig.cloud({{2.5, 7.5, 0.5}}, poseAt(0.5, 5.5, 0.5), UINT64_MAX);
+  rig.update();
+  EXPECT_EQ(rig.master().getCost(2, 7), NO_INFORMATION);
+  EXPECT_EQ(rig.layer->buffer(0).size(), 1u);
+}
+
+TEST(ObstacleLayer, ClockJumpBackDropsBufferedReadingsWithOneWarning)
+{
+  // A looping bag or a restarted simulator: /clock goes from 1000 s back to 5 s. The reading buffered at
+  // 1000 s must not look future-stamped (fresh) for the next 995 s.
+  ParamValue p = obstacleParams({{"footprint_clearing_enabled", B(false)}},
+                                {{"observation_persistence", D(10.0)}, {"expected_update_rate", D(1.0)}});
+  Rig rig(p, false, true);
+  rig.ctx->now_ns = 1000'000'000'000;
+  rig.cloud({{5.5, 5.5, 0.5}}, poseAt(5.5, 2.5, 0.5), 1000'000'000'000);
+  rig.update();
+  ASSERT_EQ(rig.master().getCost(5, 5), LETHAL_OBSTACLE);
+  rig.ctx->now_ns = 5'000'000'000;
+  rig.cloud({{8.5, 5.5, 0.5}}, poseAt(0.5, 5.5, 0.5), 5'000'000'000);  // its ray crosses (5, 5)
+  rig.update();
+  EXPECT_EQ(rig.master().getCost(5, 5), FREE_SPACE);
+  EXPECT_EQ(rig.master().getCost(8, 5), LETHAL_OBSTACLE);
+  EXPECT_EQ(rig.layer->buffer(0).size(), 1u);
+  EXPECT_TRUE(rig.layer->isCurrent());
+  rig.ctx->now_ns = 5'500'000'000;
+  rig.update();
+  EXPECT_EQ(rig.ctx->countReports("jumped back"), 1);
+  // The update-rate check runs on the new clock: silent for 1.5 s, the source is late.
+  rig.ctx->now_ns = 6'500'000'000;
+  rig.update();
+  EXPECT_FALSE(rig.layer->isCurrent());
+  // A jump back with no reading since: late from the jump on, not current forever nor stale forever.
+  rig.ctx->now_ns = 2'000'000'000;
+  rig.update();
+  EXPECT_TRUE(rig.layer->isCurrent());
+  rig.ctx->now_ns = 3'100'000'000;
+  rig.update();
+  EXPECT_FALSE(rig.layer->isCurrent());
+  EXPECT_EQ(rig.ctx->countReports("jumped back"), 2);
+}
+
+TEST(ObstacleLayer, ExtremeRaytraceRanges)
+{
+  // The largest ranges the parameters accept: the ray runs to the grid's edge / clears nothing.
+  Rig far(obstacleParams({{"footprint_clearing_enabled", B(false)}},
+                         {{"marking", B(false)}, {"raytrace_max_range", D(std::numeric_limits<double>::max())}}),
+          false, true);
+  far.cloud({{25.5, 5.5, 0.5}}, poseAt(0.5, 5.5, 0.5));
+  far.update();
+  for (unsigned x = 0; x < 9; ++x)  // the edge cell is the line's end cell, never cleared
+    EXPECT_EQ(far.master().getCost(x, 5), FREE_SPACE) << x;
+  EXPECT_EQ(count(far.master(), FREE_SPACE), 9);
+  Rig none(obstacleParams({{"footprint_clearing_enabled", B(false)}},
+                          {{"marking", B(false)},
+                           {"raytrace_min_range", D(1e300)},
+                           {"raytrace_max_range", D(std::numeric_limits<double>::max())}}),
+           false, true);
+  none.cloud({{25.5, 5.5, 0.5}}, poseAt(0.5, 5.5, 0.5));
+  none.update();
+  EXPECT_EQ(count(none.master(), FREE_SPACE), 0);
 }

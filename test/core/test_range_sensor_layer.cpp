@@ -296,3 +296,51 @@ TEST(RangeSensorLayer, TheWorkOfOneUpdateIsBoundedByCells)
   ASSERT_TRUE(lc.getCostmap().worldToMap(56.0, 50.0, mx, my));
   EXPECT_GT(lc.getCostmap().getCost(mx, my), 0u);
 }
+
+TEST(RangeSensorLayer, NoReadingsTimeoutAfterAClockJumpBack)
+{
+  // The clock restarts (looping bag, restarted simulator): silence is measured on the new clock from
+  // the jump on, instead of looking current until the clock is back at the last reading's time.
+  ParamValue p = nav2Params(true);
+  p.set("no_readings_timeout", D(1.0));
+  Rig rig(p);
+  rig.ctx->now_ns = 1000'000'000'000;
+  rig.range(sonar(2.0f), 2.0, 5.0);
+  rig.update();
+  EXPECT_TRUE(rig.layer->isCurrent());
+  rig.ctx->now_ns = 5'000'000'000;
+  rig.update();
+  EXPECT_TRUE(rig.layer->isCurrent());
+  EXPECT_EQ(rig.ctx->countReports("jumped back"), 1);
+  rig.ctx->now_ns = 6'500'000'000;
+  rig.update();
+  EXPECT_FALSE(rig.layer->isCurrent());
+  EXPECT_EQ(rig.ctx->countReports("no range readings for 1.50 s"), 1);
+  EXPECT_EQ(rig.ctx->countReports("jumped back"), 1);  // one warning per jump
+  // A step back of 0.2 s is the jitter of threads reading the clock, not a jump.
+  rig.range(sonar(2.0f), 2.0, 5.0);
+  rig.update();
+  rig.ctx->now_ns = 6'300'000'000;
+  rig.update();
+  EXPECT_TRUE(rig.layer->isCurrent());
+  EXPECT_EQ(rig.ctx->countReports("jumped back"), 1);
+}
+
+TEST(RangeSensorLayer, ReadingStampedAheadOfNowIsRejected)
+{
+  Rig rig(nav2Params(true));
+  rig.ctx->now_ns = 10'000'000'000;
+  RangeData r = sonar(2.0f);
+  r.stamp_ns = 100'000'000'000;
+  const std::string err = rig.layer->addRange(r, poseAt(2.0, 5.0, 0.0));
+  EXPECT_NE(err.find("header.stamp 100.000 s"), std::string::npos) << err;
+  EXPECT_NE(err.find("now 10.000 s"), std::string::npos) << err;
+  EXPECT_EQ(rig.layer->pending(), 0u);
+  r.stamp_ns = UINT64_MAX;
+  EXPECT_FALSE(rig.layer->addRange(r, poseAt(2.0, 5.0, 0.0)).empty());
+  r.stamp_ns = 10'400'000'000;  // skew within half a second: accepted
+  EXPECT_EQ(rig.layer->addRange(r, poseAt(2.0, 5.0, 0.0)), "");
+  r.stamp_ns = 0;  // no stamp: accepted
+  EXPECT_EQ(rig.layer->addRange(r, poseAt(2.0, 5.0, 0.0)), "");
+  EXPECT_EQ(rig.layer->pending(), 2u);
+}

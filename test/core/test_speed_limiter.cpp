@@ -1,13 +1,16 @@
-// speed_limiter's core: scaling commands to a speed limit with the same curvature.
+// speed_limiter's core: scaling commands to a speed limit with the same curvature, and the watchdog
+// that decides when the command input went stale (also across clock jumps).
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "costmap_layers/core/speed_limiter.hpp"
 
 using costmap_layers::checkMaxSpeed;
 using costmap_layers::checkTwist;
+using costmap_layers::CommandWatchdog;
 using costmap_layers::limitTwist;
 using costmap_layers::Twist;
 
@@ -56,4 +59,56 @@ TEST(SpeedLimiter, BadValuesAreNamed)
   EXPECT_TRUE(checkMaxSpeed(-0.1));
   EXPECT_TRUE(checkMaxSpeed(std::numeric_limits<double>::infinity()));
   EXPECT_NE(checkMaxSpeed(std::nan(""))->find("max_speed"), std::string::npos);
+}
+
+namespace
+{
+constexpr uint64_t kSec = 1'000'000'000ull;
+}  // namespace
+
+TEST(CommandWatchdog, GoesStaleOnceAfterTheTimeout)
+{
+  CommandWatchdog w(0.5);
+  EXPECT_TRUE(w.stale());  // nothing received yet
+  EXPECT_EQ(w.check(10 * kSec), CommandWatchdog::Event::None);
+  w.commandReceived(10 * kSec);
+  EXPECT_FALSE(w.stale());
+  EXPECT_EQ(w.check(10 * kSec + 500'000'000), CommandWatchdog::Event::None);
+  EXPECT_EQ(w.check(10 * kSec + 500'000'001), CommandWatchdog::Event::WentStale);
+  EXPECT_TRUE(w.stale());
+  EXPECT_EQ(w.check(11 * kSec), CommandWatchdog::Event::None);  // once
+  w.commandReceived(12 * kSec);
+  EXPECT_EQ(w.check(10'000 * kSec), CommandWatchdog::Event::WentStale);  // a jump forward: stale
+}
+
+TEST(CommandWatchdog, ClockJumpBackDoesNotKeepTheInputFreshForever)
+{
+  // Commands stop at 1000 s and the clock restarts at 3 s: now - last_command is negative until the
+  // clock is back at 1000 s, so the old rule kept the last command fresh for 997 s.
+  CommandWatchdog w(0.5);
+  w.commandReceived(1000 * kSec);
+  EXPECT_EQ(w.check(3 * kSec), CommandWatchdog::Event::ClockJumpedBack);
+  EXPECT_FALSE(w.stale());  // the timeout restarts at the jump
+  EXPECT_EQ(w.check(3 * kSec + 400'000'000), CommandWatchdog::Event::None);
+  EXPECT_EQ(w.check(3 * kSec + 600'000'000), CommandWatchdog::Event::WentStale);
+  // Commands that go on across the jump keep the input fresh.
+  w.commandReceived(2000 * kSec);
+  w.commandReceived(5 * kSec);
+  EXPECT_EQ(w.check(5 * kSec + 100'000'000), CommandWatchdog::Event::None);
+  EXPECT_FALSE(w.stale());
+  // 0.3 s back is jitter, not a jump.
+  EXPECT_EQ(w.check(5 * kSec - 300'000'000), CommandWatchdog::Event::None);
+  EXPECT_EQ(w.check(5 * kSec + 600'000'000), CommandWatchdog::Event::WentStale);
+}
+
+TEST(CommandWatchdog, ExtremeTimes)
+{
+  CommandWatchdog w(0.5);
+  w.commandReceived(UINT64_MAX);
+  EXPECT_EQ(w.check(UINT64_MAX), CommandWatchdog::Event::None);
+  EXPECT_EQ(w.check(0), CommandWatchdog::Event::ClockJumpedBack);
+  EXPECT_EQ(w.check(kSec), CommandWatchdog::Event::WentStale);
+  w.commandReceived(0);
+  EXPECT_EQ(w.check(0), CommandWatchdog::Event::None);
+  EXPECT_EQ(w.check(UINT64_MAX), CommandWatchdog::Event::WentStale);
 }

@@ -1,10 +1,14 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <memory>
+#include <random>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
+#include "beam_reference.hpp"
 #include "costmap_layers/core/cost_values.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
 #include "costmap_layers/core/param_reader.hpp"
@@ -271,4 +275,53 @@ TEST(VoxelLayer, ResetAndFootprintClearing)
   rig.layer->reset();
   EXPECT_EQ(rig.layer->voxels().getVoxel(2, 2, 1), VoxelStatus::Unknown);
   EXPECT_EQ(count(rig.layer->costmap(), NO_INFORMATION), 100);
+}
+
+TEST(VoxelLayer, ClearingRaysFollowTheBeamPropertyTest)
+{
+  // As ObstacleLayer's: random beams at the sensor's height (so the 3-D walk is the 2-D one) checked
+  // against plain geometry. The voxel walk samples the exact segment from the exact origin (cut at the
+  // range along the segment itself, which keeps its direction), so every cleared column holds a point
+  // of the beam: its centre lies within sqrt(2)/2 cell of it, which pins the direction more tightly
+  // than the check from the origin's cell that the 2-D layer gets.
+  std::mt19937 rng(77);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  const double ranges[][2] = {{0.0, 0.45}, {0.0, 1.0}, {0.5, 2.35}, {1.2, 3.0}};  // {min, max} [m]
+  int failures = 0, beams = 0;
+  for (const auto& range : ranges)
+  {
+    ParamValue src = paramMap({{"data_type", S("PointCloud2")},
+                               {"clearing", B(true)},
+                               {"marking", B(false)},
+                               {"raytrace_min_range", D(range[0])},
+                               {"raytrace_max_range", D(range[1])},
+                               {"max_obstacle_height", D(5.0)}});
+    ParamValue p = paramMap({{"observation_sources", S("cloud")},
+                             {"max_obstacle_height", D(5.0)},
+                             {"footprint_clearing_enabled", B(false)}});
+    p.set("cloud", src);
+    LayeredCostmap lc("map", false, true);
+    lc.resizeMap(80, 80, 0.1, -4.0, -4.0);
+    auto ctx = std::make_shared<FakeContext>(p);
+    auto layer = std::make_shared<VoxelLayer>();
+    layer->initialize(&lc, "voxels", ctx); ctx->bind(*layer);
+    lc.addPlugin(layer);
+    for (int k = 0; k < 150; ++k)
+    {
+      const double ox = -2.0 + 4.0 * uni(rng), oy = -2.0 + 4.0 * uni(rng);
+      const double angle = k % 8 == 0 ? (k / 8 % 8) * M_PI / 4 : 2 * M_PI * uni(rng);
+      const double dist = k % 5 == 0 ? 30.0 : range[1] * (0.2 + 3.8 * uni(rng));
+      const float lx = static_cast<float>(dist * std::cos(angle)), ly = static_cast<float>(dist * std::sin(angle));
+      layer->reset();
+      ASSERT_EQ(ctx->publishCloud("cloud", makeCloud({{lx, ly, 0.0}}), poseAt(ox, oy, 0.5)), 1);
+      lc.updateMap(0, 0, 0);
+      const BeamCase b{ox, oy, static_cast<float>(ox + lx), static_cast<float>(oy + ly), range[0], range[1]};
+      const std::string err = checkBeam(b, layer->costmap(), FREE_SPACE, 0.75, false);
+      ++beams;
+      if (!err.empty() && ++failures <= 10)
+        ADD_FAILURE() << "origin (" << ox << ", " << oy << ") angle " << angle << " dist " << dist << " range ["
+                      << range[0] << ", " << range[1] << "]:" << err;
+    }
+  }
+  EXPECT_EQ(failures, 0) << "of " << beams << " beams";
 }

@@ -71,7 +71,7 @@ public:
   /// Like worldToMap, but clamps a point outside the grid to the nearest edge cell.
   void worldToMapEnforceBounds(double wx, double wy, int& mx, int& my) const;
 
-  /// A world distance [m] in cells, rounded up.
+  /// A world distance [m] in cells, rounded up; 0 for negative or NaN distances, 2^32 - 1 for huge ones.
   unsigned int cellDistance(double world_dist) const;
 
   /// Reallocates the grid and fills it with the default value.

@@ -11,6 +11,10 @@ int resetClearableLayers(LayeredCostmap& costmap);
 
 /// In every clearable plugin that keeps its own grid, sets the cells outside the square of side
 /// keep_size [m] centred on (x, y) to the grid's default value, and asks for a redraw of the whole
-/// map; other clearable plugins are reset. @return how many plugins were cleared.
+/// map; other clearable plugins are reset. A cell is kept when it meets the closed square (its upper
+/// edges excluded). The robot may be anywhere, also off the grid (then the square may keep part of the
+/// grid or nothing); keep_size may be 0 (the robot's cell) or +inf (everything).
+/// @return how many plugins were cleared, or -1 (and nothing is touched) when x or y is not finite or
+/// keep_size is NaN or negative.
 int clearClearableLayersAround(LayeredCostmap& costmap, double x, double y, double keep_size);
 }  // namespace costmap_layers

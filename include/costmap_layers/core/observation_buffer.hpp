@@ -1,6 +1,7 @@
 // costmap_2d's Observation and ObservationBuffer: sensor points already in the global frame, with the
 // sensor origin and the ranges of their source, kept for a while and handed to the update thread.
-// Times are passed in (the layers use LayerContext::nowNs()), so the buffer itself has no clock.
+// Times are passed in (the layers use LayerContext::nowNs()), so the buffer itself has no clock; it
+// notices the clock jumping back (see stamp_order.hpp) and then drops everything, as tf does.
 // Every method is thread-safe: readings arrive on the host's sensor threads, updates run elsewhere.
 #pragma once
 
@@ -8,10 +9,12 @@
 #include <deque>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "costmap_layers/core/sensor_parsing.hpp"
+#include "costmap_layers/core/stamp_order.hpp"
 
 namespace costmap_layers
 {
@@ -29,7 +32,8 @@ struct Observation
 struct ObservationBufferConfig
 {
   /// [s] how long an observation is kept, measured from its stamp to the current time; 0 keeps only
-  /// the newest one (costmap_2d's observation_persistence).
+  /// the newest one (costmap_2d's observation_persistence). Observations stamped more than
+  /// kFutureStampToleranceNs ahead of the current time are dropped whatever this is.
   double observation_persistence = 0.0;
   /// [s] despite the name (costmap_2d's), a period: the buffer is current while the newest reading
   /// arrived at most this many seconds ago; 0 disables the check.
@@ -42,21 +46,34 @@ struct ObservationBufferConfig
 class ObservationBuffer
 {
 public:
+  /// What the buffer did when it saw the clock jump back.
+  struct ClockJump
+  {
+    uint64_t from_ns = 0;     ///< the latest time seen before the jump
+    uint64_t to_ns = 0;       ///< the time after it
+    std::size_t dropped = 0;  ///< observations dropped
+  };
+
   /// @param now_ns  creation time: a buffer that never receives anything goes stale from here, as in
   ///                costmap_2d where last_updated_ starts at construction.
   ObservationBuffer(std::string name, const ObservationBufferConfig& config, uint64_t now_ns);
 
   /// Adds an observation received at now_ns (the time the update-rate check uses) and drops stale ones.
-  void add(std::shared_ptr<const Observation> observation, uint64_t now_ns);
+  /// @return false when the observation was dropped at once for being stamped more than
+  /// kFutureStampToleranceNs ahead of now_ns (it does not count as an update then).
+  bool add(std::shared_ptr<const Observation> observation, uint64_t now_ns);
 
   /// Drops stale and distant observations, then appends the remaining ones (oldest first) to out.
+  /// Stale: older than observation_persistence, or stamped more than kFutureStampToleranceNs ahead of
+  /// now_ns, wherever they are in the buffer.
   void getObservations(std::vector<std::shared_ptr<const Observation>>& out, uint64_t now_ns, double robot_x,
                        double robot_y);
 
   /// False when expected_update_rate > 0 and the newest reading arrived more than that many seconds
   /// before now_ns (costmap_2d: now - last_updated <= expected_update_rate).
   bool isCurrent(uint64_t now_ns) const;
-  /// [s] since the newest reading arrived (or since creation / the last resetLastUpdated()).
+  /// [s] since the newest reading arrived (or since creation / the last resetLastUpdated() / the last
+  /// clock jump back).
   double secondsSinceUpdate(uint64_t now_ns) const;
   /// Restarts the update-rate check at now_ns (after a reset or activation).
   void resetLastUpdated(uint64_t now_ns);
@@ -64,16 +81,27 @@ public:
   void clear();
   std::size_t size() const;
 
+  /// The clock jump back seen since the last call, if any (several merge into one: the first time
+  /// before, the last time after). Every method that takes now_ns watches for one: when now_ns lies more
+  /// than kClockJumpBackToleranceNs before the latest time seen, every observation is dropped (their
+  /// stamps belong to the time line before the jump) and the update-rate check restarts at now_ns.
+  std::optional<ClockJump> takeClockJump();
+
   const std::string& name() const { return name_; }
   const ObservationBufferConfig& config() const { return config_; }
 
 private:
+  /// Notes now_ns, handling a jump back. Called under the lock (also from the const queries: the
+  /// buffer catching up with the clock is not a change its users asked for).
+  void noteTimeLocked(uint64_t now_ns) const;
   void purgeLocked(uint64_t now_ns);
 
   const std::string name_;
   const ObservationBufferConfig config_;
   mutable std::mutex mutex_;
-  std::deque<std::shared_ptr<const Observation>> observations_;  ///< oldest first
-  uint64_t last_updated_ns_;
+  mutable std::deque<std::shared_ptr<const Observation>> observations_;  ///< in arrival order
+  mutable uint64_t last_updated_ns_;
+  mutable ClockWatch clock_;
+  mutable std::optional<ClockJump> jump_;
 };
 }  // namespace costmap_layers

@@ -86,7 +86,8 @@ public:
   const ObservationBuffer& buffer(std::size_t source) const { return *buffers_.at(source); }
 
   /// What the subscriptions call (safe from any thread): validates and projects a reading of source
-  /// `source` into the global frame and buffers it. @return "" when buffered, else the reason (also
+  /// `source` into the global frame and buffers it. A reading stamped more than
+  /// kFutureStampToleranceNs ahead of now is refused. @return "" when buffered, else the reason (also
   /// reported as a Warn naming the source).
   std::string addLaserScan(std::size_t source, const LaserScanData& scan, const SensorPose& pose);
   std::string addPointCloud2(std::size_t source, const PointCloud2Data& cloud, const SensorPose& pose);
@@ -111,13 +112,16 @@ protected:
   bool clipRay2D(double ox, double oy, double wx, double wy, double max_range, double& t) const;
   /// The source index used in report keys and messages.
   std::string sourceLabel(std::size_t source) const;
+  /// Reports, once, a clock jump back the buffers saw since the last call.
+  void reportClockJump();
 
   ObstacleConfig config_;
 
 private:
   /// Moves parsed points into the global frame, filters heights and buffers the observation.
-  void bufferPoints(std::size_t source, const std::vector<Point3f>& local, const std::vector<Point3f>& local_clear,
-                    uint64_t stamp_ns, const SensorPose& pose);
+  /// @return "" when buffered, else the reason (reported).
+  std::string bufferPoints(std::size_t source, const std::vector<Point3f>& local,
+                           const std::vector<Point3f>& local_clear, uint64_t stamp_ns, const SensorPose& pose);
 
   std::vector<std::unique_ptr<ObservationBuffer>> buffers_;
   std::atomic<bool> active_{true};

@@ -15,6 +15,7 @@
 
 #include "costmap_layers/core/costmap_layer.hpp"
 #include "costmap_layers/core/sensor_parsing.hpp"
+#include "costmap_layers/core/stamp_order.hpp"
 
 namespace costmap_layers
 {
@@ -72,11 +73,11 @@ public:
 
   const RangeSensorConfig& config() const { return config_; }
 
-  /// Queues a reading (safe from any thread). Malformed readings are rejected here: the reason is
-  /// returned and reported as a Warn; "" when queued or when the reading says nothing. At most
-  /// kMaxPending readings wait for the next update (a flood cannot grow memory or the work of one
-  /// cycle, which runs under the costmap's lock): past that the oldest are dropped, counted and
-  /// reported (throttled) at the next update.
+  /// Queues a reading (safe from any thread). Malformed readings, and readings stamped more than
+  /// kFutureStampToleranceNs ahead of now, are rejected here: the reason is returned and reported as a
+  /// Warn; "" when queued or when the reading says nothing. At most kMaxPending readings wait for the
+  /// next update (a flood cannot grow memory or the work of one cycle, which runs under the costmap's
+  /// lock): past that the oldest are dropped, counted and reported (throttled) at the next update.
   std::string addRange(const RangeData& range, const SensorPose& pose);
   static constexpr std::size_t kMaxPending = 128;
   /// The most cells one update may visit for range readings (each cone costs the cells of its bounding
@@ -110,7 +111,8 @@ private:
   std::deque<Pending> work_;
   double touched_min_x_ = 0, touched_min_y_ = 0, touched_max_x_ = 0, touched_max_y_ = 0;
   bool touched_ = false;
-  uint64_t last_reading_ns_ = 0;
+  uint64_t last_reading_ns_ = 0;  ///< no_readings_timeout counts from here
+  ClockWatch clock_;              ///< a jump back restarts no_readings_timeout at the jump
   bool was_reset_ = false;
 };
 }  // namespace costmap_layers

@@ -3,8 +3,11 @@
 // is kept.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
+
+#include "costmap_layers/core/stamp_order.hpp"
 
 namespace costmap_layers
 {
@@ -29,4 +32,41 @@ Twist limitTwist(const Twist& in, double limit);
 /// Why a value was refused, or nullopt when it is valid.
 std::optional<std::string> checkTwist(const Twist& t);
 std::optional<std::string> checkMaxSpeed(double max_speed);
+
+/// Decides when the command input went stale (the node's watchdog); times [ns] are passed in. A jump of
+/// the clock back (now more than kClockJumpBackToleranceNs before the last command or the latest check)
+/// restarts the timeout at the jump: the input goes stale command_timeout s later unless a command
+/// arrives, instead of staying fresh until the clock is back at the last command's time. A jump forward
+/// makes it stale. Not thread-safe: the node holds its mutex.
+class CommandWatchdog
+{
+public:
+  enum class Event
+  {
+    None,
+    WentStale,       ///< no command for more than command_timeout: publish the zero command (once)
+    ClockJumpedBack  ///< the timeout restarted at now_ns (worth one warning)
+  };
+
+  /// @param command_timeout [s]; the node refuses values that are not > 0.
+  explicit CommandWatchdog(double command_timeout) : timeout_s_(command_timeout) {}
+
+  /// A command arrived at now_ns: the input is fresh.
+  void commandReceived(uint64_t now_ns)
+  {
+    clock_.jumpedBack(now_ns);
+    last_command_ns_ = now_ns;
+    stale_ = false;
+  }
+  /// Called periodically. WentStale once when the input goes stale, then None until the next command.
+  Event check(uint64_t now_ns);
+  /// True before the first command and after WentStale until the next command.
+  bool stale() const { return stale_; }
+
+private:
+  double timeout_s_;
+  uint64_t last_command_ns_ = 0;
+  bool stale_ = true;
+  ClockWatch clock_;
+};
 }  // namespace costmap_layers

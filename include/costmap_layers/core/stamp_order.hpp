@@ -1,6 +1,9 @@
-// Whether a map, mask or speed-limit message arrived out of order. Latched topics re-send their last
-// message on every reconnection, and a second publisher (an old map server left running) can send an
-// older grid after a newer one: applying it would silently roll the costmap back.
+// The core's rules for time. Whether a map, mask or speed-limit message arrived out of order: latched
+// topics re-send their last message on every reconnection, and a second publisher (an old map server
+// left running) can send an older grid after a newer one: applying it would silently roll the costmap
+// back. Whether a sensor reading is stamped ahead of now, and whether the clock jumped back (a looping
+// bag or a restarted simulator under /use_sim_time): then, as tf does with its buffer, the layers drop
+// what they buffered by time and restart their timeouts at the jump.
 #pragma once
 
 #include <cstdint>
@@ -21,4 +24,48 @@ inline bool isOutOfOrder(uint64_t stamp_ns, uint64_t in_force_ns, uint64_t now_n
 /// reports for an out-of-order message; it starts with the field's name, the key its report is
 /// throttled by.
 std::string outOfOrderError(uint64_t stamp_ns, uint64_t in_force_ns, const std::string& what);
+
+/// [ns] How far the clock may step back before it counts as a jump back. Smaller steps are the jitter
+/// of threads that read the clock a moment apart (a sensor thread, the update thread) and are ignored.
+constexpr uint64_t kClockJumpBackToleranceNs = 500'000'000;
+/// [ns] How far ahead of now a sensor reading may be stamped (clock skew between hosts); readings stamped
+/// further ahead are refused: they would count as fresh until the clock caught up with them.
+constexpr uint64_t kFutureStampToleranceNs = 500'000'000;
+
+/// True when stamp_ns lies more than kFutureStampToleranceNs after now_ns.
+inline bool isAheadOfNow(uint64_t stamp_ns, uint64_t now_ns)
+{
+  return stamp_ns > now_ns && stamp_ns - now_ns > kFutureStampToleranceNs;
+}
+
+/// "header.stamp 100.000 s is 90.000 s ahead of now 10.000 s": why a reading was refused; it starts with
+/// the field's name.
+std::string aheadOfNowError(uint64_t stamp_ns, uint64_t now_ns);
+
+/// "the clock jumped back from 1000.000 s to 3.000 s": the start of the one warning a layer reports.
+std::string clockJumpMessage(uint64_t from_ns, uint64_t to_ns);
+
+/// Notices the clock jumping back, as tf's listener does (now earlier than the latest time seen), with
+/// kClockJumpBackToleranceNs of slack. Not thread-safe: its owner holds its own lock or thread.
+class ClockWatch
+{
+public:
+  /// Notes now_ns. @return true when it lies more than the tolerance before the latest time noted (a
+  /// jump back); now_ns is then the latest time. Smaller steps back leave the latest time as it was.
+  bool jumpedBack(uint64_t now_ns)
+  {
+    if (now_ns < latest_ns_ && latest_ns_ - now_ns > kClockJumpBackToleranceNs)
+    {
+      latest_ns_ = now_ns;
+      return true;
+    }
+    if (now_ns > latest_ns_) latest_ns_ = now_ns;
+    return false;
+  }
+  /// The latest time noted (0 before any).
+  uint64_t latest() const { return latest_ns_; }
+
+private:
+  uint64_t latest_ns_ = 0;
+};
 }  // namespace costmap_layers
