@@ -21,14 +21,17 @@
 #include "costmap_layers/core/costmap_2d.hpp"
 #include "costmap_layers/core/layer.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
+#include "costmap_layers/core/limits.hpp"
 
 namespace costmap_layers
 {
 class ParamReader;
 
-/// Checks a mask or map: data size, finite positive resolution, finite origin, sane dimensions.
+/// Checks a mask or map: data size, dimensions (at most max_cells), resolution in
+/// [limits::kMinResolution, limits::kMaxResolution], origin x/y within limits::kMaxCoordinate and yaw
+/// within limits::kMaxYaw (see limits.hpp for why).
 /// @return an empty string when valid, else one line naming the field and its value.
-std::string validateGrid(const OccupancyGridData& grid, uint64_t max_cells = 400'000'000ull);
+std::string validateGrid(const OccupancyGridData& grid, uint64_t max_cells = limits::kMaxGridCells);
 
 /// How master cells of one update window map to cells of the mask: per master column a mask column
 /// (or -1 outside) and per master row a mask row, when the mask is axis-aligned with the costmap;
