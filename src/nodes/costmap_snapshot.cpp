@@ -5,8 +5,11 @@
 #include <nav_msgs/OccupancyGrid.h>
 #include <ros/ros.h>
 
+#include <cstdint>
 #include <mutex>
+#include <utility>
 
+#include "costmap_layers/core/limits.hpp"
 #include "costmap_layers/io/png_writer.hpp"
 
 int main(int argc, char** argv)
@@ -17,25 +20,46 @@ int main(int argc, char** argv)
   const std::string output = pnh.param<std::string>("output", "costmap.png");
   const double wait = pnh.param("wait", 0.0);         // [s] to keep applying updates after the first grid
   const double timeout = pnh.param("timeout", 30.0);  // [s] to wait for the first grid
+  // NaN would make both waits endless (every comparison with it is false).
+  for (const auto& [name, value] : {std::pair<const char*, double>{"wait", wait}, {"timeout", timeout}})
+  {
+    if (!(value >= 0.0 && value <= costmap_layers::limits::kMaxDuration))
+    {
+      ROS_FATAL("costmap_snapshot: parameter ~%s must be in [0, %g] s (got %g)", name,
+                costmap_layers::limits::kMaxDuration, value);
+      return 1;
+    }
+  }
 
   std::mutex mutex;
   nav_msgs::OccupancyGrid grid;
   bool have_grid = false;
   ros::Time first;
-  auto sub = nh.subscribe<nav_msgs::OccupancyGrid>(topic, 1,
-                                                   [&](const nav_msgs::OccupancyGrid::ConstPtr& msg)
-                                                   {
-                                                     std::lock_guard<std::mutex> lock(mutex);
-                                                     grid = *msg;
-                                                     if (!have_grid) first = ros::Time::now();
-                                                     have_grid = true;
-                                                   });
+  auto sub = nh.subscribe<nav_msgs::OccupancyGrid>(
+      topic, 1,
+      [&](const nav_msgs::OccupancyGrid::ConstPtr& msg)
+      {
+        // Only a grid whose data matches its size, within the cell limit, is drawn or updated.
+        const uint64_t cells = uint64_t{msg->info.width} * msg->info.height;
+        if (cells == 0 || cells > costmap_layers::limits::kMaxGridCells || msg->data.size() != cells)
+        {
+          ROS_WARN_THROTTLE(5.0, "costmap_snapshot: ignoring a %ux%u grid with %zu values", msg->info.width,
+                            msg->info.height, msg->data.size());
+          return;
+        }
+        std::lock_guard<std::mutex> lock(mutex);
+        grid = *msg;
+        if (!have_grid) first = ros::Time::now();
+        have_grid = true;
+      });
   auto updates = nh.subscribe<map_msgs::OccupancyGridUpdate>(
       topic + "_updates", 10,
       [&](const map_msgs::OccupancyGridUpdate::ConstPtr& u)
       {
         std::lock_guard<std::mutex> lock(mutex);
-        if (!have_grid || u->x + u->width > grid.info.width || u->y + u->height > grid.info.height ||
+        // x and y are int32: a negative one, or a sum past uint32, must not pass as a small window.
+        if (!have_grid || u->x < 0 || u->y < 0 || static_cast<uint64_t>(u->x) + u->width > grid.info.width ||
+            static_cast<uint64_t>(u->y) + u->height > grid.info.height ||
             u->data.size() != static_cast<std::size_t>(u->width) * u->height)
           return;
         for (uint32_t j = 0; j < u->height; ++j)
