@@ -178,8 +178,6 @@ TEST(NumberEdges, CostmapParameters)
                  {"transform_tolerance", 3600.0, true},
                  {"transform_tolerance", 3600.5, false},
                  {"transform_tolerance", 1e300, false},
-                 {"resolution", 1e-4, true},
-                 {"resolution", 1e3, true},
                  {"resolution", 1e-300, false},
                  {"resolution", 1e300, false},
                  {"origin_x", 1e7, true},
@@ -195,6 +193,21 @@ TEST(NumberEdges, CostmapParameters)
                  {"reset_distance", 1e300, false},
              },
              parse);
+
+  // Both ends of resolution, with sizes that fit them: 1 m at 1e-4 m/cell is 10000 cells a side;
+  // 2000 m at 1e3 m/cell is 2 cells. (The default 10 m would be 1e10 cells at 1e-4: refused below.)
+  for (const auto& [res, size] : {std::pair<double, double>{1e-4, 1.0}, {1e3, 2000.0}})
+  {
+    ParamValue ends = ParamValue::makeMap();
+    ends.set("resolution", ParamValue::makeDouble(res));
+    ends.set("width", ParamValue::makeDouble(size));
+    ends.set("height", ParamValue::makeDouble(size));
+    const std::string err = errorOf([&] { parseCostmapConfig(ends); });
+    EXPECT_EQ(err, "") << res;
+  }
+  ParamValue fine = ParamValue::makeMap();
+  fine.set("resolution", ParamValue::makeDouble(1e-4));
+  EXPECT_TRUE(contains(errorOf([&] { parseCostmapConfig(fine); }), "400000000"));
 
   // width x height: 20000 x 20000 cells is the limit; 20000 x 20001 is over it (the default
   // resolution 0.05 m: 1000 m = 20000 cells).
