@@ -227,7 +227,7 @@ filters: [{name: speed, type: costmap_layers/SpeedFilter}]
       {{"--map", tiny, "--params", params}, "resolution"},
       {{"--map", huge_res, "--params", params}, "resolution"},
       {{"--map", far, "--params", params}, "origin x"},
-      {{"--map", map, "--params", params, "--mask", "g=" + tiny}, "resolution"},
+      {{"--map", map, "--params", params, "--mask", "gradient_layer=" + tiny}, "resolution"},
       {{"--map", map, "--params", slow}, "update_frequency"},
       {{"--map", map, "--params", params, "--pose", "1e300,0,0"}, "--pose"},
       {{"--map", map, "--params", params, "--pose", "0,-10000001,0"}, "--pose"},
