@@ -2,8 +2,10 @@
 
 #include <cmath>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 
+#include "costmap_layers/core/limits.hpp"
 #include "costmap_layers/core/param_reader.hpp"
 
 namespace costmap_layers
@@ -11,7 +13,21 @@ namespace costmap_layers
 namespace
 {
 constexpr double kMaxCellsPerSide = 100000.0;
+
+/// A loop frequency [Hz] that may be off: 0 or in [kMinFrequency, kMaxFrequency], so that
+/// 1 / frequency is a period ros::Duration and the loop can hold.
+double getFrequency(const ParamReader& p, const std::string& name, double def)
+{
+  const double f = p.getDouble(name, def, 0.0, limits::kMaxFrequency);
+  if (f != 0.0 && f < limits::kMinFrequency)
+  {
+    std::ostringstream what;
+    what << "must be 0 (off) or in [" << limits::kMinFrequency << ", " << limits::kMaxFrequency << "] Hz";
+    p.fail(name, what.str());
+  }
+  return f;
 }
+}  // namespace
 
 unsigned int CostmapConfig::sizeInCellsX() const
 {
@@ -31,18 +47,27 @@ CostmapConfig parseCostmapConfig(const ParamValue& ns)
   c.robot_base_frame = p.getString("robot_base_frame", c.robot_base_frame);
   if (c.global_frame.empty()) p.fail("global_frame", "must not be empty");
   if (c.robot_base_frame.empty()) p.fail("robot_base_frame", "must not be empty");
-  c.transform_tolerance = p.getDouble("transform_tolerance", c.transform_tolerance, 0.0, 3600.0);
-  c.update_frequency = p.getDouble("update_frequency", c.update_frequency, 0.0, 1000.0);
-  c.publish_frequency = p.getDouble("publish_frequency", c.publish_frequency, 0.0, 1000.0);
-  c.resolution = p.getDouble("resolution", c.resolution, 1e-4, 1e3);
+  c.transform_tolerance = p.getDouble("transform_tolerance", c.transform_tolerance, 0.0, limits::kMaxDuration);
+  // The update loop always runs (the node refuses 0): at least kMinFrequency.
+  c.update_frequency =
+      p.getDouble("update_frequency", c.update_frequency, limits::kMinFrequency, limits::kMaxFrequency);
+  c.publish_frequency = getFrequency(p, "publish_frequency", c.publish_frequency);
+  c.resolution = p.getDouble("resolution", c.resolution, limits::kMinResolution, limits::kMaxResolution);
   c.width = p.getDouble("width", c.width, c.resolution, kMaxCellsPerSide * c.resolution);
   c.height = p.getDouble("height", c.height, c.resolution, kMaxCellsPerSide * c.resolution);
-  c.origin_x = p.getDouble("origin_x", c.origin_x, -1e7, 1e7);
-  c.origin_y = p.getDouble("origin_y", c.origin_y, -1e7, 1e7);
+  if (static_cast<uint64_t>(c.sizeInCellsX()) * c.sizeInCellsY() > limits::kMaxGridCells)
+  {
+    std::ostringstream what;
+    what << "makes " << c.sizeInCellsX() << " x " << c.sizeInCellsY() << " cells with 'width' " << c.width
+         << " m at 'resolution' " << c.resolution << " m/cell, more than the limit of " << limits::kMaxGridCells;
+    p.fail("height", what.str());
+  }
+  c.origin_x = p.getDouble("origin_x", c.origin_x, -limits::kMaxCoordinate, limits::kMaxCoordinate);
+  c.origin_y = p.getDouble("origin_y", c.origin_y, -limits::kMaxCoordinate, limits::kMaxCoordinate);
   c.rolling_window = p.getBool("rolling_window", c.rolling_window);
   c.track_unknown_space = p.getBool("track_unknown_space", c.track_unknown_space);
   c.always_send_full_costmap = p.getBool("always_send_full_costmap", c.always_send_full_costmap);
-  c.reset_distance = p.getDouble("reset_distance", c.reset_distance, 0.0, 1e6);
+  c.reset_distance = p.getDouble("reset_distance", c.reset_distance, 0.0, limits::kMaxDistance);
   c.footprint = parseFootprintConfig(p);
   return c;
 }

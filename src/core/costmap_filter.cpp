@@ -31,10 +31,11 @@ InputError validateGrid(const OccupancyGridData& grid, uint64_t max_cells)
     field = "data";
     err << "data has " << grid.data.size() << " values, expected info.width x info.height = " << cells;
   }
-  else if (!std::isfinite(grid.resolution) || grid.resolution <= 0.0)
+  else if (!(grid.resolution >= limits::kMinResolution && grid.resolution <= limits::kMaxResolution))
   {
     field = "info.resolution";
-    err << "info.resolution must be finite and positive (got " << grid.resolution << ")";
+    err << "info.resolution must be in [" << limits::kMinResolution << ", " << limits::kMaxResolution
+        << "] m/cell (got " << grid.resolution << ")";
   }
   else if (!std::isfinite(grid.origin_x) || !std::isfinite(grid.origin_y) || !std::isfinite(grid.origin_yaw))
   {
@@ -42,10 +43,16 @@ InputError validateGrid(const OccupancyGridData& grid, uint64_t max_cells)
     err << "info.origin must be finite (got x=" << grid.origin_x << " y=" << grid.origin_y << " yaw=" << grid.origin_yaw
         << ")";
   }
-  else if (std::fabs(grid.origin_x) > 1e7 || std::fabs(grid.origin_y) > 1e7)
+  else if (std::fabs(grid.origin_x) > limits::kMaxCoordinate || std::fabs(grid.origin_y) > limits::kMaxCoordinate)
   {
     field = "info.origin";
-    err << "info.origin is absurdly far away (got x=" << grid.origin_x << " y=" << grid.origin_y << ")";
+    err << "info.origin is absurdly far away: |x| and |y| must be at most " << limits::kMaxCoordinate
+        << " m (got x=" << grid.origin_x << " y=" << grid.origin_y << ")";
+  }
+  else if (std::fabs(grid.origin_yaw) > limits::kMaxYaw)
+  {
+    field = "info.origin.orientation";
+    err << "info.origin yaw must be within +-" << limits::kMaxYaw << " rad (got " << grid.origin_yaw << ")";
   }
   return InputError::of(field, err.str());
 }

@@ -4,8 +4,10 @@
 #include <cctype>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 
+#include "costmap_layers/core/limits.hpp"
 #include "costmap_layers/core/param_reader.hpp"
 
 namespace costmap_layers
@@ -143,8 +145,8 @@ Footprint FootprintConfig::padded() const
 FootprintConfig parseFootprintConfig(const ParamReader& params)
 {
   FootprintConfig cfg;
-  cfg.robot_radius = params.getDouble("robot_radius", cfg.robot_radius, 0.0);
-  cfg.footprint_padding = params.getDouble("footprint_padding", cfg.footprint_padding, 0.0);
+  cfg.robot_radius = params.getDouble("robot_radius", cfg.robot_radius, 0.0, limits::kMaxDistance);
+  cfg.footprint_padding = params.getDouble("footprint_padding", cfg.footprint_padding, 0.0, limits::kMaxDistance);
   const ParamValue* fp = params.raw("footprint");
   if (fp == nullptr || fp->isNull()) return cfg;
   try
@@ -156,18 +158,31 @@ FootprintConfig parseFootprintConfig(const ParamReader& params)
       for (char c : fp->asString())
         if (!std::isspace(static_cast<unsigned char>(c))) compact += c;
       if (compact != "[]" && !compact.empty()) cfg.footprint = parseFootprintString(fp->asString());
-      return cfg;
     }
-    const auto& points = fp->asList();
-    if (points.empty()) return cfg;
-    if (points.size() < 3) throw std::invalid_argument("a footprint needs at least 3 points");
-    for (const auto& p : points)
+    else
     {
-      const auto& xy = p.asList();
-      if (xy.size() != 2) throw std::invalid_argument("each point needs exactly two numbers");
-      const double x = xy[0].asDouble(), y = xy[1].asDouble();
-      if (!std::isfinite(x) || !std::isfinite(y)) throw std::invalid_argument("values must be finite");
-      cfg.footprint.emplace_back(x, y);
+      const auto& points = fp->asList();
+      if (points.empty()) return cfg;
+      if (points.size() < 3) throw std::invalid_argument("a footprint needs at least 3 points");
+      for (const auto& p : points)
+      {
+        const auto& xy = p.asList();
+        if (xy.size() != 2) throw std::invalid_argument("each point needs exactly two numbers");
+        const double x = xy[0].asDouble(), y = xy[1].asDouble();
+        if (!std::isfinite(x) || !std::isfinite(y)) throw std::invalid_argument("values must be finite");
+        cfg.footprint.emplace_back(x, y);
+      }
+    }
+    // A vertex is a length from the robot's centre: within kMaxDistance, as robot_radius.
+    for (const auto& v : cfg.footprint)
+    {
+      if (std::fabs(v.x()) > limits::kMaxDistance || std::fabs(v.y()) > limits::kMaxDistance)
+      {
+        std::ostringstream what;
+        what << "has a vertex (" << v.x() << ", " << v.y() << ") farther than " << limits::kMaxDistance
+             << " m from the robot's centre";
+        throw std::invalid_argument(what.str());
+      }
     }
   }
   catch (const std::invalid_argument& e)

@@ -13,6 +13,7 @@
 #include "costmap_layers/core/cost_values.hpp"
 #include "costmap_layers/core/costmap_2d.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
+#include "costmap_layers/core/limits.hpp"
 #include "costmap_layers/core/param_reader.hpp"
 
 namespace costmap_layers
@@ -28,7 +29,7 @@ constexpr uint64_t kMaxTableSize = uint64_t{1} << 22;
 InflationConfig parseInflationConfig(const ParamReader& params)
 {
   InflationConfig cfg;
-  cfg.inflation_radius = params.getDouble("inflation_radius", cfg.inflation_radius, 0.0, 1e6);
+  cfg.inflation_radius = params.getDouble("inflation_radius", cfg.inflation_radius, 0.0, limits::kMaxDistance);
   cfg.cost_scaling_factor = params.getDouble("cost_scaling_factor", cfg.cost_scaling_factor, 0.0);
   cfg.inflate_unknown = params.getBool("inflate_unknown", cfg.inflate_unknown);
   cfg.inflate_around_unknown = params.getBool("inflate_around_unknown", cfg.inflate_around_unknown);

@@ -9,6 +9,7 @@
 
 #include "costmap_layers/core/cost_values.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
+#include "costmap_layers/core/limits.hpp"
 #include "costmap_layers/core/param_reader.hpp"
 #include "costmap_layers/core/stamp_order.hpp"
 
@@ -18,11 +19,11 @@ namespace
 {
 constexpr double kMax = std::numeric_limits<double>::max();
 
-/// The new name when set, else the old one, else the default.
+/// The new name when set, else the old one, else the default. Ranges are lengths: kMaxDistance.
 double rangeParam(const ParamReader& p, const std::string& name, const std::string& old_name, double def)
 {
-  if (!p.has(name) && p.has(old_name)) return p.getDouble(old_name, def, 0.0, kMax);
-  return p.getDouble(name, def, 0.0, kMax);
+  if (!p.has(name) && p.has(old_name)) return p.getDouble(old_name, def, 0.0, limits::kMaxDistance);
+  return p.getDouble(name, def, 0.0, limits::kMaxDistance);
 }
 
 std::vector<std::string> sourceNames(const ParamReader& p)
@@ -65,8 +66,9 @@ ObservationSourceConfig parseObservationSourceConfig(const ParamReader& p, const
   c.topic = p.getString("topic", name);
   if (c.topic.empty()) p.fail("topic", "must not be empty");
   c.sensor_frame = p.getString("sensor_frame", c.sensor_frame);
-  c.observation_persistence = p.getDouble("observation_persistence", c.observation_persistence, 0.0, kMax);
-  c.expected_update_rate = p.getDouble("expected_update_rate", c.expected_update_rate, 0.0, kMax);
+  c.observation_persistence =
+      p.getDouble("observation_persistence", c.observation_persistence, 0.0, limits::kMaxDuration);
+  c.expected_update_rate = p.getDouble("expected_update_rate", c.expected_update_rate, 0.0, limits::kMaxDuration);
   c.data_type = p.getChoice("data_type", "PointCloud2", {"LaserScan", "PointCloud2"}) == "LaserScan"
                     ? SensorDataType::LaserScan
                     : SensorDataType::PointCloud2;
@@ -76,13 +78,14 @@ ObservationSourceConfig parseObservationSourceConfig(const ParamReader& p, const
   c.inf_is_valid = p.getBool("inf_is_valid", c.inf_is_valid);
   c.marking = p.getBool("marking", c.marking);
   c.clearing = p.getBool("clearing", c.clearing);
-  c.obstacle_min_range = p.getDouble("obstacle_min_range", c.obstacle_min_range, 0.0, kMax);
+  c.obstacle_min_range = p.getDouble("obstacle_min_range", c.obstacle_min_range, 0.0, limits::kMaxDistance);
   c.obstacle_max_range = rangeParam(p, "obstacle_max_range", "obstacle_range", c.obstacle_max_range);
   if (c.obstacle_max_range < c.obstacle_min_range) p.fail("obstacle_max_range", "must be >= obstacle_min_range");
-  c.raytrace_min_range = p.getDouble("raytrace_min_range", c.raytrace_min_range, 0.0, kMax);
+  c.raytrace_min_range = p.getDouble("raytrace_min_range", c.raytrace_min_range, 0.0, limits::kMaxDistance);
   c.raytrace_max_range = rangeParam(p, "raytrace_max_range", "raytrace_range", c.raytrace_max_range);
   if (c.raytrace_max_range < c.raytrace_min_range) p.fail("raytrace_max_range", "must be >= raytrace_min_range");
-  c.observation_keep_distance = p.getDouble("observation_keep_distance", c.observation_keep_distance, 0.0, kMax);
+  c.observation_keep_distance =
+      p.getDouble("observation_keep_distance", c.observation_keep_distance, 0.0, limits::kMaxDistance);
   return c;
 }
 

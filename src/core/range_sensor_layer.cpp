@@ -8,6 +8,7 @@
 
 #include "costmap_layers/core/cost_values.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
+#include "costmap_layers/core/limits.hpp"
 #include "costmap_layers/core/param_reader.hpp"
 
 namespace costmap_layers
@@ -41,7 +42,7 @@ RangeSensorConfig parseRangeSensorConfig(const ParamReader& p)
   const double big = std::numeric_limits<double>::max();
   c.phi = p.getDouble("phi", c.phi, 1e-9, big);
   c.inflate_cone = p.getDouble("inflate_cone", c.inflate_cone, 0.0, 1.0);
-  c.no_readings_timeout = p.getDouble("no_readings_timeout", c.no_readings_timeout, 0.0, big);
+  c.no_readings_timeout = p.getDouble("no_readings_timeout", c.no_readings_timeout, 0.0, limits::kMaxDuration);
   c.clear_threshold = p.getDouble("clear_threshold", c.clear_threshold, 0.0, 1.0);
   c.mark_threshold = p.getDouble("mark_threshold", c.mark_threshold, 0.0, 1.0);
   if (c.clear_threshold > c.mark_threshold) p.fail("clear_threshold", "must not exceed mark_threshold");

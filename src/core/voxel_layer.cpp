@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "costmap_layers/core/cost_values.hpp"
+#include "costmap_layers/core/limits.hpp"
 #include "costmap_layers/core/param_reader.hpp"
 
 namespace costmap_layers
@@ -12,8 +13,8 @@ namespace costmap_layers
 VoxelConfig parseVoxelConfig(const ParamReader& p)
 {
   VoxelConfig c;
-  c.origin_z = p.getDouble("origin_z", c.origin_z);
-  c.z_resolution = p.getDouble("z_resolution", c.z_resolution, 1e-6);
+  c.origin_z = p.getDouble("origin_z", c.origin_z, -limits::kMaxCoordinate, limits::kMaxCoordinate);
+  c.z_resolution = p.getDouble("z_resolution", c.z_resolution, 1e-6, limits::kMaxResolution);
   c.z_voxels = p.getInt("z_voxels", c.z_voxels, 1, static_cast<int>(VoxelGrid::kMaxLevels));
   c.unknown_threshold = p.getInt("unknown_threshold", c.unknown_threshold, 0, static_cast<int>(VoxelGrid::kMaxLevels));
   c.mark_threshold = p.getInt("mark_threshold", c.mark_threshold, 0, static_cast<int>(VoxelGrid::kMaxLevels));

@@ -31,6 +31,6 @@ SpeedLimitsData speedLimitsFromParams(const ParamValue& root, const std::string&
 
 SpeedLimitsData loadFeaturesFile(const std::string& path)
 {
-  return speedLimitsFromParams(loadParamsYamlFile(path), path);
+  return speedLimitsFromParams(loadParamsYamlFile(path, kMaxFeaturesYamlBytes), path);
 }
 }  // namespace costmap_layers::io

@@ -5,14 +5,14 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <cmath>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
+
+#include "costmap_layers/core/limits.hpp"
+#include "costmap_layers/io/file_limits.hpp"
 
 namespace costmap_layers
 {
@@ -36,22 +36,24 @@ struct Image
   throw std::runtime_error("'" + path + "': " + problem);
 }
 
-std::vector<uint8_t> readBytes(const std::string& path, const char* what)
+/// Empty when the size is acceptable, else the problem: zero, more than kMaxSide per side, or more
+/// cells than limits::kMaxGridCells (the limit the node applies to a map message).
+std::string sizeProblem(uint64_t width, uint64_t height)
 {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path, std::string("cannot open ") + what + " (" + std::strerror(errno) + ")");
-  std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) fail(path, std::string("error while reading ") + what);
-  return bytes;
+  const std::string size = std::to_string(width) + "x" + std::to_string(height);
+  if (width == 0 || height == 0) return "image has zero size (" + size + ")";
+  if (width > kMaxSide || height > kMaxSide)
+    return "image size " + size + " is absurdly large (more than " + std::to_string(kMaxSide) + " pixels per side)";
+  if (width * height > limits::kMaxGridCells)
+    return "image size " + size + " is absurdly large (" + std::to_string(width * height) + " cells, more than " +
+           std::to_string(limits::kMaxGridCells) + ")";
+  return "";
 }
 
 void checkSize(const std::string& path, uint64_t width, uint64_t height)
 {
-  if (width == 0 || height == 0)
-    fail(path, "image has zero size (" + std::to_string(width) + "x" + std::to_string(height) + ")");
-  if (width > kMaxSide || height > kMaxSide)
-    fail(path, "image size " + std::to_string(width) + "x" + std::to_string(height) + " is absurdly large (more than " +
-                   std::to_string(kMaxSide) + " pixels per side)");
+  const std::string problem = sizeProblem(width, height);
+  if (!problem.empty()) fail(path, problem);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -62,22 +64,29 @@ class PnmReader
 public:
   PnmReader(const std::string& path, const std::vector<uint8_t>& bytes) : path_(path), b_(bytes) {}
 
+  /// Checks the header in the first bytes of a file of file_size bytes (the bytes given to the
+  /// constructor) before the rest is read: the dimensions, and for binary data that the file is long
+  /// enough for them. Silent when the header does not end within those bytes (read() checks it then).
+  void checkHead(uint64_t file_size)
+  {
+    const char kind = static_cast<char>(b_[1]);
+    const bool supported = kind == '2' || kind == '3' || kind == '5' || kind == '6';
+    if (supported && !headerComplete()) return;
+    const Header h = header();  // throws for an unsupported type at once
+    if (h.ascii) return;
+    const uint64_t count = h.width * h.height * static_cast<uint64_t>(h.channels);
+    const uint64_t need = count * (h.maxval > 255 ? 2 : 1);
+    if (file_size < pos_ + 1 || file_size - pos_ - 1 < need)
+      fail(path_, "truncated pixel data: the file has " + std::to_string(file_size) + " bytes, the header promises " +
+                      std::to_string(need) + " bytes of pixels");
+  }
+
   Image read()
   {
-    if (b_.size() < 2 || b_[0] != 'P') fail(path_, "bad PNM header: missing magic number");
-    const char kind = static_cast<char>(b_[1]);
-    if (kind != '2' && kind != '3' && kind != '5' && kind != '6')
-      fail(path_,
-           std::string("bad PNM header: unsupported type P") + kind + " (expected P2, P5 grey or P3, P6 colour)");
-    pos_ = 2;
-    const bool ascii = (kind == '2' || kind == '3');
-    const int channels = (kind == '2' || kind == '5') ? 1 : 3;
-    const uint64_t width = headerNumber("width");
-    const uint64_t height = headerNumber("height");
-    const uint64_t maxval = headerNumber("maxval");
-    if (maxval == 0 || maxval > 65535)
-      fail(path_, "bad PNM header: maxval " + std::to_string(maxval) + " is not in 1..65535");
-    checkSize(path_, width, height);
+    const Header h = header();
+    const bool ascii = h.ascii;
+    const int channels = h.channels;
+    const uint64_t width = h.width, height = h.height, maxval = h.maxval;
 
     Image img;
     img.width = static_cast<uint32_t>(width);
@@ -126,6 +135,50 @@ public:
   }
 
 private:
+  struct Header
+  {
+    bool ascii = false;
+    int channels = 1;
+    uint64_t width = 0, height = 0, maxval = 0;
+  };
+
+  /// Parses the magic number, width, height and maxval, and checks them.
+  Header header()
+  {
+    if (b_.size() < 2 || b_[0] != 'P') fail(path_, "bad PNM header: missing magic number");
+    const char kind = static_cast<char>(b_[1]);
+    if (kind != '2' && kind != '3' && kind != '5' && kind != '6')
+      fail(path_,
+           std::string("bad PNM header: unsupported type P") + kind + " (expected P2, P5 grey or P3, P6 colour)");
+    pos_ = 2;
+    Header h;
+    h.ascii = (kind == '2' || kind == '3');
+    h.channels = (kind == '2' || kind == '5') ? 1 : 3;
+    h.width = headerNumber("width");
+    h.height = headerNumber("height");
+    h.maxval = headerNumber("maxval");
+    if (h.maxval == 0 || h.maxval > 65535)
+      fail(path_, "bad PNM header: maxval " + std::to_string(h.maxval) + " is not in 1..65535");
+    checkSize(path_, h.width, h.height);
+    return h;
+  }
+
+  /// True when the bytes hold the whole header: three numbers after the magic, each followed by
+  /// something that is not a digit.
+  bool headerComplete()
+  {
+    pos_ = 2;
+    for (int k = 0; k < 3; ++k)
+    {
+      skipSpaceAndComments();
+      if (pos_ >= b_.size() || !std::isdigit(b_[pos_])) return pos_ < b_.size();  // malformed: header() says so
+      while (pos_ < b_.size() && std::isdigit(b_[pos_]))
+        ++pos_;
+      if (pos_ >= b_.size()) return false;
+    }
+    return true;
+  }
+
   static uint8_t scale(uint64_t v, uint64_t maxval)
   {
     if (maxval == 255) return static_cast<uint8_t>(v);
@@ -233,10 +286,9 @@ bool decodePngInto(PngSource& src, Image& img, std::vector<png_bytep>& rows)
 
   const png_uint_32 width = png_get_image_width(png, info);
   const png_uint_32 height = png_get_image_height(png, info);
-  if (width == 0 || height == 0 || width > kMaxSide || height > kMaxSide)
+  src.error = sizeProblem(width, height);
+  if (!src.error.empty())
   {
-    src.error = "image size " + std::to_string(width) + "x" + std::to_string(height) +
-                " is zero or absurdly large (more than " + std::to_string(kMaxSide) + " pixels per side)";
     png_destroy_read_struct(&png, &info, nullptr);
     return false;
   }
@@ -297,15 +349,40 @@ Image decodePng(const std::string& path, const std::vector<uint8_t>& bytes)
   if (!decodePngInto(src, img, rows))
   {
     const std::string& e = src.error;
-    if (e.find("truncated") != std::string::npos || e.find("absurdly") != std::string::npos) fail(path, e);
+    if (e.find("truncated") != std::string::npos || e.find("absurdly") != std::string::npos ||
+        e.find("zero size") != std::string::npos)
+      fail(path, e);
     fail(path, "bad PNG: " + e);
   }
   return img;
 }
 
+const uint8_t kPngMagic[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+
+/// The check of an image file's first bytes before the rest is read (see readRegularFile): a known
+/// format, and dimensions within the limits. PNG: the IHDR chunk, which must come first, holds the
+/// width and height at bytes 16..23. PNM: the text header; binary data must fit in the file.
+void checkImageHead(const std::string& path, const std::vector<uint8_t>& head, uint64_t file_size)
+{
+  if (head.empty()) fail(path, "image file is empty");
+  if (head.size() >= 8 && std::memcmp(head.data(), kPngMagic, 8) == 0)
+  {
+    if (head.size() < 24 || std::memcmp(head.data() + 12, "IHDR", 4) != 0) return;  // libpng reports it
+    const auto be32 = [&head](std::size_t at)
+    { return uint64_t{head[at]} << 24 | uint64_t{head[at + 1]} << 16 | uint64_t{head[at + 2]} << 8 | head[at + 3]; };
+    checkSize(path, be32(16), be32(20));
+    return;
+  }
+  if (head.size() >= 2 && head[0] == 'P' && head[1] >= '1' && head[1] <= '7')
+  {
+    PnmReader(path, head).checkHead(file_size);
+    return;
+  }
+  fail(path, "bad image header: not a PGM/PPM (P2, P3, P5, P6) or PNG file");
+}
+
 Image decodeImage(const std::string& path, const std::vector<uint8_t>& bytes)
 {
-  static const uint8_t kPngMagic[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
   if (bytes.size() >= 8 && std::memcmp(bytes.data(), kPngMagic, 8) == 0) return decodePng(path, bytes);
   if (bytes.size() >= 2 && bytes[0] == 'P' && bytes[1] >= '1' && bytes[1] <= '7') return PnmReader(path, bytes).read();
   if (bytes.empty()) fail(path, "image file is empty");
@@ -374,15 +451,28 @@ int8_t nav2ScaleValue(const uint8_t* p, int channels, const MapFileInfo& info)
 
 void validateInfo(const std::string& path, const MapFileInfo& info)
 {
-  if (!std::isfinite(info.resolution) || info.resolution <= 0.0)
+  if (!(info.resolution >= limits::kMinResolution && info.resolution <= limits::kMaxResolution))
   {
     std::ostringstream s;
-    s << "resolution must be a finite number > 0, got " << info.resolution;
+    s << "resolution must be in [" << limits::kMinResolution << ", " << limits::kMaxResolution << "] m/pixel, got "
+      << info.resolution;
     fail(path, s.str());
   }
   for (int k = 0; k < 3; ++k)
   {
     if (!std::isfinite(info.origin[k])) fail(path, "origin must contain finite numbers");
+  }
+  static const char* const kOriginNames[3] = {"x", "y", "yaw"};
+  for (int k = 0; k < 3; ++k)
+  {
+    const double bound = k < 2 ? limits::kMaxCoordinate : limits::kMaxYaw;
+    if (std::fabs(info.origin[k]) > bound)
+    {
+      std::ostringstream s;
+      s << "origin " << kOriginNames[k] << " must be within +-" << bound << (k < 2 ? " m" : " rad") << ", got "
+        << info.origin[k];
+      fail(path, s.str());
+    }
   }
   const auto in01 = [](double v) { return std::isfinite(v) && v >= 0.0 && v <= 1.0; };
   if (!in01(info.occupied_thresh) || !in01(info.free_thresh))
@@ -456,7 +546,7 @@ MapMode parseMapMode(const std::string& name)
 
 MapFileInfo loadMapFileInfo(const std::string& yaml_path)
 {
-  const std::vector<uint8_t> bytes = readBytes(yaml_path, "map YAML file");
+  const std::vector<uint8_t> bytes = readRegularFile(yaml_path, "map YAML file", kMaxMapYamlBytes);
   return parseMapFileInfo(std::string(bytes.begin(), bytes.end()), yaml_path);
 }
 
@@ -535,7 +625,9 @@ MapFileInfo parseMapFileInfo(const std::string& yaml_text, const std::string& ya
 OccupancyGridData loadMapImage(const std::string& image_path, const MapFileInfo& info)
 {
   validateInfo(image_path, info);
-  return decodeMapImage(readBytes(image_path, "image file"), info, image_path);
+  const auto head_check = [&image_path](const std::vector<uint8_t>& head, uint64_t size)
+  { checkImageHead(image_path, head, size); };
+  return decodeMapImage(readRegularFile(image_path, "image file", kMaxImageBytes, head_check), info, image_path);
 }
 
 OccupancyGridData decodeMapImage(const std::vector<uint8_t>& bytes, const MapFileInfo& info, const std::string& what)

@@ -6,8 +6,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -183,6 +181,10 @@ public:
   ParamValue convert(const YAML::Node& node, int depth)
   {
     if (depth > kMaxDepth) fail(node, "nesting deeper than " + std::to_string(kMaxDepth) + " levels");
+    // Every value converted counts, however it was reached: an alias is expanded into a copy here.
+    if (++nodes_ > kMaxYamlNodes)
+      fail(node, "the document expands to more than " + std::to_string(kMaxYamlNodes) +
+                     " values (aliases (*name) are copied each time they are used: is it an alias bomb?)");
     switch (node.Type())
     {
       case YAML::NodeType::Undefined:
@@ -290,6 +292,7 @@ private:
   }
 
   const std::string& what_;
+  uint64_t nodes_ = 0;
 };
 }  // namespace
 
@@ -329,13 +332,10 @@ ParamValue parseParamsYaml(const std::string& text, const std::string& what)
   }
 }
 
-ParamValue loadParamsYamlFile(const std::string& path)
+ParamValue loadParamsYamlFile(const std::string& path, uint64_t max_bytes)
 {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot open params file '" + path + "' (" + std::strerror(errno) + ")");
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw std::runtime_error("error while reading params file '" + path + "'");
-  return parseParamsYaml(text, "'" + path + "'");
+  const std::vector<uint8_t> bytes = readRegularFile(path, "params file", max_bytes);
+  return parseParamsYaml(std::string(bytes.begin(), bytes.end()), "'" + path + "'");
 }
 }  // namespace io
 }  // namespace costmap_layers

@@ -5,9 +5,12 @@
 #include <nav_msgs/OccupancyGrid.h>
 #include <ros/ros.h>
 
+#include <cstdint>
 #include <mutex>
+#include <utility>
 
 #include "costmap_layers/core/costmap_filter.hpp"
+#include "costmap_layers/core/limits.hpp"
 #include "costmap_layers/io/png_writer.hpp"
 #include "costmap_layers/ros/conversions.hpp"
 
@@ -19,6 +22,16 @@ int main(int argc, char** argv)
   const std::string output = pnh.param<std::string>("output", "costmap.png");
   const double wait = pnh.param("wait", 0.0);         // [s] to keep applying updates after the first grid
   const double timeout = pnh.param("timeout", 30.0);  // [s] to wait for the first grid
+  // NaN would make both waits endless (every comparison with it is false).
+  for (const auto& [name, value] : {std::pair<const char*, double>{"wait", wait}, {"timeout", timeout}})
+  {
+    if (!(value >= 0.0 && value <= costmap_layers::limits::kMaxDuration))
+    {
+      ROS_FATAL("costmap_snapshot: parameter ~%s must be in [0, %g] s (got %g)", name,
+                costmap_layers::limits::kMaxDuration, value);
+      return 1;
+    }
+  }
 
   std::mutex mutex;
   nav_msgs::OccupancyGrid grid;

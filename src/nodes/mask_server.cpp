@@ -5,6 +5,7 @@
 #include <ros/ros.h>
 
 #include <cmath>
+#include <stdexcept>
 
 #include "costmap_layers/io/map_file.hpp"
 
@@ -30,7 +31,12 @@ int main(int argc, char** argv)
     msg.header.frame_id = frame;
     msg.header.stamp = ros::Time::now();
     msg.info.map_load_time = msg.header.stamp;
+    // The loader keeps resolution in [kMinResolution, kMaxResolution], both normal float32 numbers;
+    // checked again on the float the message carries, which must never be 0 or inf.
     msg.info.resolution = static_cast<float>(grid.resolution);
+    if (!(msg.info.resolution > 0.0f) || !std::isfinite(msg.info.resolution))
+      throw std::runtime_error(yaml + ": resolution " + std::to_string(grid.resolution) +
+                               " is not representable as a float32 > 0");
     msg.info.width = grid.width;
     msg.info.height = grid.height;
     msg.info.origin.position.x = grid.origin_x;

@@ -9,6 +9,7 @@
 #include <mutex>
 
 #include "costmap_layers/MaxSpeed.h"
+#include "costmap_layers/core/limits.hpp"
 #include "costmap_layers/core/speed_limiter.hpp"
 
 namespace
@@ -35,9 +36,10 @@ int main(int argc, char** argv)
   cfg.command_timeout = pnh.param("command_timeout", cfg.command_timeout);
   cfg.publish_zero_when_stale = pnh.param("publish_zero_when_stale", cfg.publish_zero_when_stale);
   const std::string max_speed_topic = pnh.param<std::string>("max_speed_topic", "/max_speed");
-  if (!(cfg.command_timeout > 0.0))
+  if (!(cfg.command_timeout > 0.0 && cfg.command_timeout <= costmap_layers::limits::kMaxDuration))
   {
-    ROS_FATAL("speed_limiter: parameter ~command_timeout must be > 0 (got %f)", cfg.command_timeout);
+    ROS_FATAL("speed_limiter: parameter ~command_timeout must be in (0, %g] s (got %g)",
+              costmap_layers::limits::kMaxDuration, cfg.command_timeout);
     return 1;
   }
 

@@ -13,6 +13,7 @@
 #include "costmap_layers/core/costmap_config.hpp"
 #include "costmap_layers/core/layer.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
+#include "costmap_layers/core/limits.hpp"
 #include "costmap_layers/io/features_file.hpp"
 #include "costmap_layers/io/map_file.hpp"
 #include "costmap_layers/io/param_yaml.hpp"
@@ -95,9 +96,16 @@ ToolArgs parseArgs(const std::vector<std::string>& args)
       double p[3];
       std::istringstream in(v);
       char c1 = 0, c2 = 0;
-      if (!(in >> p[0] >> c1 >> p[1] >> c2 >> p[2]) || c1 != ',' || c2 != ',' || !in.eof() || !std::isfinite(p[0]) ||
-          !std::isfinite(p[1]) || !std::isfinite(p[2]))
-        throw UsageError("--pose expects X,Y,YAW as three finite numbers (got \"" + v + "\")");
+      // NaN fails every comparison below, so it is refused with the infinities.
+      if (!(in >> p[0] >> c1 >> p[1] >> c2 >> p[2]) || c1 != ',' || c2 != ',' || !in.eof() ||
+          !(std::fabs(p[0]) <= limits::kMaxCoordinate) || !(std::fabs(p[1]) <= limits::kMaxCoordinate) ||
+          !(std::fabs(p[2]) <= limits::kMaxYaw))
+      {
+        std::ostringstream msg;
+        msg << "--pose expects X,Y,YAW as three finite numbers, |X| and |Y| at most " << limits::kMaxCoordinate
+            << " m and |YAW| at most " << limits::kMaxYaw << " rad (got \"" << v << "\")";
+        throw UsageError(msg.str());
+      }
       a.has_pose = true;
       a.x = p[0];
       a.y = p[1];
@@ -116,12 +124,14 @@ ToolArgs parseArgs(const std::vector<std::string>& args)
 class FileContext : public LayerContext
 {
 public:
-  FileContext(std::string name, ParamValue params, std::string global_frame, double tolerance, std::ostream& err)
+  FileContext(std::string name, ParamValue params, std::string global_frame, double tolerance, std::ostream& err,
+              int& error_count)
       : name_(std::move(name)),
         params_(std::move(params)),
         global_frame_(std::move(global_frame)),
         tolerance_(tolerance),
-        err_(err)
+        err_(err),
+        error_count_(error_count)
   {
   }
   const ParamValue& params() const override { return params_; }
@@ -142,6 +152,8 @@ public:
   }
   void report(Severity severity, const std::string& key, const std::string& message) override
   {
+    // An error means an input was refused: the result would not be what the files describe.
+    if (severity == Severity::Error) ++error_count_;
     if (reported_count_[key]++ >= 3) return;  // the same problem every cycle says nothing new
     static const char* names[] = {"debug", "info", "warning", "error"};
     err_ << "costmap_tool: " << names[static_cast<int>(severity)] << ": " << message << "\n";
@@ -153,6 +165,7 @@ private:
   std::string global_frame_;
   double tolerance_;
   std::ostream& err_;
+  int& error_count_;
   std::map<std::string, int> reported_count_;
 };
 
@@ -191,6 +204,7 @@ int run(const ToolArgs& a, std::ostream& out, std::ostream& err)
     throw std::runtime_error(a.params + ": namespace '" + a.ns + "' not found (or not a map)");
   const CostmapConfig config = parseCostmapConfig(*ns);
   const PluginLists lists = parsePluginLists(*ns);
+  int error_count = 0;
 
   auto map = std::make_shared<OccupancyGridData>(io::loadMapFile(a.map));
   map->frame_id = config.global_frame;
@@ -214,7 +228,7 @@ int run(const ToolArgs& a, std::ostream& out, std::ostream& err)
       {
         const ParamValue* sub = ns->find(spec.name);
         auto ctx = std::make_shared<FileContext>(spec.name, sub ? *sub : ParamValue::makeMap(), config.global_frame,
-                                                 config.transform_tolerance, err);
+                                                 config.transform_tolerance, err, error_count);
         contexts[spec.name] = ctx;
         return ctx;
       });
@@ -310,6 +324,11 @@ int run(const ToolArgs& a, std::ostream& out, std::ostream& err)
   std::sort(sorted.begin(), sorted.end());
   const std::size_t n = sorted.size();
   const double median = n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
+
+  // A layer that refused an input (a map, a mask, speed limits) reported it as an error above: the
+  // costmap is not what the files describe, so nothing is written and the exit status says so.
+  if (error_count > 0)
+    throw std::runtime_error(std::to_string(error_count) + " error(s) reported above; no result written");
 
   const Costmap2D& grid = costmap->getCostmap();
   if (!a.out_raw.empty()) io::writeRawBytes(a.out_raw, grid.data(), grid.cellCount());

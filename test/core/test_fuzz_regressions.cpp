@@ -105,9 +105,11 @@ TEST(FuzzRegressions, PercentLimitOfAHugeDefaultStaysFinite)
 // the same tiny resolution with the mask far away put the mask 1e15 cells off, and the whole-cell
 // offset was cast to int (UBSan: "-1.0198e+15 is outside the range of representable values of type
 // 'int'"). Such a mask now goes through the per-column path, which compares in double.
+// (Resolutions below 1e-4 m/cell and origins beyond 1e7 m are now refused, so the farthest a mask can
+// be is 1e7 / 1e-4 = 1e11 cells: still far beyond int, still the per-column path.)
 TEST(FuzzRegressions, MaskBillionsOfCellsAwayAtTheSameResolution)
 {
-  constexpr double res = 1e-9;
+  constexpr double res = 1e-4;
   // A lethal 4x4 mask with its origin `cells` master cells to the right of the master's; the master's
   // costs after one update.
   auto drawWithMaskAt = [](double cells)
@@ -127,9 +129,10 @@ TEST(FuzzRegressions, MaskBillionsOfCellsAwayAtTheSameResolution)
     lc.updateMap(0.0, 0.0, 0.0);
     return lc.getCostmap();
   };
-  // 3 cells off (overlapping), a million cells either way (the offset path), 1e15 cells (the fuzzer's
-  // case, now the per-column path): drawn exactly where the mask lies, nothing overflows.
-  for (const double cells : {3.0, -1e6, 1e6, 1e15, -1e15})
+  // 3 cells off (overlapping), a million cells either way (the offset path), 1e11 cells (the fuzzer's
+  // case as far as the ranges now allow, the per-column path): drawn exactly where the mask lies,
+  // nothing overflows.
+  for (const double cells : {3.0, -1e6, 1e6, 1e11, -1e11})
   {
     const Costmap2D master = drawWithMaskAt(cells);
     for (unsigned y = 0; y < 10; ++y)

@@ -13,6 +13,7 @@
 
 #include "beam_reference.hpp"
 #include "costmap_layers/core/cost_values.hpp"
+#include "costmap_layers/core/limits.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
 #include "costmap_layers/core/obstacle_layer.hpp"
 #include "costmap_layers/core/param_reader.hpp"
@@ -650,7 +651,7 @@ TEST(ObstacleLayer, ExtremeRaytraceRanges)
 {
   // The largest ranges the parameters accept: the ray runs to the grid's edge / clears nothing.
   Rig far(obstacleParams({{"footprint_clearing_enabled", B(false)}},
-                         {{"marking", B(false)}, {"raytrace_max_range", D(std::numeric_limits<double>::max())}}),
+                         {{"marking", B(false)}, {"raytrace_max_range", D(limits::kMaxDistance)}}),
           false, true);
   far.cloud({{25.5, 5.5, 0.5}}, poseAt(0.5, 5.5, 0.5));
   far.update();
@@ -659,8 +660,8 @@ TEST(ObstacleLayer, ExtremeRaytraceRanges)
   EXPECT_EQ(count(far.master(), FREE_SPACE), 9);
   Rig none(obstacleParams({{"footprint_clearing_enabled", B(false)}},
                           {{"marking", B(false)},
-                           {"raytrace_min_range", D(1e300)},
-                           {"raytrace_max_range", D(std::numeric_limits<double>::max())}}),
+                           {"raytrace_min_range", D(limits::kMaxDistance)},
+                           {"raytrace_max_range", D(limits::kMaxDistance)}}),
            false, true);
   none.cloud({{25.5, 5.5, 0.5}}, poseAt(0.5, 5.5, 0.5));
   none.update();

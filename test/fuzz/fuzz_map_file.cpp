@@ -53,7 +53,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
   {
     return 0;
   }
-  FUZZ_CHECK(validateGrid(map).empty(), "a decoded map is a valid grid");
+  FUZZ_CHECK(validateGrid(map).ok(), "a decoded map is a valid grid");
   for (int8_t v : map.data)
   {
     if (info.mode == io::MapMode::Trinary) FUZZ_CHECK(v == -1 || v == 0 || v == 100, "trinary values");

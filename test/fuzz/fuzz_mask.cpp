@@ -67,7 +67,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
       {
         auto before = filter->getMask();
         auto mask = std::make_shared<const OccupancyGridData>(decodeGrid(in));
-        const std::string valid = validateGrid(*mask);
+        const std::string valid = validateGrid(*mask).message;
         const std::string err = filter->setMask(mask);
         FUZZ_CHECK(err.empty() == valid.empty(), "setMask and validateGrid disagree");
         if (err.empty())

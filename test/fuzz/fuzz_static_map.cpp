@@ -77,7 +77,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
       {
         auto map = std::make_shared<const OccupancyGridData>(decodeGrid(in));
         const std::string err = layer->setMap(map);
-        FUZZ_CHECK(err.empty() == validateGrid(*map).empty(), "setMap and validateGrid disagree");
+        FUZZ_CHECK(err.empty() == validateGrid(*map).ok(), "setMap and validateGrid disagree");
         if (err.empty() && !(layer->config().first_map_only && in_force)) in_force = map;
         break;
       }

@@ -197,6 +197,68 @@ TEST(CostmapTool, BadInputGivesOneClearLineAndNonZeroExit)
   EXPECT_NE(r.err.find("costmap_layers/GradientLayer"), std::string::npos) << r.err;
 }
 
+// Numbers at the edge and inputs a layer refuses: every path that prints an error exits non-zero and
+// writes no result. The limits are written as numbers here: resolution [1e-4, 1e3] m/pixel,
+// |pose x/y| <= 1e7 m, |yaw| <= 1e3 rad, update_frequency [1e-3, 1e3] Hz.
+TEST(CostmapTool, NumbersAtTheEdgeAndRefusedInputsExitNonZero)
+{
+  TempDir dir;
+  const std::string map = writeMap(dir, "map", 10, 10, std::vector<uint8_t>(100, 254), 1.0, 0.0, 0.0);
+  const std::string params = dir.write("params.yaml", kGradientParams);
+  const std::string tiny = writeMap(dir, "tiny", 4, 4, std::vector<uint8_t>(16, 254), 1e-300, 0.0, 0.0);
+  const std::string huge_res = writeMap(dir, "huge_res", 4, 4, std::vector<uint8_t>(16, 254), 1e300, 0.0, 0.0);
+  const std::string far = writeMap(dir, "far", 4, 4, std::vector<uint8_t>(16, 254), 0.05, 1e300, 0.0);
+  const std::string slow = dir.write("slow.yaml", kGradientParams + "update_frequency: 1e-10\n");
+  const std::string speed_params = dir.write("speed.yaml", R"(
+plugins: [{name: g, type: costmap_layers/GradientLayer}]
+filters: [{name: speed, type: costmap_layers/SpeedFilter}]
+)");
+  // An entry the SpeedFilter drops (max_speed < 0): reported as an error, so the tool must fail.
+  const std::string bad_limits = dir.write("limits.yaml", "limits: [{area_id: 1, max_speed: -1.0}]\n");
+  const std::string good_limits = dir.write("good_limits.yaml", "limits: [{area_id: 1, max_speed: 0.5}]\n");
+  std::filesystem::create_directory(dir.file("adir"));
+
+  struct Case
+  {
+    std::vector<std::string> args;
+    std::string needle;
+  };
+  const std::vector<Case> cases = {
+      {{"--map", tiny, "--params", params}, "resolution"},
+      {{"--map", huge_res, "--params", params}, "resolution"},
+      {{"--map", far, "--params", params}, "origin x"},
+      {{"--map", map, "--params", speed_params, "--mask", "speed=" + tiny}, "resolution"},
+      {{"--map", map, "--params", slow}, "update_frequency"},
+      {{"--map", map, "--params", params, "--pose", "1e300,0,0"}, "--pose"},
+      {{"--map", map, "--params", params, "--pose", "0,-10000001,0"}, "--pose"},
+      {{"--map", map, "--params", params, "--pose", "0,0,1e300"}, "--pose"},
+      {{"--map", map, "--params", dir.file("adir")}, "directory"},
+      {{"--map", map, "--params", "/dev/zero"}, "character device"},
+      {{"--map", map, "--params", speed_params, "--features", "speed=" + bad_limits}, "max_speed"},
+  };
+  for (const auto& c : cases)
+  {
+    const ToolResult r = runTool(c.args, dir);
+    EXPECT_NE(r.exit_code, 0) << c.needle << ": " << r.err;
+    EXPECT_NE(r.err.find(c.needle), std::string::npos) << "stderr was: " << r.err;
+    EXPECT_EQ(r.err.find("costmap_tool"), 0u) << r.err;
+    EXPECT_EQ(r.out, "") << c.needle;  // no JSON line on failure
+  }
+  // The error summary says why nothing was written.
+  const ToolResult dropped = runTool(
+      {"--map", map, "--params", speed_params, "--features", "speed=" + bad_limits, "--out-raw", dir.file("o.raw")},
+      dir);
+  EXPECT_EQ(dropped.exit_code, 1) << dropped.err;
+  EXPECT_NE(dropped.err.find("no result written"), std::string::npos) << dropped.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("o.raw")));
+  // The ends of the ranges are accepted, and valid limits leave the exit status at 0.
+  const std::string edge = writeMap(dir, "edge", 4, 4, std::vector<uint8_t>(16, 254), 1e-4, 1e7, -1e7);
+  const ToolResult ok = runTool({"--map", edge, "--params", params, "--pose", "1e7,-1e7,1000"}, dir);
+  EXPECT_EQ(ok.exit_code, 0) << ok.err;
+  const ToolResult ok2 = runTool({"--map", map, "--params", speed_params, "--features", "speed=" + good_limits}, dir);
+  EXPECT_EQ(ok2.exit_code, 0) << ok2.err;
+}
+
 #include <cmath>
 
 #include "costmap_layers/io/map_file.hpp"

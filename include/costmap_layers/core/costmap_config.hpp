@@ -13,8 +13,10 @@ struct CostmapConfig
 {
   std::string global_frame = "map";
   std::string robot_base_frame = "base_link";
+  // Ranges: see limits.hpp (frequencies, kMaxDuration, kMinResolution..kMaxResolution,
+  // kMaxCoordinate, kMaxDistance, kMaxGridCells for width x height).
   double transform_tolerance = 0.3;  ///< [s]
-  double update_frequency = 5.0;     ///< [Hz]
+  double update_frequency = 5.0;     ///< [Hz], > 0
   double publish_frequency = 0.0;    ///< [Hz], 0 = never publish (costmap_2d's default)
   double width = 10.0;               ///< [m]
   double height = 10.0;              ///< [m]

@@ -22,20 +22,23 @@
 #include "costmap_layers/core/input_error.hpp"
 #include "costmap_layers/core/layer.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
+#include "costmap_layers/core/limits.hpp"
 
 namespace costmap_layers
 {
 class ParamReader;
 
-/// Checks a mask or map: data size, finite positive resolution, finite origin, sane dimensions.
+/// Checks a mask or map: data size, dimensions (at most max_cells), resolution in
+/// [limits::kMinResolution, limits::kMaxResolution], origin x/y within limits::kMaxCoordinate and yaw
+/// within limits::kMaxYaw (see limits.hpp for why).
 /// @return ok() when valid, else the field at fault and one line naming it and its value.
-InputError validateGrid(const OccupancyGridData& grid, uint64_t max_cells = 400'000'000ull);
+InputError validateGrid(const OccupancyGridData& grid, uint64_t max_cells = limits::kMaxGridCells);
 
 /// Checks a partial update (x, y, width x height, data_size values) against a grid of
 /// grid_width x grid_height cells, in arithmetic that cannot overflow or wrap for any field values.
 /// @return ok() when it fits, else the field at fault and one line naming it and its value.
 InputError validateGridUpdate(int64_t x, int64_t y, uint32_t width, uint32_t height, std::size_t data_size,
-                               uint32_t grid_width, uint32_t grid_height);
+                              uint32_t grid_width, uint32_t grid_height);
 
 /// How master cells of one update window map to cells of the mask: per master column a mask column
 /// (or -1 outside) and per master row a mask row, when the mask is axis-aligned with the costmap;

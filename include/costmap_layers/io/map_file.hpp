@@ -3,8 +3,9 @@
 //
 // YAML keys (map_server format):
 //   image            path of the image; relative paths are relative to the YAML file's folder
-//   resolution       [m/pixel], finite and > 0
-//   origin           [x, y, yaw] of the lower-left pixel, 3 finite numbers
+//   resolution       [m/pixel], in [limits::kMinResolution, limits::kMaxResolution] = [1e-4, 1e3]
+//   origin           [x, y, yaw] of the lower-left pixel, 3 finite numbers, |x|, |y| <= 1e7 m
+//                    (limits::kMaxCoordinate), |yaw| <= 1e3 rad (limits::kMaxYaw)
 //   negate           0/1 or true/false
 //   occupied_thresh  in [0, 1]
 //   free_thresh      in [0, 1], must be < occupied_thresh
@@ -15,7 +16,12 @@
 // 0..255 with rounding when maxval != 255); PNG through libpng (grey, grey+alpha, RGB, RGBA,
 // palette, 1..16 bits; 16-bit samples are rescaled to 8 bits with rounding, no gamma correction).
 // The format is detected from the file's first bytes, not from its name. Each side must be at
-// most 100000 pixels.
+// most 100000 pixels, and width x height at most limits::kMaxGridCells (400 million, the limit the
+// node applies to map messages).
+//
+// Files: the YAML and the image must be regular files of at most kMaxMapYamlBytes and kMaxImageBytes
+// (file_limits.hpp); FIFOs, devices and directories are refused before anything is read, and the
+// image's format and dimensions are checked from its first bytes before the rest is read.
 //
 // Orientation: image row 0 (the top of the picture) becomes the LAST row of `data`, so that data
 // row 0 is the lowest y, as in nav_msgs/OccupancyGrid.

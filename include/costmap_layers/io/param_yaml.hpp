@@ -23,21 +23,36 @@
 //
 // Errors throw std::runtime_error with one line: the source name (`what`, or the file path), the
 // line and column for YAML syntax errors, and the problem.
+//
+// Bounds: nesting deeper than 256 levels is refused, and so is a document whose tree would have
+// more than kMaxYamlNodes values. yaml-cpp keeps an alias as a second reference to the anchored
+// node, but the tree built here is plain data, so every alias is expanded into a copy: nine levels
+// of ten aliases each (the "billion laughs", under 500 bytes) would make 10^9 values. Aliases and
+// merge keys are kept (real configs use `<<: *base`), and the expansion is bounded instead: the
+// budget counts every value the conversion creates, aliases included. It is twice the number of
+// values an alias-free document of kMaxParamsYamlBytes can hold (each value takes at least 2 bytes,
+// e.g. "1," in a flow list), so only alias expansion can reach it.
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include "costmap_layers/core/param_value.hpp"
+#include "costmap_layers/io/file_limits.hpp"
 
 namespace costmap_layers
 {
 namespace io
 {
+/// The most values (scalars, lists, maps, each counted once per copy) one document may expand to.
+constexpr uint64_t kMaxYamlNodes = uint64_t{1} << 18;
+
 /// Parses YAML text; `what` names the source in error messages (e.g. a file name or "--params").
 ParamValue parseParamsYaml(const std::string& text, const std::string& what);
 
-/// Reads and parses a YAML file (error when it cannot be opened).
-ParamValue loadParamsYamlFile(const std::string& path);
+/// Reads and parses a YAML file: a regular file of at most max_bytes (file_limits.hpp); an error
+/// names the path when it cannot be opened, is not a regular file or is too large.
+ParamValue loadParamsYamlFile(const std::string& path, uint64_t max_bytes = kMaxParamsYamlBytes);
 
 /// The typing rule for one plain (unquoted, untagged) scalar, exposed for tests and for tools that
 /// take "key:=value" arguments on a command line.

@@ -1,0 +1,50 @@
+// The ranges every number from outside (map files, parameters, messages, command lines) must fall in,
+// one constant per quantity, so that every quantity derived from them stays representable: cell
+// counts and indices in int, world extents and 1 / resolution finite, durations within ros::Duration
+// and within uint64 nanoseconds, and float32 casts for messages finite and > 0. Each value is checked
+// where it is read, with an error naming the field and the value; nothing is clamped silently.
+#pragma once
+
+#include <cstdint>
+
+namespace costmap_layers
+{
+namespace limits
+{
+/// Cells of any one grid: a map or mask file's image, an incoming OccupancyGrid, the costmap itself.
+/// 400 million cells (20000 x 20000) is 400 MB of int8 occupancy and 400 MB of costs; it keeps every
+/// cell index below INT_MAX, so row * width + column never overflows an int.
+constexpr uint64_t kMaxGridCells = 400'000'000ull;
+
+/// [m/cell] Resolution of maps, masks and the costmap. 0.1 mm to 1 km per cell: finer is no sensor's
+/// scale and makes distances of a few km exceed int cell counts (1e7 m / 1e-4 = 1e11); coarser
+/// is no robot's scale. Both ends are normal float32 numbers (nav_msgs/MapMetaData::resolution), so
+/// the cast for a message gives neither 0 nor inf.
+constexpr double kMinResolution = 1e-4;
+constexpr double kMaxResolution = 1e3;
+
+/// [m] |x| and |y| of any origin or pose read from outside: 10000 km, more than any map needs. With a
+/// grid of at most kMaxGridCells cells of at most kMaxResolution, every world coordinate involved
+/// stays far below 1e300, so sums, differences and squares stay finite.
+constexpr double kMaxCoordinate = 1e7;
+
+/// [rad] |yaw| of an origin or pose. Any angle is one of [-pi, pi] plus turns; a thousand radians
+/// allows any sloppy sum of turns while sin/cos of it still keep 13 significant digits.
+constexpr double kMaxYaw = 1e3;
+
+/// [m] Lengths of the robot and its surroundings: robot_radius, footprint vertices and padding,
+/// inflation_radius, sensor ranges, reset_distance. At kMinResolution this is 1e8 cells, below
+/// INT_MAX, and its square (1e16) fits int64 and double exactly enough.
+constexpr double kMaxDistance = 1e4;
+
+/// [s] Durations: tolerances, timeouts, persistence. One hour; 3.6e12 ns fits uint64 and
+/// ros::Duration (int32 seconds) with room to spare.
+constexpr double kMaxDuration = 3600.0;
+
+/// [Hz] Frequencies of loops: 0 means "off" where a parameter allows it; otherwise at least
+/// kMinFrequency (a period of 1000 s, within kMaxDuration's ros::Duration range) and at most
+/// kMaxFrequency (a period of 1 ms).
+constexpr double kMinFrequency = 1e-3;
+constexpr double kMaxFrequency = 1e3;
+}  // namespace limits
+}  // namespace costmap_layers
