@@ -99,7 +99,9 @@ void InflationLayer::rebuildTable()
   table_limit_ = 0;
   table_non_increasing_ = false;
   if (!(resolution_ > 0.0)) return;
-  const double cells = std::ceil(config_.inflation_radius / resolution_);
+  // costmap_2d's cellDistance(): the radius in cells, truncated. With a map's float32 resolution
+  // (0.05 arrives as 0.0500000007) a 1.0 m radius is 19 cells there, and so it is here.
+  const double cells = std::floor(config_.inflation_radius / resolution_);
   cell_inflation_radius_ = static_cast<int>(std::min(cells, 1e6));
   const uint64_t cap_sq = static_cast<uint64_t>(cell_inflation_radius_) * cell_inflation_radius_;
   table_limit_ = static_cast<uint32_t>(std::min<uint64_t>(cap_sq, std::numeric_limits<uint32_t>::max() - 1));

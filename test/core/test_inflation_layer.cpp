@@ -118,7 +118,7 @@ void naiveInflate(const Costmap2D& base, Costmap2D& out, const InflationConfig& 
 {
   const int w = static_cast<int>(base.getSizeInCellsX()), h = static_cast<int>(base.getSizeInCellsY());
   const double res = base.getResolution();
-  const int cap = static_cast<int>(std::ceil(cfg.inflation_radius / res));
+  const int cap = static_cast<int>(cfg.inflation_radius / res);  // costmap_2d's cellDistance()
   if (cap <= 0) return;
   auto is_source = [&](uint8_t c)
   { return c == LETHAL_OBSTACLE || (cfg.inflate_around_unknown && c == NO_INFORMATION); };
@@ -211,11 +211,11 @@ TEST(InflationLayer, ReadsParametersAndInscribedRadius)
 {
   Rig rig(10, 10, 1.0, inflationParams(4.1, 1.0), 2.1);
   EXPECT_DOUBLE_EQ(rig.inflation->inscribedRadius(), 2.1);
-  EXPECT_EQ(rig.inflation->cellInflationRadius(), 5);
+  EXPECT_EQ(rig.inflation->cellInflationRadius(), 4);  // (int)(4.1 / 1.0), costmap_2d's cellDistance()
   rig.lc.setFootprint(square(1.0));
   EXPECT_DOUBLE_EQ(rig.inflation->inscribedRadius(), 1.0);
   rig.lc.resizeMap(20, 20, 0.5, 0, 0);
-  EXPECT_EQ(rig.inflation->cellInflationRadius(), 9);
+  EXPECT_EQ(rig.inflation->cellInflationRadius(), 8);  // (int)(4.1 / 0.5)
 }
 
 // costmap_2d's testCostFunctionCorrectness-style case: an obstacle at (0,0) on a 1 m grid.
@@ -248,25 +248,25 @@ TEST(InflationLayer, LargerRangeFollowsFormulaExactly)
     Rig rig(100, 100, 1.0, inflationParams(10.5, factor), 5.0);
     rig.marks->set(50, 50, LETHAL_OBSTACLE);
     rig.update();
-    ASSERT_EQ(rig.inflation->cellInflationRadius(), 11);
+    ASSERT_EQ(rig.inflation->cellInflationRadius(), 10);  // (int)(10.5 / 1.0)
     for (int k = 0; k <= 5; ++k)
     {
       EXPECT_GE(rig.at(50 + k, 50), INSCRIBED_INFLATED_OBSTACLE);
       EXPECT_GE(rig.at(50, 50 - k), INSCRIBED_INFLATED_OBSTACLE);
     }
-    for (int k = 6; k <= 11; ++k)
+    for (int k = 6; k <= 10; ++k)
     {
       EXPECT_EQ(rig.at(50 + k, 50), inflationCost(k, 1.0, 5.0, factor)) << k;
       EXPECT_EQ(rig.at(50 - k, 50), inflationCost(k, 1.0, 5.0, factor)) << k;
       EXPECT_EQ(rig.at(50, 50 + k), inflationCost(k, 1.0, 5.0, factor)) << k;
       EXPECT_EQ(rig.at(50, 50 - k), inflationCost(k, 1.0, 5.0, factor)) << k;
     }
-    EXPECT_EQ(rig.at(62, 50), FREE_SPACE);
+    EXPECT_EQ(rig.at(61, 50), FREE_SPACE);
     for (unsigned y = 0; y < 100; ++y)
       for (unsigned x = 0; x < 100; ++x)
       {
         const double d = std::hypot(double(x) - 50, double(y) - 50);
-        ASSERT_EQ(rig.at(x, y), d <= 11.0 ? inflationCost(d, 1.0, 5.0, factor) : FREE_SPACE) << x << "," << y;
+        ASSERT_EQ(rig.at(x, y), d <= 10.0 ? inflationCost(d, 1.0, 5.0, factor) : FREE_SPACE) << x << "," << y;
       }
   }
 }
@@ -285,7 +285,7 @@ TEST(InflationLayer, LShapedWall)
 
 TEST(InflationLayer, InflateUnknownLeavesOnlyCorners)
 {
-  Rig rig(9, 9, 1.0, inflationParams(4.1, 1.0, true), 2.1, true, NO_INFORMATION);
+  Rig rig(9, 9, 1.0, inflationParams(5.1, 1.0, true), 2.1, true, NO_INFORMATION);  // 5 cells
   rig.marks->set(4, 4, LETHAL_OBSTACLE);
   rig.update();
   for (unsigned y = 0; y < 9; ++y)
@@ -341,11 +341,11 @@ TEST(InflationLayer, BoundsGrowByTheRadiusAndReinflateOnChange)
   rig.update();
   double x0 = 1.0, y0 = 2.0, x1 = 1.5, y1 = 2.5;
   rig.inflation->updateBounds(0, 0, 0, &x0, &y0, &x1, &y1);
-  // ceil(0.52 / 0.05) = 11 cells.
-  EXPECT_NEAR(x0, 1.0 - 0.55, 1e-12);
-  EXPECT_NEAR(y0, 2.0 - 0.55, 1e-12);
-  EXPECT_NEAR(x1, 1.5 + 0.55, 1e-12);
-  EXPECT_NEAR(y1, 2.5 + 0.55, 1e-12);
+  // (int)(0.52 / 0.05) = 10 cells, as costmap_2d's cellDistance() truncates.
+  EXPECT_NEAR(x0, 1.0 - 0.5, 1e-12);
+  EXPECT_NEAR(y0, 2.0 - 0.5, 1e-12);
+  EXPECT_NEAR(x1, 1.5 + 0.5, 1e-12);
+  EXPECT_NEAR(y1, 2.5 + 0.5, 1e-12);
   // Nothing asked for: nothing added.
   double e0 = std::numeric_limits<double>::max(), e1 = std::numeric_limits<double>::lowest();
   double f0 = e0, f1 = e1;
