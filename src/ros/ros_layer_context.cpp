@@ -2,6 +2,7 @@
 
 #include <map_msgs/OccupancyGridUpdate.h>
 #include <nav_msgs/OccupancyGrid.h>
+#include <ros/names.h>
 #include <std_srvs/SetBool.h>
 #include <tf2/exceptions.h>
 
@@ -88,11 +89,17 @@ RosLayerContext::RosLayerContext(ros::NodeHandle public_nh, ros::NodeHandle priv
 {
 }
 
+std::string RosLayerContext::resolveTopic(const std::string& topic) const
+{
+  if (topic_ns_.empty() || topic.empty() || topic[0] == '/' || topic[0] == '~') return topic;
+  return ros::names::append(topic_ns_, topic);
+}
+
 void RosLayerContext::subscribeGrid(const std::string& topic, costmap_layers::GridKind, costmap_layers::GridCallback cb)
 {
   const std::string owner = private_nh_.getNamespace();
   subscribers_.push_back(public_nh_.subscribe<nav_msgs::OccupancyGrid>(
-      topic, 1,
+      resolveTopic(topic), 1,
       [cb, owner, topic, log = log_](const nav_msgs::OccupancyGrid::ConstPtr& msg)
       {
         try
@@ -100,7 +107,8 @@ void RosLayerContext::subscribeGrid(const std::string& topic, costmap_layers::Gr
           std::string note;
           auto grid = std::make_shared<const costmap_layers::OccupancyGridData>(fromMsg(*msg, &note));
           if (!note.empty())
-            log->log(Severity::Warn, owner + topic + "/info.origin.orientation", owner + ": grid on " + topic + ": " + note);
+            log->log(Severity::Warn, owner + topic + "/info.origin.orientation",
+                     owner + ": grid on " + topic + ": " + note);
           cb(grid);
         }
         catch (const std::exception& e)
@@ -114,7 +122,7 @@ void RosLayerContext::subscribeGridUpdates(const std::string& topic, costmap_lay
 {
   const std::string owner = private_nh_.getNamespace();
   subscribers_.push_back(public_nh_.subscribe<map_msgs::OccupancyGridUpdate>(
-      topic, 10,
+      resolveTopic(topic), 10,
       [cb, owner, topic, log = log_](const map_msgs::OccupancyGridUpdate::ConstPtr& msg)
       {
         try
@@ -132,7 +140,7 @@ void RosLayerContext::subscribeSpeedLimits(const std::string& topic, costmap_lay
 {
   const std::string owner = private_nh_.getNamespace();
   subscribers_.push_back(public_nh_.subscribe<costmap_layers::SpeedLimits>(
-      topic, 1,
+      resolveTopic(topic), 1,
       [cb, owner, topic, log = log_](const costmap_layers::SpeedLimits::ConstPtr& msg)
       {
         try
@@ -319,7 +327,7 @@ void RosLayerContext::subscribeSensor(const std::string& topic, const std::strin
              owner + ": dropped a reading on " + topic + ": cannot transform frame '" + msg->header.frame_id +
                  "' into '" + global + "': " + why);
   };
-  sensor_inputs_.push_back(TfGate<Msg>::create(public_nh_, topic, tf_, global_frame_, ready, failed));
+  sensor_inputs_.push_back(TfGate<Msg>::create(public_nh_, resolveTopic(topic), tf_, global_frame_, ready, failed));
 }
 
 void RosLayerContext::subscribeLaserScan(const std::string& topic, const std::string& sensor_frame,
@@ -342,7 +350,7 @@ void RosLayerContext::subscribeRange(const std::string& topic,
 
 costmap_layers::MaxSpeedPublisher RosLayerContext::advertiseMaxSpeed(const std::string& topic)
 {
-  publishers_.push_back(public_nh_.advertise<costmap_layers::MaxSpeed>(topic, 1, true));
+  publishers_.push_back(public_nh_.advertise<costmap_layers::MaxSpeed>(resolveTopic(topic), 1, true));
   ros::Publisher pub = publishers_.back();
   const std::string frame = global_frame_;
   return [pub, frame](double max_speed)

@@ -53,6 +53,14 @@ public:
                   std::string global_frame, double transform_tolerance, tf2_ros::Buffer& tf,
                   std::shared_ptr<ThrottledLog> log);
 
+  /// Relative topic names resolve against ns (an absolute namespace such as "/") instead of
+  /// public_nh's namespace: move_base's costmaps resolve them against move_base's node handle.
+  /// Empty (the default): public_nh's namespace. (roscpp cannot make a NodeHandle for "/" from a node
+  /// in another namespace, so this is done by name.)
+  void setTopicNamespace(std::string ns) { topic_ns_ = std::move(ns); }
+  /// The name a topic is subscribed or advertised under.
+  std::string resolveTopic(const std::string& topic) const;
+
   const costmap_layers::ParamValue& params() const override { return params_; }
   const std::string& globalFrame() const override { return global_frame_; }
   double transformTolerance() const override { return transform_tolerance_; }
@@ -81,6 +89,7 @@ private:
 
   ros::NodeHandle public_nh_;
   ros::NodeHandle private_nh_;
+  std::string topic_ns_;
   costmap_layers::ParamValue params_;
   std::string global_frame_;
   double transform_tolerance_;
