@@ -216,7 +216,7 @@ std::vector<uint8_t> bruteForceStaticInflation(const costmap_layers::OccupancyGr
     const int v = map.data[k];
     master[k] = v == -1 ? 255 : (v >= 100 ? 254 : 0);  // trinary: below the threshold is free
   }
-  const int r = static_cast<int>(std::ceil(radius / map.resolution));
+  const int r = static_cast<int>(radius / map.resolution);  // costmap_2d's cellDistance() truncates
   std::vector<uint8_t> out = master;
   for (int y = 0; y < h; ++y)
   {
