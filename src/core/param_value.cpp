@@ -95,11 +95,36 @@ const std::vector<ParamValue>& ParamValue::asList() const
 const ParamValue* ParamValue::find(const std::string& key) const
 {
   if (type_ != Type::Map) return nullptr;
+  if (ParamReadLog* log = ParamReadLog::current()) log->note(this, key);
   for (const auto& kv : map_)
   {
     if (kv.first == key) return &kv.second;
   }
   return nullptr;
+}
+
+ParamValue* ParamValue::findMutable(const std::string& key)
+{
+  if (type_ != Type::Map) return nullptr;
+  for (auto& kv : map_)
+  {
+    if (kv.first == key) return &kv.second;
+  }
+  return nullptr;
+}
+
+bool ParamValue::erase(const std::string& key)
+{
+  if (type_ != Type::Map) return false;
+  for (auto it = map_.begin(); it != map_.end(); ++it)
+  {
+    if (it->first == key)
+    {
+      map_.erase(it);
+      return true;
+    }
+  }
+  return false;
 }
 
 const ParamValue* ParamValue::findPath(const std::string& path) const
@@ -180,6 +205,44 @@ std::string ParamValue::toString() const
     }
   }
   return out.str();
+}
+
+namespace
+{
+thread_local ParamReadLog* g_read_log = nullptr;
+}
+
+ParamReadLog::ParamReadLog() : previous_(g_read_log)
+{
+  g_read_log = this;
+}
+
+ParamReadLog::~ParamReadLog()
+{
+  g_read_log = previous_;
+}
+
+ParamReadLog* ParamReadLog::current()
+{
+  return g_read_log;
+}
+
+void ParamReadLog::note(const ParamValue* map, const std::string& key)
+{
+  asked_[map].insert(key);
+}
+
+bool ParamReadLog::asked(const ParamValue* map, const std::string& key) const
+{
+  const auto it = asked_.find(map);
+  return it != asked_.end() && it->second.count(key) != 0;
+}
+
+std::vector<std::string> ParamReadLog::askedKeys(const ParamValue* map) const
+{
+  const auto it = asked_.find(map);
+  if (it == asked_.end()) return {};
+  return std::vector<std::string>(it->second.begin(), it->second.end());
 }
 
 const char* ParamValue::typeName(Type t)

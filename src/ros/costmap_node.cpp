@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "costmap_layers/core/config_compat.hpp"
 #include "costmap_layers/core/costmap_builder.hpp"
 #include "costmap_layers/core/costmap_clearing.hpp"
 #include "costmap_layers/core/layer.hpp"
@@ -26,9 +27,29 @@ ParamValue readNamespace(const ros::NodeHandle& nh)
   return tree.isMap() ? tree : ParamValue::makeMap();
 }
 
-CostmapNode::CostmapNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
+std::vector<costmap_layers::ParentNamespace> readParentNamespaces(const std::string& ns)
+{
+  std::vector<costmap_layers::ParentNamespace> parents;
+  std::string at = ns;
+  while (at != "/" && !at.empty())
+  {
+    at = ros::names::parentNamespace(at);
+    costmap_layers::ParentNamespace parent{at, ParamValue::makeMap()};
+    for (const auto& key : costmap_layers::searchedKeys())
+    {
+      XmlRpc::XmlRpcValue value;
+      const std::string name = (at == "/" ? "" : at) + "/" + key;
+      if (ros::param::has(name) && ros::param::get(name, value)) parent.values.set(key, fromXmlRpc(value));
+    }
+    parents.push_back(std::move(parent));
+  }
+  return parents;
+}
+
+CostmapNode::CostmapNode(ros::NodeHandle nh, ros::NodeHandle private_nh, std::string topic_ns)
     : nh_(nh),
       private_nh_(private_nh),
+      topic_ns_(std::move(topic_ns)),
       log_(std::make_shared<ThrottledLog>()),
       tf_(ros::Duration(10.0)),
       tf_listener_(tf_)
@@ -48,7 +69,29 @@ CostmapNode::CostmapNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
 
 void CostmapNode::setUp()
 {
-  const ParamValue params = readNamespace(private_nh_);
+  const std::string ns = private_nh_.getNamespace();
+  ParamValue raw = readNamespace(private_nh_);
+  const std::string own_name = ns.substr(ns.rfind('/') + 1);
+  if (!own_name.empty() && costmap_layers::liftOwnNamespace(raw, own_name))
+    ROS_INFO("costmap: %s/%s holds a move_base file's `%s:` section: its parameters apply to this costmap", ns.c_str(),
+             own_name.c_str(), own_name.c_str());
+  // costmap_2d's conversions and look-ups; the tree that results is what everything below reads.
+  params_ = std::make_unique<costmap_layers::CompatResult>(
+      costmap_layers::applyCostmap2dRules(raw, readParentNamespaces(ns)));
+  for (const auto& w : params_->warnings)
+    ROS_WARN("costmap %s: %s", ns.c_str(), w.c_str());
+  for (const auto& n : params_->notes)
+    ROS_INFO("costmap %s: %s", ns.c_str(), n.c_str());
+  if (params_->converted_pre_hydro)
+    ROS_INFO(
+        "costmap %s: the same costmap as a plugin list (costmap_2d's form, read unchanged here); put it in "
+        "the costmap's namespace in place of the pre-Hydro keys:\n%s",
+        ns.c_str(), params_->plugin_list_yaml.c_str());
+  const ParamValue& params = params_->params;
+
+  // Every parameter look-up from here until the layers are initialised is noted, so that the keys
+  // nobody asked for can be reported.
+  costmap_layers::ParamReadLog read_log;
   config_ = costmap_layers::parseCostmapConfig(params);
   if (config_.update_frequency <= 0.0)
     throw std::invalid_argument("costmap: parameter 'update_frequency' must be positive (got " +
@@ -59,12 +102,15 @@ void CostmapNode::setUp()
                                                               config_.track_unknown_space);
   costmap_->resizeMap(config_.sizeInCellsX(), config_.sizeInCellsY(), config_.resolution, config_.origin_x,
                       config_.origin_y);
+  std::vector<std::pair<costmap_layers::PluginSpec, std::shared_ptr<RosLayerContext>>> made;
   auto contexts = [&](const costmap_layers::PluginSpec& spec)
   {
     const ParamValue* sub = params.find(spec.name);
-    return std::make_shared<RosLayerContext>(ros::NodeHandle(private_nh_, spec.name),
-                                             sub != nullptr ? *sub : ParamValue::makeMap(), config_.global_frame,
-                                             config_.transform_tolerance, tf_, log_);
+    auto context = std::make_shared<RosLayerContext>(ros::NodeHandle(private_nh_, spec.name),
+                                                     sub != nullptr ? *sub : ParamValue::makeMap(),
+                                                     config_.global_frame, config_.transform_tolerance, tf_, log_);
+    made.emplace_back(spec, context);
+    return context;
   };
   costmap_layers::loadPlugins(
       *costmap_, lists, [this](const std::string& type) { return factory_.create(type); }, contexts);
@@ -72,11 +118,33 @@ void CostmapNode::setUp()
   for (const auto* list : {&lists.plugins, &lists.filters})
     for (const auto& spec : *list)
     {
-      ROS_INFO("costmap: using plugin \"%s\" (%s)", spec.name.c_str(), spec.type.c_str());
+      const std::string ours = costmap_layers::resolvePluginType(spec.type);
+      if (ours != spec.type)
+        ROS_INFO("costmap: using plugin \"%s\" (%s, loaded as %s)", spec.name.c_str(), spec.type.c_str(), ours.c_str());
+      else
+        ROS_INFO("costmap: using plugin \"%s\" (%s)", spec.name.c_str(), spec.type.c_str());
       ports_.push_back(std::make_unique<LayerPorts>(nh_, ros::NodeHandle(private_nh_, spec.name),
                                                     *costmap_->findLayer(spec.name), config_.global_frame, tf_,
-                                                    log_));
+                                                    log_, topic_ns_));
     }
+
+  // One warning per key that no parse asked for, in the costmap's namespace and in each layer's.
+  std::vector<std::string> names;
+  for (const auto* list : {&lists.plugins, &lists.filters})
+    for (const auto& spec : *list)
+      names.push_back(spec.name);
+  for (const auto& u : costmap_layers::unknownKeys(params, read_log, "costmap", params_->consumed, names))
+    ROS_WARN("costmap: %s", costmap_layers::describeUnknownKey(u, ns, names).c_str());
+  for (const auto& [spec, context] : made)
+  {
+    std::vector<std::string> known = {"plugin"};
+    const auto consumed = params_->layer_consumed.find(spec.name);
+    if (consumed != params_->layer_consumed.end())
+      known.insert(known.end(), consumed->second.begin(), consumed->second.end());
+    const std::string scope = costmap_layers::pluginClassName(costmap_layers::resolvePluginType(spec.type));
+    for (const auto& u : costmap_layers::unknownKeys(context->params(), read_log, scope, known))
+      ROS_WARN("costmap: %s", costmap_layers::describeUnknownKey(u, ns + "/" + spec.name).c_str());
+  }
   costmap_->setFootprint(config_.footprint.padded());
   const LayerReconfigure::RunLocked run_locked = [this](const std::function<void()>& fn)
   {
@@ -93,8 +161,8 @@ void CostmapNode::setUp()
                                              sub != nullptr ? *sub : ParamValue::makeMap(), run_locked));
     }
 
-  schedule_ = std::make_unique<costmap_layers::PublishSchedule>(config_.publish_frequency,
-                                                                 config_.always_send_full_costmap);
+  schedule_ =
+      std::make_unique<costmap_layers::PublishSchedule>(config_.publish_frequency, config_.always_send_full_costmap);
   // Not latched: a latched grid would be the one of the last resize. Each new subscriber gets the
   // current grid from the connect callback instead, as costmap_2d's publisher does.
   costmap_pub_ = private_nh_.advertise<nav_msgs::OccupancyGrid>(

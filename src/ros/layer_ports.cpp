@@ -1,6 +1,7 @@
 #include "costmap_layers/ros/layer_ports.hpp"
 
 #include <map_msgs/OccupancyGridUpdate.h>
+#include <ros/names.h>
 #include <nav_msgs/OccupancyGrid.h>
 #include <sensor_msgs/LaserScan.h>
 #include <sensor_msgs/PointCloud2.h>
@@ -45,10 +46,12 @@ TfVerdict tfVerdict(tf2::BufferCore& tf, const std::string& target, const std::s
 }
 
 LayerPorts::LayerPorts(ros::NodeHandle public_nh, ros::NodeHandle private_nh, costmap_layers::Layer& layer,
-                       std::string global_frame, tf2_ros::Buffer& tf, std::shared_ptr<ThrottledLog> log)
+                       std::string global_frame, tf2_ros::Buffer& tf, std::shared_ptr<ThrottledLog> log,
+                       std::string topic_ns)
     : public_nh_(std::move(public_nh)),
       private_nh_(std::move(private_nh)),
       layer_(layer),
+      topic_ns_(std::move(topic_ns)),
       global_frame_(std::move(global_frame)),
       tf_(tf),
       log_(std::move(log))
@@ -80,7 +83,7 @@ LayerPorts::LayerPorts(ros::NodeHandle public_nh, ros::NodeHandle private_nh, co
   }
   for (const costmap_layers::OutputPort& out : layer.outputs())
     if (out.kind == costmap_layers::OutputKind::MaxSpeed)
-      publishers_[out.topic] = public_nh_.advertise<costmap_layers::MaxSpeed>(out.topic, 1, true);
+      publishers_[out.topic] = public_nh_.advertise<costmap_layers::MaxSpeed>(resolveTopic(out.topic), 1, true);
   if (!publishers_.empty())
     layer.setOutputListener([this](const costmap_layers::OutputEvent& e) { publish(e); });
   // A filter's one switch, as a service: the same flag as its `enabled` parameter.
@@ -94,6 +97,12 @@ LayerPorts::LayerPorts(ros::NodeHandle public_nh, ros::NodeHandle private_nh, co
           res.message = req.data ? "enabled" : "disabled";
           return true;
         });
+}
+
+std::string LayerPorts::resolveTopic(const std::string& topic) const
+{
+  if (topic_ns_.empty() || topic.empty() || topic[0] == '/' || topic[0] == '~') return topic;
+  return ros::names::append(topic_ns_, topic);
 }
 
 LayerPorts::~LayerPorts()
@@ -116,7 +125,7 @@ void LayerPorts::subscribeGrid(const std::string& topic, costmap_layers::GridCal
 {
   const std::string owner = private_nh_.getNamespace();
   subscribers_.push_back(public_nh_.subscribe<nav_msgs::OccupancyGrid>(
-      topic, 1,
+      resolveTopic(topic), 1,
       [cb, owner, topic, log = log_](const nav_msgs::OccupancyGrid::ConstPtr& msg)
       {
         try
@@ -138,7 +147,7 @@ void LayerPorts::subscribeGridUpdates(const std::string& topic, costmap_layers::
 {
   const std::string owner = private_nh_.getNamespace();
   subscribers_.push_back(public_nh_.subscribe<map_msgs::OccupancyGridUpdate>(
-      topic, 10,
+      resolveTopic(topic), 10,
       [cb, owner, topic, log = log_](const map_msgs::OccupancyGridUpdate::ConstPtr& msg)
       {
         try
@@ -156,7 +165,7 @@ void LayerPorts::subscribeSpeedLimits(const std::string& topic, costmap_layers::
 {
   const std::string owner = private_nh_.getNamespace();
   subscribers_.push_back(public_nh_.subscribe<costmap_layers::SpeedLimits>(
-      topic, 1,
+      resolveTopic(topic), 1,
       [cb, owner, topic, log = log_](const costmap_layers::SpeedLimits::ConstPtr& msg)
       {
         try
@@ -318,6 +327,6 @@ void LayerPorts::subscribeSensor(const std::string& topic, const std::string& se
              owner + ": dropped a reading on " + topic + ": cannot transform frame '" + msg->header.frame_id +
                  "' into '" + global + "': " + why);
   };
-  sensor_inputs_.push_back(TfGate<Msg>::create(public_nh_, topic, tf_, global_frame_, ready, failed));
+  sensor_inputs_.push_back(TfGate<Msg>::create(public_nh_, resolveTopic(topic), tf_, global_frame_, ready, failed));
 }
 }  // namespace costmap_layers_ros

@@ -3,6 +3,8 @@
 #include <pluginlib/class_loader.hpp>
 #include <stdexcept>
 
+#include "costmap_layers/core/config_compat.hpp"
+
 namespace costmap_layers_ros
 {
 struct PluginFactory::Impl
@@ -20,13 +22,16 @@ std::vector<std::string> PluginFactory::availableTypes() const
   return impl_->loader.getDeclaredClasses();
 }
 
-std::shared_ptr<costmap_layers::Layer> PluginFactory::create(const std::string& type)
+std::shared_ptr<costmap_layers::Layer> PluginFactory::create(const std::string& written_type)
 {
+  // costmap_2d's and Nav2's names for the layers this package re-implements load its own classes.
+  const std::string type = costmap_layers::resolvePluginType(written_type);
   std::string list;
   for (const auto& t : availableTypes())
     list += (list.empty() ? "" : ", ") + t;
   if (!impl_->loader.isClassAvailable(type))
-    throw std::runtime_error("unknown plugin type '" + type + "'; available types: " + list);
+    throw std::runtime_error("unknown plugin type '" + written_type + "'; available types: " + list +
+                             " (and the costmap_2d / Nav2 names of these, see the README)");
   try
   {
     return impl_->loader.createSharedInstance(type);

@@ -28,6 +28,7 @@ class GridWatcher:
         self.data = None
         self.width = self.height = 0
         self.resolution = 0.0
+        self.origin = (0.0, 0.0)
         rospy.Subscriber(ns + "/costmap", OccupancyGrid, self._on_grid)
         rospy.Subscriber(ns + "/costmap_updates", OccupancyGridUpdate, self._on_update)
 
@@ -38,6 +39,7 @@ class GridWatcher:
             self.height = msg.info.height
             # info.resolution is a float32: 0.1 arrives as 0.10000000149, which would put 5.0 m in cell 49.
             self.resolution = round(msg.info.resolution, 6)
+            self.origin = (msg.info.origin.position.x, msg.info.origin.position.y)
             self.cond.notify_all()
 
     def _on_update(self, msg):

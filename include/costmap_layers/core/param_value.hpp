@@ -4,6 +4,8 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -51,6 +53,10 @@ public:
   const ParamValue* find(const std::string& key) const;
   /// Follows a '/'-separated path of map keys ("a/b/c"); nullptr when any part is absent.
   const ParamValue* findPath(const std::string& path) const;
+  /// Map access for changing a value in place (not noted by a ParamReadLog); nullptr when absent.
+  ParamValue* findMutable(const std::string& key);
+  /// Removes a key from a map; false when it was not there.
+  bool erase(const std::string& key);
   /// Inserts or replaces a key; turns a Null value into a Map first.
   ParamValue& set(const std::string& key, ParamValue v);
   const std::vector<std::pair<std::string, ParamValue>>& entries() const { return map_; }
@@ -69,5 +75,34 @@ private:
   std::string s_;
   std::vector<ParamValue> list_;
   std::vector<std::pair<std::string, ParamValue>> map_;
+};
+
+/// Which keys were asked of which maps. While an instance lives, every ParamValue::find() on a map
+/// made by the same thread is noted in it (instances nest: the innermost one records). The node
+/// starts one before the costmap and its layers read their parameters, then reports every key
+/// nobody asked for (see unknownKeys()). The log holds the maps' addresses: the trees read must not
+/// change while it is in use.
+class ParamReadLog
+{
+public:
+  ParamReadLog();
+  ~ParamReadLog();
+  ParamReadLog(const ParamReadLog&) = delete;
+  ParamReadLog& operator=(const ParamReadLog&) = delete;
+
+  void note(const ParamValue* map, const std::string& key);
+  /// True when key was looked up in map (present or not).
+  bool asked(const ParamValue* map, const std::string& key) const;
+  /// True when anything was looked up in map.
+  bool readFrom(const ParamValue* map) const { return asked_.count(map) != 0; }
+  /// Every key looked up in map, present or not, sorted.
+  std::vector<std::string> askedKeys(const ParamValue* map) const;
+
+  /// The log recording on this thread, or nullptr.
+  static ParamReadLog* current();
+
+private:
+  std::map<const ParamValue*, std::set<std::string>> asked_;
+  ParamReadLog* previous_ = nullptr;
 };
 }  // namespace costmap_layers

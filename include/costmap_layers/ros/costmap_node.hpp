@@ -11,6 +11,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "costmap_layers/core/config_compat.hpp"
 #include "costmap_layers/core/costmap_config.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
 #include "costmap_layers/core/publish_schedule.hpp"
@@ -30,12 +31,17 @@ struct StartupError : std::runtime_error
 
 /// Reads the whole parameter namespace of nh into a tree (an empty map when nothing is set).
 costmap_layers::ParamValue readNamespace(const ros::NodeHandle& nh);
+/// The keys costmap_2d finds with searchParam (costmap_layers::searchedKeys()) as set in each parent
+/// namespace of ns, nearest first, up to the root.
+std::vector<costmap_layers::ParentNamespace> readParentNamespaces(const std::string& ns);
 
 class CostmapNode
 {
 public:
   /// Logs one clear ROS_FATAL line and throws StartupError on a bad parameter or an unknown plugin type.
-  CostmapNode(ros::NodeHandle nh, ros::NodeHandle private_nh);
+  /// @param topic_ns  when not empty, the absolute namespace relative topic names resolve against
+  ///                  (RosLayerContext::setTopicNamespace()); else nh's namespace
+  CostmapNode(ros::NodeHandle nh, ros::NodeHandle private_nh, std::string topic_ns = "");
   ~CostmapNode();
 
   /// Runs the update loop until ROS shuts down (callbacks need a spinner on other threads).
@@ -56,6 +62,9 @@ private:
 
   ros::NodeHandle nh_;
   ros::NodeHandle private_nh_;
+  std::string topic_ns_;
+  /// The costmap's namespace after costmap_2d's rules (pre-Hydro conversion, searchParam look-ups).
+  std::unique_ptr<costmap_layers::CompatResult> params_;
   costmap_layers::CostmapConfig config_;
   std::shared_ptr<ThrottledLog> log_;
   tf2_ros::Buffer tf_;
@@ -70,9 +79,9 @@ private:
   std::vector<std::unique_ptr<LayerReconfigure>> reconfigure_;  ///< one dynamic_reconfigure server per layer
   ros::ServiceServer clear_srv_;
   ros::ServiceServer clear_around_srv_;
-  std::mutex update_mutex_;         ///< one update cycle or one clear request at a time
-  double last_x_ = 0, last_y_ = 0;  ///< the robot position of the last update [m]
-  bool cycled_once_ = false;  ///< a whole update cycle ran: the grid is worth sending
+  std::mutex update_mutex_;                                    ///< one update cycle or one clear request at a time
+  double last_x_ = 0, last_y_ = 0;                             ///< the robot position of the last update [m]
+  bool cycled_once_ = false;                                   ///< a whole update cycle ran: the grid is worth sending
   std::unique_ptr<costmap_layers::PublishSchedule> schedule_;  ///< guarded by update_mutex_
 };
 }  // namespace costmap_layers_ros

@@ -22,9 +22,16 @@ class LayerPorts
 public:
   /// @param public_nh   resolves the layers' topics
   /// @param private_nh  the layer's own namespace (~<name>): its toggle service
+  /// @param topic_ns    when not empty, relative topic names resolve against this absolute namespace
+  ///                    instead of public_nh's: move_base's costmaps resolve them against move_base's
+  ///                    node handle. (roscpp cannot make a NodeHandle for "/" from a node in another
+  ///                    namespace, so this is done by name.)
   /// The layer must outlive this object; the destructor detaches from the layer's outputs.
   LayerPorts(ros::NodeHandle public_nh, ros::NodeHandle private_nh, costmap_layers::Layer& layer,
-             std::string global_frame, tf2_ros::Buffer& tf, std::shared_ptr<ThrottledLog> log);
+             std::string global_frame, tf2_ros::Buffer& tf, std::shared_ptr<ThrottledLog> log,
+             std::string topic_ns = "");
+  /// The name a topic is subscribed or advertised under.
+  std::string resolveTopic(const std::string& topic) const;
   ~LayerPorts();
   LayerPorts(const LayerPorts&) = delete;
   LayerPorts& operator=(const LayerPorts&) = delete;
@@ -43,6 +50,7 @@ private:
   ros::NodeHandle public_nh_;
   ros::NodeHandle private_nh_;
   costmap_layers::Layer& layer_;
+  std::string topic_ns_;
   std::string global_frame_;
   tf2_ros::Buffer& tf_;
   std::shared_ptr<ThrottledLog> log_;

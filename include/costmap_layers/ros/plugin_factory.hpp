@@ -14,8 +14,9 @@ class PluginFactory
 public:
   PluginFactory();
   ~PluginFactory();
-  /// Throws std::runtime_error naming the type and listing the available types when it is unknown
-  /// or cannot be loaded.
+  /// Creates a layer of `type`, or of the class a costmap_2d / Nav2 type name stands for
+  /// (costmap_layers::resolvePluginType()). Throws std::runtime_error naming the type and listing the
+  /// available types when it is unknown or cannot be loaded.
   std::shared_ptr<costmap_layers::Layer> create(const std::string& type);
   std::vector<std::string> availableTypes() const;
 

@@ -1,0 +1,609 @@
+#include "costmap_layers/core/config_compat.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "costmap_layers/core/costmap_config.hpp"
+
+namespace costmap_layers
+{
+const std::vector<PluginTypeAlias>& pluginTypeAliases()
+{
+  static const std::vector<PluginTypeAlias> table = {
+      {"costmap_2d::StaticLayer", "costmap_layers/StaticLayer", TypeDialect::Costmap2D},
+      {"costmap_2d::ObstacleLayer", "costmap_layers/ObstacleLayer", TypeDialect::Costmap2D},
+      {"costmap_2d::VoxelLayer", "costmap_layers/VoxelLayer", TypeDialect::Costmap2D},
+      {"costmap_2d::InflationLayer", "costmap_layers/InflationLayer", TypeDialect::Costmap2D},
+      {"range_sensor_layer::RangeSensorLayer", "costmap_layers/RangeSensorLayer", TypeDialect::Costmap2D},
+      {"nav2_costmap_2d::StaticLayer", "costmap_layers/StaticLayer", TypeDialect::Nav2},
+      {"nav2_costmap_2d::ObstacleLayer", "costmap_layers/ObstacleLayer", TypeDialect::Nav2},
+      {"nav2_costmap_2d::VoxelLayer", "costmap_layers/VoxelLayer", TypeDialect::Nav2},
+      {"nav2_costmap_2d::InflationLayer", "costmap_layers/InflationLayer", TypeDialect::Nav2},
+      {"nav2_costmap_2d::RangeSensorLayer", "costmap_layers/RangeSensorLayer", TypeDialect::Nav2},
+      {"nav2_costmap_2d::KeepoutFilter", "costmap_layers/KeepoutFilter", TypeDialect::Nav2},
+      {"nav2_costmap_2d::SpeedFilter", "costmap_layers/SpeedFilter", TypeDialect::Nav2},
+  };
+  return table;
+}
+
+namespace
+{
+const PluginTypeAlias* findAlias(const std::string& written)
+{
+  for (const auto& a : pluginTypeAliases())
+    if (written == a.written) return &a;
+  return nullptr;
+}
+}  // namespace
+
+std::string resolvePluginType(const std::string& written)
+{
+  const PluginTypeAlias* a = findAlias(written);
+  return a != nullptr ? a->ours : written;
+}
+
+TypeDialect typeDialect(const std::string& written)
+{
+  const PluginTypeAlias* a = findAlias(written);
+  return a != nullptr ? a->dialect : TypeDialect::Native;
+}
+
+std::string pluginClassName(const std::string& type)
+{
+  const auto colons = type.rfind("::");
+  const auto slash = type.rfind('/');
+  std::size_t start = 0;
+  if (colons != std::string::npos) start = colons + 2;
+  if (slash != std::string::npos && slash + 1 > start) start = slash + 1;
+  return type.substr(start);
+}
+
+const std::vector<std::string>& searchedKeys()
+{
+  static const std::vector<std::string> keys = {"footprint", "robot_radius", "obstacle_range", "raytrace_range"};
+  return keys;
+}
+
+const ParamValue* searchParam(const std::vector<const ParamValue*>& chain, const std::string& key, std::size_t* where)
+{
+  for (std::size_t k = 0; k < chain.size(); ++k)
+  {
+    if (chain[k] == nullptr) continue;
+    if (const ParamValue* v = chain[k]->find(key))
+    {
+      if (where != nullptr) *where = k;
+      return v;
+    }
+  }
+  return nullptr;
+}
+
+namespace
+{
+std::vector<std::string> splitWords(const std::string& text)
+{
+  std::vector<std::string> words;
+  std::istringstream in(text);
+  std::string w;
+  while (in >> w)
+    words.push_back(w);
+  return words;
+}
+
+/// The names in observation_sources: a space-separated string (costmap_2d) or a list of names.
+std::vector<std::string> sourceNamesOf(const ParamValue* v)
+{
+  std::vector<std::string> names;
+  if (v == nullptr) return names;
+  if (v->type() == ParamValue::Type::String) return splitWords(v->asString());
+  if (v->isList())
+    for (const auto& item : v->asList())
+      if (item.type() == ParamValue::Type::String) names.push_back(item.asString());
+  return names;
+}
+
+ParamValue& subMap(ParamValue& ns, const std::string& name)
+{
+  ParamValue* sub = ns.findMutable(name);
+  if (sub == nullptr || !sub->isMap()) return ns.set(name, ParamValue::makeMap());
+  return *sub;
+}
+
+/// costmap_2d's move_parameter: the value of `key` in ns, when set, into ns/<layer>/<key>
+/// (replacing what was there); with erase the costmap-level key goes away.
+void moveParameter(ParamValue& ns, const std::string& layer, const std::string& key, bool erase, CompatResult& r)
+{
+  const ParamValue* v = ns.find(key);
+  if (v == nullptr) return;
+  const ParamValue value = *v;
+  ParamValue& target = subMap(ns, layer);
+  if (const ParamValue* old = target.find(key))
+  {
+    if (old->toString() != value.toString())
+      r.warnings.push_back("'" + key + "' " + value.toString() + " of the costmap's namespace replaces '" + layer +
+                           "/" + key + "' " + old->toString() +
+                           ", as costmap_2d copies it into a layer of this type (remove one of them)");
+  }
+  target.set(key, value);
+  if (erase) ns.erase(key);
+  if (std::find(r.consumed.begin(), r.consumed.end(), key) == r.consumed.end()) r.consumed.push_back(key);
+}
+
+ParamValue pluginEntry(const std::string& name, const std::string& type)
+{
+  ParamValue e = ParamValue::makeMap();
+  e.set("name", ParamValue::makeString(name));
+  e.set("type", ParamValue::makeString(type));
+  return e;
+}
+
+void consume(CompatResult& r, const std::string& key)
+{
+  if (std::find(r.consumed.begin(), r.consumed.end(), key) == r.consumed.end()) r.consumed.push_back(key);
+}
+
+void loadOldParameters(CompatResult& r)
+{
+  ParamValue& ns = r.params;
+  r.converted_pre_hydro = true;
+  r.warnings.push_back(
+      "parameter \"plugins\" not provided: loading the pre-Hydro parameters as costmap_2d does "
+      "(static_map, map_type, observation_sources, ... become a static, an obstacle and an inflation layer)");
+  ParamValue plugins = ParamValue::makeList();
+  std::vector<std::string> layers;
+  const ParamValue* static_map = ns.find("static_map");
+  if (static_map != nullptr) consume(r, "static_map");
+  if (static_map != nullptr && static_map->type() == ParamValue::Type::Bool && static_map->asBool())
+  {
+    plugins.push(pluginEntry("static_layer", "costmap_2d::StaticLayer"));
+    layers.push_back("static_layer");
+    subMap(ns, "static_layer");
+    for (const char* key : {"map_topic", "unknown_cost_value", "lethal_cost_threshold"})
+      moveParameter(ns, "static_layer", key, true, r);
+    moveParameter(ns, "static_layer", "track_unknown_space", false, r);
+  }
+  const ParamValue* map_type = ns.find("map_type");
+  if (map_type != nullptr) consume(r, "map_type");
+  const bool voxel =
+      map_type != nullptr && map_type->type() == ParamValue::Type::String && map_type->asString() == "voxel";
+  plugins.push(pluginEntry("obstacle_layer", voxel ? "costmap_2d::VoxelLayer" : "costmap_2d::ObstacleLayer"));
+  layers.push_back("obstacle_layer");
+  subMap(ns, "obstacle_layer");
+  if (voxel)
+    for (const char* key :
+         {"origin_z", "z_resolution", "z_voxels", "mark_threshold", "unknown_threshold", "publish_voxel_map"})
+      moveParameter(ns, "obstacle_layer", key, true, r);
+  for (const char* key : {"max_obstacle_height", "raytrace_range", "obstacle_range"})
+    moveParameter(ns, "obstacle_layer", key, true, r);
+  // costmap_2d moves it away, but its costmap has read its own track_unknown_space before: keep it.
+  moveParameter(ns, "obstacle_layer", "track_unknown_space", false, r);
+  for (const auto& source : sourceNamesOf(ns.find("observation_sources")))
+    moveParameter(ns, "obstacle_layer", source, true, r);
+  moveParameter(ns, "obstacle_layer", "observation_sources", true, r);
+  subMap(ns, "inflation_layer");
+  for (const char* key : {"cost_scaling_factor", "inflation_radius"})
+    moveParameter(ns, "inflation_layer", key, true, r);
+  plugins.push(pluginEntry("inflation_layer", "costmap_2d::InflationLayer"));
+  layers.push_back("inflation_layer");
+  ns.set("plugins", plugins);
+
+  ParamValue shown = ParamValue::makeMap();
+  shown.set("plugins", plugins);
+  for (const auto& l : layers)
+  {
+    const ParamValue* sub = ns.find(l);
+    if (sub != nullptr && !sub->entries().empty()) shown.set(l, *sub);
+  }
+  r.plugin_list_yaml = toYaml(shown);
+}
+
+struct CopyRule
+{
+  const char* type;
+  std::vector<const char*> keys;
+};
+
+/// costmap_2d's copyParentParameters, by the type name exactly as written.
+const std::vector<CopyRule>& copyRules()
+{
+  static const std::vector<CopyRule> rules = {
+      {"costmap_2d::StaticLayer", {"map_topic", "unknown_cost_value", "lethal_cost_threshold", "track_unknown_space"}},
+      {"costmap_2d::VoxelLayer",
+       {"origin_z", "z_resolution", "z_voxels", "mark_threshold", "unknown_threshold", "publish_voxel_map"}},
+      {"costmap_2d::ObstacleLayer", {"max_obstacle_height", "raytrace_range", "obstacle_range", "track_unknown_space"}},
+      {"costmap_2d::InflationLayer", {"cost_scaling_factor", "inflation_radius"}},
+  };
+  return rules;
+}
+}  // namespace
+
+CompatResult applyCostmap2dRules(const ParamValue& ns_in, const std::vector<ParentNamespace>& parents)
+{
+  CompatResult r;
+  r.params = ns_in.isMap() ? ns_in : ParamValue::makeMap();
+  ParamValue& ns = r.params;
+
+  // 1. Pre-Hydro parameters.
+  if (ns.find("plugins") == nullptr && ns.find("plugin_names") == nullptr)
+  {
+    loadOldParameters(r);
+  }
+  else
+  {
+    for (const char* key : {"static_map", "map_type"})
+    {
+      if (ns.find(key) == nullptr) continue;
+      r.warnings.push_back(std::string("pre-Hydro parameter \"") + key +
+                           "\" unused since \"plugins\" is provided (as in costmap_2d)");
+      consume(r, key);
+    }
+  }
+  const PluginLists lists = parsePluginLists(ns);
+
+  // 2. copyParentParameters, 3. costmap_2d's own defaults.
+  for (const auto& spec : lists.plugins)
+  {
+    for (const auto& rule : copyRules())
+      if (spec.type == rule.type)
+        for (const char* key : rule.keys)
+          moveParameter(ns, spec.name, key, false, r);
+    if (spec.type == "costmap_2d::StaticLayer")
+    {
+      ParamValue& layer = subMap(ns, spec.name);
+      if (layer.find("track_unknown_space") == nullptr)
+      {
+        layer.set("track_unknown_space", ParamValue::makeBool(true));
+        r.notes.push_back(spec.name + ": track_unknown_space not set: true, costmap_2d's StaticLayer default");
+      }
+    }
+  }
+
+  // 4. searchParam.
+  std::vector<const ParamValue*> parent_chain;
+  for (const auto& p : parents)
+    parent_chain.push_back(&p.values);
+  auto where = [&](std::size_t index, std::size_t local_levels, const std::vector<std::string>& local_names)
+  { return index < local_levels ? local_names[index] : parents[index - local_levels].name; };
+  for (const char* key : {"footprint", "robot_radius"})
+  {
+    if (ns.find(key) != nullptr) continue;
+    std::size_t at = 0;
+    if (const ParamValue* v = searchParam(parent_chain, key, &at))
+    {
+      const ParamValue value = *v;
+      ns.set(key, value);
+      r.notes.push_back(std::string(key) + " " + value.toString() + " found in " + parents[at].name +
+                        " (costmap_2d looks it up with searchParam)");
+    }
+  }
+  for (const auto& spec : lists.plugins)
+  {
+    const std::string cls = pluginClassName(resolvePluginType(spec.type));
+    if ((cls != "ObstacleLayer" && cls != "VoxelLayer") || typeDialect(spec.type) == TypeDialect::Nav2) continue;
+    const ParamValue* layer_ro = ns.find(spec.name);
+    if (layer_ro == nullptr) continue;
+    const std::vector<std::string> sources = sourceNamesOf(layer_ro->find("observation_sources"));
+    for (const char* key : {"obstacle_range", "raytrace_range"})
+      if (layer_ro->find(key) != nullptr) r.layer_consumed[spec.name].push_back(key);
+    for (const auto& source : sources)
+    {
+      for (const auto& [key, nav2_name] : {std::pair<std::string, std::string>{"obstacle_range", "obstacle_max_range"},
+                                           {"raytrace_range", "raytrace_max_range"}})
+      {
+        const ParamValue* layer = ns.find(spec.name);
+        const ParamValue* src = layer->find(source);
+        if (src != nullptr && (src->find(key) != nullptr || src->find(nav2_name) != nullptr)) continue;
+        std::vector<const ParamValue*> chain = {layer, &ns};
+        chain.insert(chain.end(), parent_chain.begin(), parent_chain.end());
+        std::size_t at = 0;
+        const ParamValue* v = searchParam(chain, key, &at);
+        if (v == nullptr) continue;
+        const ParamValue value = *v;
+        if (at == 1) consume(r, key);
+        ParamValue& src_map = subMap(subMap(ns, spec.name), source);
+        src_map.set(key, value);
+        r.notes.push_back(spec.name + "/" + source + ": " + key + " " + value.toString() + " found in " +
+                          where(at, 2, {spec.name, "the costmap's namespace"}) +
+                          " (costmap_2d looks it up with searchParam)");
+      }
+    }
+  }
+  return r;
+}
+
+namespace
+{
+void mergeInto(ParamValue& target, const ParamValue& source)
+{
+  for (const auto& [key, value] : source.entries())
+  {
+    ParamValue* existing = target.findMutable(key);
+    if (existing != nullptr && existing->isMap() && value.isMap())
+      mergeInto(*existing, value);
+    else
+      target.set(key, value);
+  }
+}
+
+bool namesPlugin(const ParamValue& ns, const std::string& name)
+{
+  for (const char* key : {"plugins", "filters", "plugin_names", "filter_names"})
+  {
+    const ParamValue* list = ns.find(key);
+    if (list == nullptr || !list->isList()) continue;
+    for (const auto& item : list->asList())
+    {
+      if (item.type() == ParamValue::Type::String && item.asString() == name) return true;
+      const ParamValue* n = item.find("name");
+      if (n != nullptr && n->type() == ParamValue::Type::String && n->asString() == name) return true;
+    }
+  }
+  return false;
+}
+}  // namespace
+
+bool liftOwnNamespace(ParamValue& ns, const std::string& own_name)
+{
+  const ParamValue* nested = ns.find(own_name);
+  if (nested == nullptr || !nested->isMap() || namesPlugin(ns, own_name)) return false;
+  const ParamValue copy = *nested;
+  ns.erase(own_name);
+  mergeInto(ns, copy);
+  return true;
+}
+
+namespace
+{
+std::string yamlScalar(const ParamValue& v)
+{
+  switch (v.type())
+  {
+    case ParamValue::Type::Null:
+      return "null";
+    case ParamValue::Type::Bool:
+      return v.asBool() ? "true" : "false";
+    case ParamValue::Type::Int:
+      return std::to_string(v.asInt());
+    case ParamValue::Type::Double:
+    {
+      char buf[64];
+      const auto res = std::to_chars(buf, buf + sizeof(buf), v.asDouble());
+      std::string s(buf, res.ptr);
+      if (s.find_first_of(".eEn") == std::string::npos) s += ".0";  // stays a double when read back
+      return s;
+    }
+    case ParamValue::Type::String:
+    {
+      std::string out = "\"";
+      for (char c : v.asString())
+      {
+        if (c == '"' || c == '\\') out += '\\';
+        out += c;
+      }
+      return out + "\"";
+    }
+    default:
+      return "";
+  }
+}
+
+std::string yamlFlow(const ParamValue& v)
+{
+  if (v.isList())
+  {
+    std::string out = "[";
+    for (std::size_t k = 0; k < v.asList().size(); ++k)
+      out += (k ? ", " : "") + yamlFlow(v.asList()[k]);
+    return out + "]";
+  }
+  if (v.isMap())
+  {
+    std::string out = "{";
+    bool first = true;
+    for (const auto& [key, value] : v.entries())
+    {
+      out += (first ? "" : ", ") + key + ": " + yamlFlow(value);
+      first = false;
+    }
+    return out + "}";
+  }
+  return yamlScalar(v);
+}
+}  // namespace
+
+std::string toYaml(const ParamValue& value, int indent)
+{
+  const std::string pad(static_cast<std::size_t>(indent), ' ');
+  std::string out;
+  if (!value.isMap()) return pad + yamlFlow(value) + "\n";
+  for (const auto& [key, v] : value.entries())
+  {
+    if (v.isMap() && !v.entries().empty())
+    {
+      out += pad + key + ":\n" + toYaml(v, indent + 2);
+    }
+    else if (v.isList() &&
+             std::any_of(v.asList().begin(), v.asList().end(), [](const ParamValue& i) { return i.isMap(); }))
+    {
+      out += pad + key + ":\n";
+      for (const auto& item : v.asList())
+        out += pad + "  - " + yamlFlow(item) + "\n";
+    }
+    else
+    {
+      out += pad + key + ": " + yamlFlow(v) + "\n";
+    }
+  }
+  return out;
+}
+
+std::size_t editDistance(const std::string& a, const std::string& b)
+{
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j)
+    row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i)
+  {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j)
+    {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string nearestName(const std::string& key, const std::vector<std::string>& candidates)
+{
+  // Up to a third of the name's letters wrong (at least one, at most three): a typo, not another word.
+  const std::size_t limit = std::max<std::size_t>(1, std::min<std::size_t>(3, key.size() / 3));
+  std::string best;
+  std::size_t best_d = limit + 1;
+  for (const auto& c : candidates)
+  {
+    if (c == key) continue;
+    const std::size_t d = editDistance(key, c);
+    if (d < best_d)
+    {
+      best_d = d;
+      best = c;
+    }
+  }
+  return best;
+}
+
+namespace
+{
+struct IgnoredKey
+{
+  const char* scope;  ///< "costmap", "source", a plugin class, or "*"
+  const char* key;
+  const char* why;
+};
+
+const std::vector<IgnoredKey>& ignoredKeys()
+{
+  static const char* kNav2Static =
+      "Nav2 reads it at the costmap level for its StaticLayer; costmap_layers reads it in the static layer's "
+      "namespace (costmap_2d's place): move it there";
+  static const char* kNeedsLayer =
+      "a pre-Hydro costmap-level key: with a plugins list costmap_2d copies it only into a layer whose type is "
+      "written costmap_2d::...; set it in the layer's namespace";
+  static const std::vector<IgnoredKey> table = {
+      {"costmap", "footprint_topic",
+       "costmap_2d subscribes to it for footprint changes at run time; costmap_layers takes the footprint from "
+       "parameters only"},
+      {"costmap", "published_footprint_topic", "costmap_layers always publishes the footprint on ~footprint"},
+      {"costmap", "use_sim_time", "a ROS 2 node parameter; in ROS 1 set the global /use_sim_time"},
+      {"costmap", "clearable_layers", "Nav2's; here ~clear resets every obstacle, voxel and range layer"},
+      {"costmap", "initial_transform_timeout", "Nav2's; costmap_node waits for the robot's transform, saying so"},
+      {"costmap", "map_vis_z", "Nav2's; costmap_layers publishes no visualisation offset"},
+      {"costmap", "lethal_cost_threshold", kNav2Static},
+      {"costmap", "unknown_cost_value", kNav2Static},
+      {"costmap", "trinary_costmap", kNav2Static},
+      {"costmap", "use_maximum", kNav2Static},
+      {"costmap", "map_topic", kNeedsLayer},
+      {"costmap", "inflation_radius", kNeedsLayer},
+      {"costmap", "cost_scaling_factor", kNeedsLayer},
+      {"costmap", "max_obstacle_height", kNeedsLayer},
+      {"costmap", "observation_sources", kNeedsLayer},
+      {"costmap", "obstacle_range", "found by searchParam from an obstacle layer's sources; this costmap has none"},
+      {"costmap", "raytrace_range", "found by searchParam from an obstacle layer's sources; this costmap has none"},
+      {"costmap", "origin_z", kNeedsLayer},
+      {"costmap", "z_resolution", kNeedsLayer},
+      {"costmap", "z_voxels", kNeedsLayer},
+      {"costmap", "mark_threshold", kNeedsLayer},
+      {"costmap", "unknown_threshold", kNeedsLayer},
+      {"costmap", "publish_voxel_map", kNeedsLayer},
+      {"ObstacleLayer", "transform_tolerance",
+       "costmap_2d's obstacle layer lets tf lag this much (default 0.2 s); here readings wait for tf in a bounded "
+       "queue and the costmap's transform_tolerance applies to the robot pose"},
+      {"VoxelLayer", "transform_tolerance",
+       "costmap_2d's obstacle layer lets tf lag this much (default 0.2 s); here readings wait for tf in a bounded "
+       "queue and the costmap's transform_tolerance applies to the robot pose"},
+      {"StaticLayer", "map_subscribe_transient_local", "Nav2's QoS switch; ROS 1 map topics are latched"},
+      {"StaticLayer", "transform_tolerance", "Nav2's; the map is placed with the costmap's transform_tolerance"},
+      {"RangeSensorLayer", "ns", "the ROS 1 plugin's topic prefix; write the full topic names in `topics`"},
+      {"KeepoutFilter", "filter_info_topic",
+       "Nav2 learns the mask topic from a CostmapFilterInfo server; here set mask_topic in the filter's namespace"},
+      {"SpeedFilter", "filter_info_topic",
+       "Nav2 learns the mask topic, base and multiplier from a CostmapFilterInfo server; here set mask_topic, base "
+       "and multiplier in the filter's namespace"},
+      {"SpeedFilter", "speed_limit_topic",
+       "Nav2 publishes nav2_msgs/SpeedLimit there; here the limit is a costmap_layers/MaxSpeed on max_speed_topic"},
+      {"KeepoutFilter", "transform_tolerance", "Nav2's; the mask is placed with the costmap's transform_tolerance"},
+      {"SpeedFilter", "transform_tolerance", "Nav2's; the mask is placed with the costmap's transform_tolerance"},
+  };
+  return table;
+}
+
+const char* ignoredReason(const std::string& scope, const std::string& key)
+{
+  for (const auto& k : ignoredKeys())
+    if (key == k.key && (scope == k.scope || std::string(k.scope) == "*")) return k.why;
+  return nullptr;
+}
+
+void walk(const ParamValue& m, const ParamReadLog& log, const std::string& prefix, const std::string& scope,
+          const std::vector<std::string>& known, const std::vector<std::string>& skip, std::vector<UnknownKey>& out)
+{
+  std::vector<std::string> candidates = log.askedKeys(&m);
+  candidates.insert(candidates.end(), known.begin(), known.end());
+  for (const auto& [key, value] : m.entries())
+  {
+    if (std::find(skip.begin(), skip.end(), key) != skip.end()) continue;
+    const bool is_known = log.asked(&m, key) || std::find(known.begin(), known.end(), key) != known.end();
+    if (is_known)
+    {
+      if (value.isMap() && log.readFrom(&value))
+      {
+        const bool sensor_layer = scope == "ObstacleLayer" || scope == "VoxelLayer";
+        walk(value, log, prefix + key + "/", sensor_layer ? "source" : scope, {}, {}, out);
+      }
+      continue;
+    }
+    UnknownKey u;
+    u.path = prefix + key;
+    u.is_namespace = value.isMap();
+    if (const char* why = ignoredReason(scope, key)) u.known_elsewhere = why;
+    if (u.known_elsewhere.empty()) u.suggestion = nearestName(key, candidates);
+    out.push_back(u);
+  }
+}
+}  // namespace
+
+std::vector<UnknownKey> unknownKeys(const ParamValue& ns, const ParamReadLog& log, const std::string& scope,
+                                    const std::vector<std::string>& known, const std::vector<std::string>& skip)
+{
+  std::vector<UnknownKey> out;
+  if (ns.isMap()) walk(ns, log, "", scope, known, skip, out);
+  return out;
+}
+
+std::string describeUnknownKey(const UnknownKey& key, const std::string& ns_name,
+                               const std::vector<std::string>& plugins)
+{
+  std::string text = "parameter '" + key.path + "' in " + ns_name;
+  if (!key.known_elsewhere.empty()) return text + " is ignored: " + key.known_elsewhere;
+  if (key.is_namespace && key.path.find('/') == std::string::npos)
+  {
+    std::string names;
+    for (const auto& p : plugins)
+      names += (names.empty() ? "" : ", ") + p;
+    text = "namespace '" + key.path + "' in " + ns_name +
+           " names no plugin of this costmap (plugins: " + (names.empty() ? "none" : names) +
+           "): its parameters are not used";
+    if (!key.suggestion.empty()) text += " (did you mean `" + key.suggestion + "`?)";
+    return text;
+  }
+  text += " is not a parameter of costmap_layers and is ignored";
+  if (!key.suggestion.empty()) text += " (did you mean `" + key.suggestion + "`?)";
+  return text;
+}
+}  // namespace costmap_layers
