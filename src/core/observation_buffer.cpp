@@ -41,6 +41,11 @@ bool ObservationBuffer::add(std::shared_ptr<const Observation> observation, uint
   observations_.push_back(std::move(observation));
   last_updated_ns_ = now_ns;
   purgeLocked(now_ns);
+  while (observations_.size() > kMaxObservations)
+  {
+    observations_.pop_front();
+    ++dropped_;
+  }
   return true;
 }
 
@@ -127,5 +132,10 @@ std::optional<ObservationBuffer::ClockJump> ObservationBuffer::takeClockJump()
   std::optional<ClockJump> j;
   j.swap(jump_);
   return j;
+}
+std::size_t ObservationBuffer::takeDropped()
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  return std::exchange(dropped_, 0);
 }
 }  // namespace costmap_layers

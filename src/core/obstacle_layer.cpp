@@ -306,6 +306,13 @@ void ObstacleLayer::updateBounds(double robot_x, double robot_y, double robot_ya
 
 void ObstacleLayer::reportClockJump()
 {
+  for (auto& b : buffers_)
+    if (const std::size_t n = b->takeDropped())
+      context_->report(Severity::Warn, "flood/" + b->name(),
+                       name_ + ": observation source '" + b->name() +
+                           "': readings arrive faster than they expire: dropped the " + std::to_string(n) +
+                           " oldest since the last update (at most " +
+                           std::to_string(ObservationBuffer::kMaxObservations) + " are kept)");
   // The buffers saw the jump (on this thread or a sensor thread) and dropped their readings: one warning
   // for all of them.
   std::optional<ObservationBuffer::ClockJump> jump;

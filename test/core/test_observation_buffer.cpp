@@ -199,3 +199,27 @@ TEST(ObservationBuffer, SmallStepsBackAndForwardJumps)
   EXPECT_EQ(fetch(b, kSec), 1u);
   EXPECT_TRUE(b.isCurrent(kSec));
 }
+
+// A 1 kHz flood with a 10 s persistence would keep 10 000 readings, each raytraced every update.
+// The buffer keeps at most kMaxObservations, the newest, and counts what it pushed out.
+TEST(ObservationBuffer, AFloodKeepsTheNewestAndCountsTheRest)
+{
+  ObservationBufferConfig c;
+  c.observation_persistence = 10.0;
+  ObservationBuffer b("scan", c, 0);
+  const uint64_t t0 = 100 * kSec;
+  std::shared_ptr<const Observation> last;
+  for (uint64_t k = 0; k < 10000; ++k)
+  {
+    last = obs(t0 + k * kSec / 1000);
+    ASSERT_TRUE(b.add(last, t0 + k * kSec / 1000));
+  }
+  EXPECT_EQ(b.size(), ObservationBuffer::kMaxObservations);
+  EXPECT_EQ(b.takeDropped(), 10000u - ObservationBuffer::kMaxObservations);
+  EXPECT_EQ(b.takeDropped(), 0u);  // counted once
+  std::vector<std::shared_ptr<const Observation>> out;
+  b.getObservations(out, t0 + 10 * kSec, 0, 0);
+  ASSERT_EQ(out.size(), ObservationBuffer::kMaxObservations);
+  EXPECT_EQ(out.back(), last);
+  EXPECT_EQ(out.front()->stamp_ns, t0 + (10000 - ObservationBuffer::kMaxObservations) * kSec / 1000);
+}

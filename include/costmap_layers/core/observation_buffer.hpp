@@ -58,6 +58,11 @@ public:
   ///                costmap_2d where last_updated_ starts at construction.
   ObservationBuffer(std::string name, const ObservationBufferConfig& config, uint64_t now_ns);
 
+  /// The most observations a buffer keeps (however long observation_persistence is): a flood of
+  /// readings pushes the oldest out, counted (takeDropped()), so that neither memory nor the work of
+  /// an update grows with the sender's rate.
+  static constexpr std::size_t kMaxObservations = 256;
+
   /// Adds an observation received at now_ns (the time the update-rate check uses) and drops stale ones.
   /// @return false when the observation was dropped at once for being stamped more than
   /// kFutureStampToleranceNs ahead of now_ns (it does not count as an update then).
@@ -86,6 +91,8 @@ public:
   /// than kClockJumpBackToleranceNs before the latest time seen, every observation is dropped (their
   /// stamps belong to the time line before the jump) and the update-rate check restarts at now_ns.
   std::optional<ClockJump> takeClockJump();
+  /// How many observations kMaxObservations pushed out since the last call.
+  std::size_t takeDropped();
 
   const std::string& name() const { return name_; }
   const ObservationBufferConfig& config() const { return config_; }
@@ -103,5 +110,6 @@ private:
   mutable uint64_t last_updated_ns_;
   mutable ClockWatch clock_;
   mutable std::optional<ClockJump> jump_;
+  std::size_t dropped_ = 0;  ///< pushed out by kMaxObservations since the last takeDropped()
 };
 }  // namespace costmap_layers

@@ -112,7 +112,8 @@ protected:
   bool clipRay2D(double ox, double oy, double wx, double wy, double max_range, double& t) const;
   /// The source index used in report keys and messages.
   std::string sourceLabel(std::size_t source) const;
-  /// Reports, once, a clock jump back the buffers saw since the last call.
+  /// Reports what the buffers dropped by themselves since the last call: a clock jump back (once for
+  /// all sources) and, per source, the readings a flood pushed out.
   void reportClockJump();
 
   ObstacleConfig config_;
