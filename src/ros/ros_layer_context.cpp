@@ -59,7 +59,8 @@ void ThrottledLog::log(Severity severity, const std::string& key, const std::str
     if (it != last_.end() && quiet(it->second)) return;
     last_[*slot] = now;
   }
-  sink_(severity, message);
+  // The line ends with its stable key: what scripts and tests match on, whatever the wording.
+  sink_(severity, message + " [" + key + "]");
 }
 
 std::size_t ThrottledLog::keyCount() const
@@ -131,10 +132,6 @@ std::optional<costmap_layers::Transform2D> lookupTransform2D(const tf2_ros::Buff
 
 void RosLayerContext::report(Severity severity, const std::string& key, const std::string& message)
 {
-  // The line ends with its stable key, "[<layer>/<key>]": what scripts and tests match on, whatever
-  // the wording.
-  const std::string& ns = private_nh_.getNamespace();
-  const std::string layer = ns.substr(ns.rfind('/') + 1);
-  log_->log(severity, ns + "/" + key, message + " [" + layer + "/" + key + "]");
+  log_->log(severity, private_nh_.getNamespace() + "/" + key, message);
 }
 }  // namespace costmap_layers_ros

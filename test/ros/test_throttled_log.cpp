@@ -25,12 +25,13 @@ TEST(ThrottledLog, OncePerPeriodPerKey)
   for (int k = 0; k < 10; ++k)
     r.log.log(Severity::Error, "mask/info.resolution", "bad " + std::to_string(k));
   r.log.log(Severity::Error, "mask/data", "other field");
-  EXPECT_EQ(r.lines, (std::vector<std::string>{"bad 0", "other field"}));
+  // Each line ends with its key: what scripts and tests match on.
+  EXPECT_EQ(r.lines, (std::vector<std::string>{"bad 0 [mask/info.resolution]", "other field [mask/data]"}));
   r.now += 4.9;
   r.log.log(Severity::Error, "mask/info.resolution", "still quiet");
   r.now += 0.1;
   r.log.log(Severity::Error, "mask/info.resolution", "again");
-  EXPECT_EQ(r.lines.back(), "again");
+  EXPECT_EQ(r.lines.back(), "again [mask/info.resolution]");
   EXPECT_EQ(r.lines.size(), 3u);
 }
 

@@ -68,3 +68,36 @@ class GridWatcher:
     def snapshot(self):
         with self.cond:
             return None if self.data is None else list(self.data)
+
+
+class CycleWatcher:
+    """Counts a costmap node's update cycles (it publishes ~footprint once a cycle), so that a test can
+    wait for the node to have run N more cycles instead of sleeping for a guessed time."""
+
+    def __init__(self, ns):
+        from geometry_msgs.msg import PolygonStamped
+        self.cond = threading.Condition()
+        self.cycles = 0
+        rospy.Subscriber(ns + "/footprint", PolygonStamped, self._on_cycle)
+
+    def _on_cycle(self, _):
+        with self.cond:
+            self.cycles += 1
+            self.cond.notify_all()
+
+    def wait(self, n, timeout=30.0):
+        """Waits until n more cycles ran; returns whether they did within timeout [s]."""
+        deadline = rospy.Time.now() + rospy.Duration(timeout)
+        with self.cond:
+            target = self.cycles + n
+            while self.cycles < target and not rospy.is_shutdown() and rospy.Time.now() < deadline:
+                self.cond.wait(0.5)
+            return self.cycles >= target
+
+
+def logged_with_key(lines, key, *values):
+    """The log lines that end with the stable key "[key]" and contain each value as a whole token."""
+    import re
+    pats = [re.compile(r"(?<![\w.])" + re.escape(v) + r"(?![\w])") for v in values]
+    tag = "[" + key + "]"
+    return [m for m in lines if m.rstrip().endswith(tag) and all(p.search(m) for p in pats)]

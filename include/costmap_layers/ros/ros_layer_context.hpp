@@ -19,6 +19,7 @@ namespace costmap_layers_ros
 /// Logs each key at most once per period [s]; thread-safe. Keys name a field or a problem, never a
 /// value from a message; the table is bounded all the same (kMaxKeys): when it is full, keys not seen
 /// for a period are forgotten, and if none is, the message is throttled under one shared overflow key.
+/// Each line ends with its key in brackets, e.g. "... [/costmap_node/keepout_filter/mask/data]".
 class ThrottledLog
 {
 public:

@@ -43,11 +43,12 @@ class FiltersTest(unittest.TestCase):
         while not rospy.get_param("/fake_robot/done", False) and rospy.Time.now() < deadline:
             rospy.sleep(0.1)
         self.assertTrue(rospy.get_param("/fake_robot/done", False), "the robot did not finish its route")
-        rospy.sleep(1.0)  # two update cycles at the goal
         # start in no area: default 1.0; area 1: 0.3; the -1 strip keeps 0.3; no area: 1.0; area 2: 0.6;
-        # up the lane, in no area: 1.0.
+        # up the lane, in no area: 1.0. (The last change may come a cycle after the robot stopped.)
+        expected = [1.0, 0.3, 1.0, 0.6, 1.0]
         with self.speed_cond:
-            self.assertEqual(self.speeds, [1.0, 0.3, 1.0, 0.6, 1.0])
+            self.speed_cond.wait_for(lambda: len(self.speeds) >= len(expected), timeout=10.0)
+            self.assertEqual(self.speeds, expected)
 
     def test_2_keepout_is_lethal_and_toggles_off(self):
         dock = [(12.5, 8.0), (14.0, 8.5), (15.0, 9.0)]  # inside the keepout mask's 100 region

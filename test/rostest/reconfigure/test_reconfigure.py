@@ -11,7 +11,7 @@ import rospy
 import rostest
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from grid_watch import GridWatcher  # noqa: E402
+from grid_watch import CycleWatcher, GridWatcher  # noqa: E402
 
 # The left wall covers x 0..0.2 m: its innermost cells' centres are at x = 0.175 m. The cell centred
 # at x = 0.825 m lies 13 cells (0.65 m) from it: outside a 0.55 m radius (11 cells), inside a 1.0 m
@@ -25,6 +25,7 @@ class ReconfigureTest(unittest.TestCase):
     def setUpClass(cls):
         rospy.init_node("test_reconfigure")
         cls.grid = GridWatcher("/costmap_node")
+        cls.cycles = CycleWatcher("/costmap_node")
         assert cls.grid.wait_until(lambda g: g.at(*NEAR) > 0, 30.0), "no inflated costmap published"
 
     def test_radius_change_bad_value_and_switch_off(self):
@@ -42,7 +43,7 @@ class ReconfigureTest(unittest.TestCase):
         # A negative radius is refused: the answer keeps 1.0 and the costmap stays as it is.
         result = client.update_configuration({"inflation_radius": -2.0})
         self.assertAlmostEqual(result["inflation_radius"], 1.0)
-        rospy.sleep(0.5)
+        self.assertTrue(self.cycles.wait(3), "the update loop stopped")  # the refused value had its chance
         self.assertEqual(self.grid.at(*FAR), cost_far)
 
         result = client.update_configuration({"enabled": False})

@@ -17,7 +17,7 @@ from rosgraph_msgs.msg import Log
 from sensor_msgs.msg import LaserScan, PointCloud2, PointField, Range
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from grid_watch import GridWatcher  # noqa: E402
+from grid_watch import CycleWatcher, GridWatcher, logged_with_key  # noqa: E402
 
 
 def static_tf(parent, child, x, y, z):
@@ -70,11 +70,37 @@ def sonar(rng, stamp):
     return r
 
 
+class Robot:
+    """The robot's pose in tf (map -> base_link), published at 20 Hz by a thread of the test."""
+
+    def __init__(self):
+        self.lock = threading.Lock()
+        self.pose = (2.0, 5.0)
+        self.broadcaster = tf2_ros.TransformBroadcaster()
+        threading.Thread(target=self._run, daemon=True).start()
+
+    def move_to(self, x, y):
+        with self.lock:
+            self.pose = (x, y)
+
+    def _run(self):
+        rate = rospy.Rate(20.0)
+        while not rospy.is_shutdown():
+            with self.lock:
+                x, y = self.pose
+            t = static_tf("map", "base_link", x, y, 0.0)
+            t.header.stamp = rospy.Time.now()
+            self.broadcaster.sendTransform(t)
+            rate.sleep()
+
+
 class SensorsTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node("test_sensors")
+        cls.robot = Robot()
         cls.grid = GridWatcher("/costmap_node")
+        cls.cycles = CycleWatcher("/costmap_node")
         cls.logs = []
         cls.log_lock = threading.Lock()
 
@@ -109,11 +135,23 @@ class SensorsTest(unittest.TestCase):
         w = self.grid.width
         return [(round((i % w) * 0.1, 1), round((i // w) * 0.1, 1)) for i, v in enumerate(d) if v == 100]
 
-    def said(self, needle):
+    def said(self, key, *values):
+        """Warnings logged under the stable key (relative to the node) that contain each value."""
         with self.log_lock:
-            return [m for m in self.logs if needle in m[2]]
+            lines = [m[2] for m in self.logs if m[1] >= Log.WARN]
+        return logged_with_key(lines, "/costmap_node/" + key, *values)
 
-    def test_1_laser_marks_and_clears(self):
+    def setUp(self):
+        # Each case starts from the same state: the robot at (2, 5) facing +x, sensor layers cleared.
+        from std_srvs.srv import Empty
+        self.robot.move_to(2.0, 5.0)
+        self.assertTrue(self.cycles.wait(2), "the update loop stopped")
+        rospy.wait_for_service("/costmap_node/clear", 10.0)
+        rospy.ServiceProxy("/costmap_node/clear", Empty)()
+        self.assertTrue(self.grid.wait_until(lambda g: g.data.count(100) == 0, 10.0),
+                        "lethal after ~clear: %s" % self.lethal())
+
+    def test_laser_marks_and_clears(self):
         # Robot at (2, 5) facing +x, laser 0.3 m up: beams hitting 1.5 m ahead mark around (3.5, 5.0).
         self.publish_for(self.scan_pub, lambda st: scan([1.5] * 5, st), 1.0)
         self.assertTrue(self.grid.wait_until(lambda g: g.at(3.55, 5.0) == 100, 10.0), "the scan did not mark; lethal: %s" % self.lethal())
@@ -123,7 +161,7 @@ class SensorsTest(unittest.TestCase):
         self.assertTrue(self.grid.wait_until(lambda g: g.at(3.55, 5.0) == 0 and g.at(5.05, 5.0) == 100, 10.0),
                         "the old mark was not cleared or the new one not marked")
 
-    def test_2_cloud_marks_within_heights_and_clears(self):
+    def test_cloud_marks_within_heights_and_clears(self):
         # Camera 0.5 m up at (2, 5): a point 2 m ahead, 1 m left, at z -0.2 (0.3 m above the floor) marks;
         # one at z -0.45 (0.05 m, below min_obstacle_height 0.1) does not.
         self.publish_for(self.cloud_pub, lambda st: cloud([(2.0, 1.0, -0.2), (2.0, -1.0, -0.45)], "camera", st), 1.0)
@@ -134,7 +172,7 @@ class SensorsTest(unittest.TestCase):
         self.assertTrue(self.grid.wait_until(lambda g: g.at(4.05, 6.05) == 0 and g.at(5.05, 6.55) == 100, 10.0),
                         "the cloud's old mark was not cleared")
 
-    def test_3_sonar_marks_and_clears_on_max(self):
+    def test_sonar_marks_and_clears_on_max(self):
         # Facing +x at (2, 5): a 2 m echo marks (4, 5); a max-range reading clears it (clear_on_max_reading).
         self.publish_for(self.sonar_pub, lambda st: sonar(2.0, st), 1.5)
         self.assertTrue(self.grid.wait_until(lambda g: g.at(4.0, 5.0) == 100, 10.0), "the sonar did not mark (4, 5); lethal: %s" % self.lethal())
@@ -142,45 +180,43 @@ class SensorsTest(unittest.TestCase):
         self.assertTrue(self.grid.wait_until(lambda g: g.at(4.0, 5.0) == 0, 10.0),
                         "the max-range reading did not clear (4, 5)")
 
-    def test_4_unknown_frame_is_dropped(self):
+    def test_unknown_frame_is_dropped(self):
         before = self.grid.snapshot()
         # The node waits for tf a little (a bounded queue of readings), then drops them and says so.
         self.publish_for(self.cloud_pub, lambda st: cloud([(1.0, 0.0, 0.3)], "nowhere", st), 3.0)
         deadline = rospy.Time.now() + rospy.Duration(10.0)
-        while not self.said("'nowhere'") and rospy.Time.now() < deadline:
+        while not self.said("obstacle_layer/cloud/tf/wait", "nowhere") and rospy.Time.now() < deadline:
             rospy.sleep(0.2)
-        self.assertTrue(self.said("'nowhere'"), "no warning named the unknown frame")
-        self.assertIn("map", self.said("'nowhere'")[0][2])
+        said = self.said("obstacle_layer/cloud/tf/wait", "nowhere", "map")
+        self.assertTrue(said, "no warning named the unknown frame and the global frame")
         # Nothing was marked from it, and the node still runs: a good reading is still taken.
         self.assertEqual(self.grid.snapshot().count(100), before.count(100))
         self.publish_for(self.scan_pub, lambda st: scan([1.0] * 5, st), 1.0)
         self.assertTrue(self.grid.wait_until(lambda g: g.at(3.05, 5.0) == 100, 10.0), "the node stopped taking readings")
 
-    def test_5_late_source_is_reported(self):
+    def test_late_source_is_reported(self):
         # The laser expects a reading every 1.0 s: after it stops, the layer is not current and says so.
         self.publish_for(self.scan_pub, lambda st: scan([1.0] * 5, st), 0.5)
         deadline = rospy.Time.now() + rospy.Duration(15.0)
-        while not self.said("scan") and rospy.Time.now() < deadline:
+        while not self.said("obstacle_layer/late/scan") and rospy.Time.now() < deadline:
             rospy.sleep(0.2)
-        late = [m for m in self.said("'scan'") if "has not been updated" in m[2]]
-        self.assertTrue(late, "no warning named the late source; got: %s" % self.said(""))
-        self.assertEqual(late[0][1], Log.WARN)
+        self.assertTrue(self.said("obstacle_layer/late/scan", "scan"), "no warning named the late source")
 
-    def test_6_marks_stay_in_place_while_the_robot_moves(self):
+    def test_marks_stay_in_place_while_the_robot_moves(self):
         self.publish_for(self.scan_pub, lambda st: scan([1.0] * 5, st), 1.0)
         self.assertTrue(self.grid.wait_until(lambda g: g.at(3.05, 5.0) == 100, 10.0))
-        rospy.set_param("/fake_robot/start", True)
-        deadline = rospy.Time.now() + rospy.Duration(20.0)
-        while not rospy.get_param("/fake_robot/done", False) and rospy.Time.now() < deadline:
-            rospy.sleep(0.1)
-        self.assertTrue(rospy.get_param("/fake_robot/done", False))
-        rospy.sleep(0.5)
+        for step in range(1, 11):  # drive 0.5 m in 5 cm steps, a cycle or more each
+            self.robot.move_to(2.0 + 0.05 * step, 5.0)
+            self.assertTrue(self.cycles.wait(1), "the update loop stopped")
+        self.assertTrue(self.cycles.wait(2), "the update loop stopped")
         # From (2.5, 5) the same obstacle is 0.5 m ahead: the mark is where it was in the map.
         self.publish_for(self.scan_pub, lambda st: scan([0.5] * 5, st), 1.0)
         self.assertTrue(self.grid.wait_until(lambda g: g.at(3.05, 5.0) == 100, 10.0))
 
-    def test_7_clear_services(self):
+    def test_clear_services(self):
         from std_srvs.srv import Empty
+        self.robot.move_to(2.5, 5.0)
+        self.assertTrue(self.cycles.wait(2), "the update loop stopped")
         # The robot is at (2.5, 5). A camera point 3.5 m ahead marks (6.0, 5.0); a later cloud sees only a
         # point elsewhere, so that mark stays in the grid without being in any buffer; the laser marks
         # 1 m ahead, inside the square ~clear_around_robot keeps (reset_distance 3 m).

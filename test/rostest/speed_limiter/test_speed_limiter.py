@@ -73,7 +73,7 @@ class SpeedLimiterTest(unittest.TestCase):
         # Stale input: one zero command about command_timeout after the last one, then silence.
         with self.lock:
             n = len(self.outputs)
-        rospy.sleep(1.5)
+        rospy.sleep(1.5)  # an observation window (3 x command_timeout): silence can only be seen by waiting
         with self.lock:
             late = self.outputs[n:]
         self.assertEqual(len(late), 1, "expected exactly one command after the input stopped, got %d" % len(late))
