@@ -36,15 +36,6 @@ InflationConfig parseInflationConfig(const ParamReader& params)
   return cfg;
 }
 
-uint8_t inflationCost(double dist_cells, double resolution, double inscribed_radius, double cost_scaling_factor)
-{
-  if (dist_cells == 0.0) return LETHAL_OBSTACLE;
-  const double dist = dist_cells * resolution;
-  if (dist <= inscribed_radius) return INSCRIBED_INFLATED_OBSTACLE;
-  const double factor = std::exp(-cost_scaling_factor * (dist - inscribed_radius));
-  return static_cast<uint8_t>((INSCRIBED_INFLATED_OBSTACLE - 1) * factor);
-}
-
 void InflationLayer::onInitialize()
 {
   config_ = parseInflationConfig(ParamReader(context_->params(), name_));

@@ -7,12 +7,6 @@
 
 namespace costmap_layers
 {
-uint8_t keepoutCost(int8_t mask_value)
-{
-  if (mask_value < 1 || mask_value > 100) return FREE_SPACE;
-  return static_cast<uint8_t>(std::lround(mask_value * 254.0 / 100.0));
-}
-
 void CostGridFilter::process(Costmap2D& master_grid, const CellWindow&, const OccupancyGridData& mask,
                              const MaskMapping& mapping, double, double, double)
 {
@@ -39,7 +33,7 @@ std::size_t KeepoutFilter::computeCosts(const OccupancyGridData& mask, std::vect
 {
   std::array<uint8_t, 256> table{};
   for (int b = 0; b < 256; ++b)
-    table[static_cast<std::size_t>(b)] = keepoutCost(static_cast<int8_t>(b));
+    table[static_cast<std::size_t>(b)] = maskValueCost(static_cast<int8_t>(b));
   costs.resize(mask.data.size());
   std::size_t invalid = 0;
   for (std::size_t k = 0; k < mask.data.size(); ++k)

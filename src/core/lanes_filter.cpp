@@ -32,16 +32,6 @@ constexpr int kMaxBandedLanesCap = 48;
 /// computed per cell.
 constexpr uint64_t kMaxLutEntries = uint64_t{1} << 22;
 
-/// The keepout cost of a mask value, round(v * 254 / 100) for v in 1..100, else 0, in 16-bit integer
-/// arithmetic so that loops over it vectorise: for v >= 1, round-half-up of 2.54 v is (254 v + 50) / 100
-/// (at most 64820, within 16 bits).
-inline uint8_t softCost(int8_t v)
-{
-  const auto u = static_cast<uint8_t>(v);
-  const auto c = static_cast<uint8_t>(static_cast<uint16_t>(u * 254u + 50u) / 100u);
-  return static_cast<uint8_t>(u - 1u) < 100u ? c : uint8_t{0};
-}
-
 /// Counts values outside -1..100 (invalid in an OccupancyGrid), in blocks with 32-bit counters so that
 /// it vectorises.
 std::size_t countInvalid(const int8_t* m, std::size_t n)
@@ -67,7 +57,7 @@ void writeRow(const int8_t* mask_row, const D* sq_dist, const uint8_t* lut, std:
   for (std::size_t x = 0; x < n; ++x)
   {
     const int8_t v = mask_row[x];
-    out[x] = v == kForbidden ? lut[std::min<std::size_t>(sq_dist[x], lut_last)] : softCost(v);
+    out[x] = v == kForbidden ? lut[std::min<std::size_t>(sq_dist[x], lut_last)] : maskValueCost(v);
   }
 }
 
@@ -82,7 +72,7 @@ std::size_t finishCostsScalar(const uint8_t* u, const uint8_t* c, uint8_t* out, 
     const uint8_t v = u[k];
     invalid += static_cast<uint8_t>(v + 1u) > 101u ? 1u : 0u;
     out[k] = v == static_cast<uint8_t>(kForbidden) ? static_cast<uint8_t>(LETHAL_OBSTACLE - c[k])
-                                                   : softCost(static_cast<int8_t>(v));
+                                                   : maskValueCost(static_cast<int8_t>(v));
   }
   return invalid;
 }
@@ -393,7 +383,7 @@ std::size_t LanesFilter::computeCosts(const OccupancyGridData& mask, std::vector
   for (std::size_t k = 0; k < n; ++k)
   {
     if (m[k] != kForbidden)
-      costs[k] = softCost(m[k]);
+      costs[k] = maskValueCost(m[k]);
     else if (sq_dist_[k] == kFarSquaredDistance)
       costs[k] = LETHAL_OBSTACLE;
     else

@@ -69,19 +69,19 @@ void expectOnly(const Costmap2D& master, const Costmap2D& before, int x0, int y0
 
 TEST(KeepoutFilter, CostOfMaskValues)
 {
-  EXPECT_EQ(keepoutCost(100), 254);
-  EXPECT_EQ(keepoutCost(50), 127);
-  EXPECT_EQ(keepoutCost(99), 251);  // 251.46
-  EXPECT_EQ(keepoutCost(1), 3);     // 2.54
-  EXPECT_EQ(keepoutCost(25), 64);   // 63.5 rounds up
-  EXPECT_EQ(keepoutCost(0), 0);
-  EXPECT_EQ(keepoutCost(-1), 0);
-  EXPECT_EQ(keepoutCost(101), 0);
-  EXPECT_EQ(keepoutCost(127), 0);
-  EXPECT_EQ(keepoutCost(-2), 0);
-  EXPECT_EQ(keepoutCost(-128), 0);
+  EXPECT_EQ(maskValueCost(100), 254);
+  EXPECT_EQ(maskValueCost(50), 127);
+  EXPECT_EQ(maskValueCost(99), 251);  // 251.46
+  EXPECT_EQ(maskValueCost(1), 3);     // 2.54
+  EXPECT_EQ(maskValueCost(25), 64);   // 63.5 rounds up
+  EXPECT_EQ(maskValueCost(0), 0);
+  EXPECT_EQ(maskValueCost(-1), 0);
+  EXPECT_EQ(maskValueCost(101), 0);
+  EXPECT_EQ(maskValueCost(127), 0);
+  EXPECT_EQ(maskValueCost(-2), 0);
+  EXPECT_EQ(maskValueCost(-128), 0);
   for (int v = 1; v <= 100; ++v)
-    EXPECT_EQ(keepoutCost(static_cast<int8_t>(v)), std::lround(v * 254.0 / 100.0)) << v;
+    EXPECT_EQ(maskValueCost(static_cast<int8_t>(v)), std::lround(v * 254.0 / 100.0)) << v;
 }
 
 TEST(KeepoutFilter, MergeRule)
@@ -201,7 +201,7 @@ TEST(KeepoutFilter, MaskOfAnotherResolution)
       const double x = 2.5 + (i + 0.5) * 0.25, y = 2.5 + (j + 0.5) * 0.25;
       int expected = 0;
       if (x >= 3.0 && x < 5.0 && y >= 3.0 && y < 4.0)
-        expected = keepoutCost(
+        expected = maskValueCost(
             m.data[static_cast<std::size_t>((y - 3.0) / 0.5) * 4 + static_cast<std::size_t>((x - 3.0) / 0.5)]);
       EXPECT_EQ(master.getCost(i, j), expected) << i << "," << j;
     }

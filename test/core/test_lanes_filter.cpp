@@ -604,7 +604,7 @@ TEST(LanesFilter, FinishKernelsMatchTheDefinition)
       for (std::size_t k = 0; k < n; ++k)
       {
         invalid += mask[k] < -1 || mask[k] > 100 ? 1 : 0;
-        expected[k] = mask[k] == 100 ? static_cast<uint8_t>(254 - c[k]) : keepoutCost(mask[k]);
+        expected[k] = mask[k] == 100 ? static_cast<uint8_t>(254 - c[k]) : maskValueCost(mask[k]);
       }
       for (const char* kernel : {"portable", "sse2", "avx2", static_cast<const char*>(nullptr)})
         for (const bool stream : {false, true})
@@ -660,7 +660,7 @@ TEST(LanesFilter, RandomMaskOfEveryValueMatchesBruteForce)
     for (int x = 0; x < w; ++x)
     {
       const int8_t v = m.data[static_cast<std::size_t>(y) * w + x];
-      int expected = keepoutCost(v);
+      int expected = maskValueCost(v);
       if (v == 100)
         expected = lanesForbiddenCost(c, std::sqrt(static_cast<double>(nearestLaneSq(m, x, y))) * 0.05, 0.05);
       ASSERT_EQ(master.getCost(x, y), expected) << x << "," << y << " value " << int{v};

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "costmap_layers/core/cost_rules.hpp"
 #include "costmap_layers/core/distance_transform.hpp"
 #include "costmap_layers/core/layer.hpp"
 
@@ -26,9 +27,6 @@ struct InflationConfig
 /// inflate_around_unknown. Throws std::invalid_argument naming the parameter.
 InflationConfig parseInflationConfig(const ParamReader& params);
 
-/// costmap_2d's cost at dist_cells cells from the nearest source: 254 at 0, 253 while
-/// dist_cells * resolution <= inscribed_radius, else (uchar)(252 * exp(-factor * (d [m] - inscribed))).
-uint8_t inflationCost(double dist_cells, double resolution, double inscribed_radius, double cost_scaling_factor);
 
 class InflationLayer : public Layer
 {

@@ -1,27 +1,17 @@
 // Filters that turn their mask into a grid of costs once per mask, then merge it into the master
-// grid row by row (KeepoutFilter, LanesFilter), and KeepoutFilter itself: a mask value v in 1..100
-// costs round(v * 254 / 100) (100 is LETHAL, a virtual wall); 0 and -1 write nothing.
+// grid row by row (KeepoutFilter, LanesFilter), and KeepoutFilter itself: a mask value costs
+// maskValueCost(v) (cost_rules.hpp), merged by mergeFilterCost.
 #pragma once
 
 #include <atomic>
 #include <memory>
 #include <vector>
 
+#include "costmap_layers/core/cost_rules.hpp"
 #include "costmap_layers/core/costmap_filter.hpp"
 
 namespace costmap_layers
 {
-/// Cost of a keepout mask value: round(v * 254 / 100) for v in 1..100; 0 for 0, -1 and invalid values.
-uint8_t keepoutCost(int8_t mask_value);
-
-/// Merges a cost into a master cell: the master takes the cost when higher; an unknown master cell
-/// only takes a cost >= 253, so a filter never turns unknown space into known free space.
-inline uint8_t mergeFilterCost(uint8_t master, uint8_t cost)
-{
-  const bool unknown = master == 255;
-  const uint8_t higher = cost > master ? cost : master;
-  return unknown ? (cost >= 253 ? cost : master) : higher;
-}
 
 /// A filter whose mask means a cost per mask cell (0 = no effect), computed once per mask.
 class CostGridFilter : public CostmapFilter
