@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <climits>
+#include <random>
 #include <cmath>
 
 #include "costmap_layers/core/costmap_filter.hpp"
@@ -187,5 +188,45 @@ TEST(ValidateGridUpdate, OverflowFreeAtEveryEdge)
     const InputError e = validateGridUpdate(b.x, b.y, b.w, b.h, b.n, 10, 10);
     EXPECT_EQ(e.field, b.field) << e.message;
     EXPECT_NE(e.message.find(b.needle), std::string::npos) << e.message;
+  }
+}
+
+// Property: over random sequences of resizes, origin moves and changed windows (any int values), no
+// published window ever leaves the grid it is sent with, and a geometry change is always followed by a
+// full publish.
+TEST(PublishSchedule, RandomSequencesNeverPublishAWindowOutsideItsGrid)
+{
+  std::mt19937 rng(20261201);
+  std::uniform_int_distribution<int> coin(0, 3), size(1, 300), any(INT_MIN, INT_MAX), near(-50, 350);
+  for (int run = 0; run < 50; ++run)
+  {
+    PublishSchedule s(5.0, false);
+    Costmap2D grid(static_cast<unsigned>(size(rng)), static_cast<unsigned>(size(rng)), 0.05, 0, 0);
+    bool geometry_changed = true;
+    double t = 0.0;
+    for (int step = 0; step < 200; ++step)
+    {
+      if (coin(rng) == 0)
+      {
+        grid.resizeMap(static_cast<unsigned>(size(rng)), static_cast<unsigned>(size(rng)), coin(rng) ? 0.05 : 0.1,
+                       0.5 * coin(rng), 0.0);
+        geometry_changed = true;
+      }
+      const bool wild = coin(rng) == 0;
+      const CellWindow w = wild ? CellWindow{any(rng), any(rng), any(rng), any(rng)}
+                                : CellWindow{near(rng), near(rng), near(rng), near(rng)};
+      s.noteCycle(grid, w);
+      t += 0.1;
+      if (!s.due(t)) continue;
+      const PublishDecision d = s.take(grid, false);
+      if (geometry_changed) EXPECT_TRUE(d.full) << "run " << run << " step " << step;
+      geometry_changed = false;
+      if (!d.full && !d.window.empty())
+      {
+        ASSERT_TRUE(inside(d.window, grid)) << d.window.x0 << "," << d.window.y0 << " .. " << d.window.xn << ","
+                                            << d.window.yn << " on " << grid.getSizeInCellsX() << "x"
+                                            << grid.getSizeInCellsY();
+      }
+    }
   }
 }

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
 #include <stdexcept>
 #include <string>
 
@@ -195,4 +196,38 @@ TEST(Conversions, XmlRpcTrees)
   ASSERT_EQ(p.find("list")->asList().size(), 2u);
   EXPECT_EQ(p.find("list")->asList()[1].asString(), "two");
   EXPECT_DOUBLE_EQ(p.find("nested")->find("deeper")->find("x")->asDouble(), -1.5);
+}
+
+// Property: for random rotations about z, scaled by any positive length, planarYaw gives the heading of
+// the rotated x axis (computed here from the rotation matrix, not with tf2); random tilts beyond the
+// limit are refused.
+TEST(PlanarYaw, RandomQuaternionsAgreeWithTheRotatedXAxis)
+{
+  std::mt19937 rng(6);
+  std::uniform_real_distribution<double> angle(-M_PI, M_PI), scale(1e-3, 1e3), small(-0.004, 0.004);
+  for (int k = 0; k < 2000; ++k)
+  {
+    const double yaw = angle(rng), roll = small(rng), pitch = small(rng), n = scale(rng);
+    // q = Rz(yaw) Ry(pitch) Rx(roll)
+    const double cy = std::cos(yaw / 2), sy = std::sin(yaw / 2), cp = std::cos(pitch / 2), sp = std::sin(pitch / 2),
+                 cr = std::cos(roll / 2), sr = std::sin(roll / 2);
+    const double w = cy * cp * cr + sy * sp * sr, x = cy * cp * sr - sy * sp * cr, y = cy * sp * cr + sy * cp * sr,
+                 z = sy * cp * cr - cy * sp * sr;
+    // The rotated x axis: first column of the rotation matrix.
+    const double r00 = 1 - 2 * (y * y + z * z), r10 = 2 * (x * y + w * z);
+    const double expected = std::atan2(r10, r00);
+    const double got = planarYaw(quat(n * x, n * y, n * z, n * w), kMaxGridTilt, "q");
+    EXPECT_NEAR(std::remainder(got - expected, 2 * M_PI), 0.0, 1e-9) << k;
+  }
+  for (int k = 0; k < 200; ++k)
+  {
+    const double tilt = 0.02 + 1.0 * std::abs(small(rng)) * 100, yaw = angle(rng);
+    const double axis = angle(rng);  // a horizontal axis at this heading
+    const double s = std::sin(tilt / 2);
+    const double ax = std::cos(axis) * s, ay = std::sin(axis) * s;
+    // A tilt about a horizontal axis, then a yaw: the plane is tilted by `tilt`.
+    const double cz = std::cos(yaw / 2), sz = std::sin(yaw / 2), ct = std::cos(tilt / 2);
+    const double w = cz * ct, x = cz * ax - sz * ay, y = cz * ay + sz * ax, z = sz * ct;
+    EXPECT_THROW(planarYaw(quat(x, y, z, w), kMaxGridTilt, "q"), std::invalid_argument) << k;
+  }
 }
