@@ -14,27 +14,18 @@
 #include "costmap_layers/core/obstacle_layer.hpp"
 #include "costmap_layers/core/param_reader.hpp"
 #include "costmap_layers/core/static_layer.hpp"
+#include "sensor_test_helpers.hpp"
 
 using namespace costmap_layers;
+using costmap_layers_test::B;
+using costmap_layers_test::D;
+using costmap_layers_test::S;
 
 namespace
 {
-ParamValue str(const std::string& s)
-{
-  return ParamValue::makeString(s);
-}
-ParamValue num(double d)
-{
-  return ParamValue::makeDouble(d);
-}
-ParamValue flag(bool b)
-{
-  return ParamValue::makeBool(b);
-}
-
 ParamValue point(double x, double y)
 {
-  return ParamValue::makeList({num(x), num(y)});
+  return ParamValue::makeList({D(x), D(y)});
 }
 
 /// TurtleBot3's costmap_common_params_burger.yaml merged with its global_costmap_params.yaml, as
@@ -42,27 +33,27 @@ ParamValue point(double x, double y)
 ParamValue turtlebot3Global()
 {
   ParamValue ns = ParamValue::makeMap();
-  ns.set("obstacle_range", num(3.0));
-  ns.set("raytrace_range", num(3.5));
+  ns.set("obstacle_range", D(3.0));
+  ns.set("raytrace_range", D(3.5));
   ns.set("footprint", ParamValue::makeList(
                           {point(-0.105, -0.105), point(-0.105, 0.105), point(0.041, 0.105), point(0.041, -0.105)}));
-  ns.set("inflation_radius", num(1.0));
-  ns.set("cost_scaling_factor", num(3.0));
-  ns.set("map_type", str("costmap"));
-  ns.set("observation_sources", str("scan"));
+  ns.set("inflation_radius", D(1.0));
+  ns.set("cost_scaling_factor", D(3.0));
+  ns.set("map_type", S("costmap"));
+  ns.set("observation_sources", S("scan"));
   ParamValue scan = ParamValue::makeMap();
-  scan.set("sensor_frame", str("base_scan"));
-  scan.set("data_type", str("LaserScan"));
-  scan.set("topic", str("scan"));
-  scan.set("marking", flag(true));
-  scan.set("clearing", flag(true));
+  scan.set("sensor_frame", S("base_scan"));
+  scan.set("data_type", S("LaserScan"));
+  scan.set("topic", S("scan"));
+  scan.set("marking", B(true));
+  scan.set("clearing", B(true));
   ns.set("scan", scan);
-  ns.set("global_frame", str("map"));
-  ns.set("robot_base_frame", str("base_footprint"));
-  ns.set("update_frequency", num(10.0));
-  ns.set("publish_frequency", num(10.0));
-  ns.set("transform_tolerance", num(0.5));
-  ns.set("static_map", flag(true));
+  ns.set("global_frame", S("map"));
+  ns.set("robot_base_frame", S("base_footprint"));
+  ns.set("update_frequency", D(10.0));
+  ns.set("publish_frequency", D(10.0));
+  ns.set("transform_tolerance", D(0.5));
+  ns.set("static_map", B(true));
   return ns;
 }
 
@@ -120,12 +111,12 @@ TEST(TypeAliases, EveryForeignNameLoadsOurClass)
 TEST(TypeAliases, Nav2ListFormWithForeignTypes)
 {
   ParamValue ns = ParamValue::makeMap();
-  ns.set("plugins", ParamValue::makeList({str("static_layer"), str("inflation_layer")}));
+  ns.set("plugins", ParamValue::makeList({S("static_layer"), S("inflation_layer")}));
   ParamValue s = ParamValue::makeMap();
-  s.set("plugin", str("nav2_costmap_2d::StaticLayer"));
+  s.set("plugin", S("nav2_costmap_2d::StaticLayer"));
   ns.set("static_layer", s);
   ParamValue i = ParamValue::makeMap();
-  i.set("plugin", str("nav2_costmap_2d::InflationLayer"));
+  i.set("plugin", S("nav2_costmap_2d::InflationLayer"));
   ns.set("inflation_layer", i);
   const auto plugins = pluginsOf(applyCostmap2dRules(ns).params);
   ASSERT_EQ(plugins.size(), 2u);
@@ -193,13 +184,13 @@ TEST(PreHydro, TurtleBot3GlobalCostmap)
 TEST(PreHydro, LocalCostmapWithoutStaticMapAndVoxel)
 {
   ParamValue ns = ParamValue::makeMap();
-  ns.set("static_map", flag(false));
-  ns.set("map_type", str("voxel"));
+  ns.set("static_map", B(false));
+  ns.set("map_type", S("voxel"));
   ns.set("z_voxels", ParamValue::makeInt(4));
-  ns.set("origin_z", num(0.1));
-  ns.set("max_obstacle_height", num(0.6));
-  ns.set("track_unknown_space", flag(true));
-  ns.set("map_topic", str("/other_map"));  // no static layer: stays, unused
+  ns.set("origin_z", D(0.1));
+  ns.set("max_obstacle_height", D(0.6));
+  ns.set("track_unknown_space", B(true));
+  ns.set("map_topic", S("/other_map"));  // no static layer: stays, unused
   const CompatResult r = applyCostmap2dRules(ns);
   const std::vector<std::pair<std::string, std::string>> expected = {{"obstacle_layer", "costmap_2d::VoxelLayer"},
                                                                      {"inflation_layer", "costmap_2d::InflationLayer"}};
@@ -228,7 +219,7 @@ TEST(PluginList, OldKeysAreReportedUnused)
 {
   ParamValue ns = ParamValue::makeMap();
   ns.set("plugins", ParamValue::makeList());
-  ns.set("static_map", flag(true));
+  ns.set("static_map", B(true));
   const CompatResult r = applyCostmap2dRules(ns);
   EXPECT_FALSE(r.converted_pre_hydro);
   ASSERT_EQ(r.warnings.size(), 1u);
@@ -242,12 +233,12 @@ TEST(PluginList, CopyParentParametersOnlyForCostmap2dTypes)
   {
     ParamValue ns = ParamValue::makeMap();
     ParamValue entry = ParamValue::makeMap();
-    entry.set("name", str("inflation"));
-    entry.set("type", str(type));
+    entry.set("name", S("inflation"));
+    entry.set("type", S(type));
     ns.set("plugins", ParamValue::makeList({entry}));
-    ns.set("inflation_radius", num(0.3));
+    ns.set("inflation_radius", D(0.3));
     ParamValue layer = ParamValue::makeMap();
-    layer.set("inflation_radius", num(1.0));
+    layer.set("inflation_radius", D(1.0));
     ns.set("inflation", layer);
     const CompatResult r = applyCostmap2dRules(ns);
     if (type == "costmap_2d::InflationLayer")
@@ -274,8 +265,8 @@ TEST(PluginList, StaticLayerDefaultsFollowTheDialect)
   {
     ParamValue ns = ParamValue::makeMap();
     ParamValue entry = ParamValue::makeMap();
-    entry.set("name", str("map"));
-    entry.set("type", str(type));
+    entry.set("name", S("map"));
+    entry.set("type", S(type));
     ns.set("plugins", ParamValue::makeList({entry}));
     const CompatResult r = applyCostmap2dRules(ns);
     const ParamValue* t = r.params.findPath("map/track_unknown_space");
@@ -294,8 +285,8 @@ TEST(PluginList, StaticLayerDefaultsFollowTheDialect)
 TEST(SearchParam, NearestNamespaceFirst)
 {
   ParamValue a = ParamValue::makeMap(), b = ParamValue::makeMap(), c = ParamValue::makeMap();
-  b.set("k", num(2.0));
-  c.set("k", num(3.0));
+  b.set("k", D(2.0));
+  c.set("k", D(3.0));
   std::size_t at = 99;
   EXPECT_DOUBLE_EQ(searchParam({&a, &b, &c}, "k", &at)->asDouble(), 2.0);
   EXPECT_EQ(at, 1u);
@@ -311,11 +302,11 @@ TEST(SearchParam, FootprintAndRadiusFromParents)
   std::vector<ParentNamespace> parents(2);
   parents[0].name = "/move_base";
   parents[0].values = ParamValue::makeMap();
-  parents[0].values.set("robot_radius", num(0.2));
+  parents[0].values.set("robot_radius", D(0.2));
   parents[1].name = "/";
   parents[1].values = ParamValue::makeMap();
-  parents[1].values.set("robot_radius", num(0.9));
-  parents[1].values.set("footprint", str("[[1, 1], [-1, 1], [-1, -1]]"));
+  parents[1].values.set("robot_radius", D(0.9));
+  parents[1].values.set("footprint", S("[[1, 1], [-1, 1], [-1, -1]]"));
   const CompatResult r = applyCostmap2dRules(ns, parents);
   EXPECT_DOUBLE_EQ(numberAt(r.params, "robot_radius"), 0.2);
   EXPECT_EQ(r.params.find("footprint")->asString(), "[[1, 1], [-1, 1], [-1, -1]]");
@@ -324,7 +315,7 @@ TEST(SearchParam, FootprintAndRadiusFromParents)
   EXPECT_DOUBLE_EQ(cfg.footprint.robot_radius, 0.2);
 
   // A value in the costmap's own namespace wins over the parents'.
-  ns.set("robot_radius", num(0.5));
+  ns.set("robot_radius", D(0.5));
   EXPECT_DOUBLE_EQ(numberAt(applyCostmap2dRules(ns, parents).params, "robot_radius"), 0.5);
 }
 
@@ -332,24 +323,24 @@ TEST(SearchParam, ObstacleRangeFromLayerCostmapOrParents)
 {
   ParamValue ns = ParamValue::makeMap();
   ParamValue entry = ParamValue::makeMap();
-  entry.set("name", str("obstacles"));
-  entry.set("type", str("costmap_2d::VoxelLayer"));  // VoxelLayer has no copyParentParameters for these
+  entry.set("name", S("obstacles"));
+  entry.set("type", S("costmap_2d::VoxelLayer"));  // VoxelLayer has no copyParentParameters for these
   ns.set("plugins", ParamValue::makeList({entry}));
-  ns.set("raytrace_range", num(4.0));
+  ns.set("raytrace_range", D(4.0));
   ParamValue layer = ParamValue::makeMap();
-  layer.set("observation_sources", str("a b c"));
-  layer.set("obstacle_range", num(1.5));
+  layer.set("observation_sources", S("a b c"));
+  layer.set("obstacle_range", D(1.5));
   ParamValue b = ParamValue::makeMap();
-  b.set("obstacle_range", num(0.7));
+  b.set("obstacle_range", D(0.7));
   layer.set("b", b);
   ParamValue c = ParamValue::makeMap();
-  c.set("obstacle_max_range", num(0.4));  // Nav2's name in the source: searchParam is not needed
+  c.set("obstacle_max_range", D(0.4));  // Nav2's name in the source: searchParam is not needed
   layer.set("c", c);
   ns.set("obstacles", layer);
   std::vector<ParentNamespace> parents(1);
   parents[0].name = "/move_base";
   parents[0].values = ParamValue::makeMap();
-  parents[0].values.set("obstacle_range", num(9.0));
+  parents[0].values.set("obstacle_range", D(9.0));
   const CompatResult r = applyCostmap2dRules(ns, parents);
   EXPECT_DOUBLE_EQ(numberAt(r.params, "obstacles/a/obstacle_range"), 1.5);  // the layer's
   EXPECT_DOUBLE_EQ(numberAt(r.params, "obstacles/a/raytrace_range"), 4.0);  // the costmap's
@@ -374,11 +365,11 @@ TEST(SearchParam, ObstacleRangeFromLayerCostmapOrParents)
 TEST(LiftOwnNamespace, MergesTheNestedSectionOverTheCommonKeys)
 {
   ParamValue ns = ParamValue::makeMap();
-  ns.set("inflation_radius", num(1.0));
-  ns.set("global_frame", str("odom"));
+  ns.set("inflation_radius", D(1.0));
+  ns.set("global_frame", S("odom"));
   ParamValue nested = ParamValue::makeMap();
-  nested.set("global_frame", str("map"));
-  nested.set("static_map", flag(true));
+  nested.set("global_frame", S("map"));
+  nested.set("static_map", B(true));
   ns.set("global_costmap", nested);
   EXPECT_TRUE(liftOwnNamespace(ns, "global_costmap"));
   EXPECT_EQ(ns.find("global_costmap"), nullptr);
@@ -389,7 +380,7 @@ TEST(LiftOwnNamespace, MergesTheNestedSectionOverTheCommonKeys)
 
   // A plugin of that name is a plugin, not a section to lift.
   ParamValue p = ParamValue::makeMap();
-  p.set("plugins", ParamValue::makeList({str("local_costmap")}));
+  p.set("plugins", ParamValue::makeList({S("local_costmap")}));
   p.set("local_costmap", ParamValue::makeMap());
   EXPECT_FALSE(liftOwnNamespace(p, "local_costmap"));
 }
@@ -407,9 +398,9 @@ TEST(UnknownKeys, EditDistanceAndNearestName)
 TEST(UnknownKeys, FoundWithTheirNearestName)
 {
   ParamValue ns = ParamValue::makeMap();
-  ns.set("inflaton_radius", num(0.3));
-  ns.set("cost_scaling_factor", num(2.0));
-  ns.set("plugin", str("costmap_2d::InflationLayer"));
+  ns.set("inflaton_radius", D(0.3));
+  ns.set("cost_scaling_factor", D(2.0));
+  ns.set("plugin", S("costmap_2d::InflationLayer"));
   ParamReadLog log;
   parseInflationConfig(ParamReader(ns, "inflation"));
   const auto unknown = unknownKeys(ns, log, "InflationLayer", {"plugin"});
@@ -424,11 +415,11 @@ TEST(UnknownKeys, FoundWithTheirNearestName)
 TEST(UnknownKeys, SourceNamespacesAreWalkedAndKnownForeignKeysExplained)
 {
   ParamValue layer = ParamValue::makeMap();
-  layer.set("observation_sources", str("scan"));
-  layer.set("transform_tolerance", num(0.2));
+  layer.set("observation_sources", S("scan"));
+  layer.set("transform_tolerance", D(0.2));
   ParamValue scan = ParamValue::makeMap();
-  scan.set("data_type", str("LaserScan"));
-  scan.set("topc", str("scan"));
+  scan.set("data_type", S("LaserScan"));
+  scan.set("topc", S("scan"));
   layer.set("scan", scan);
   ParamReadLog log;
   parseObstacleConfig(ParamReader(layer, "obstacles"), false);
@@ -443,9 +434,9 @@ TEST(UnknownKeys, SourceNamespacesAreWalkedAndKnownForeignKeysExplained)
 TEST(UnknownKeys, CostmapLevelWithSkipsAndNamespaces)
 {
   ParamValue ns = ParamValue::makeMap();
-  ns.set("robot_raduis", num(0.2));
-  ns.set("footprint_topic", str("fp"));
-  ns.set("static_map", flag(true));
+  ns.set("robot_raduis", D(0.2));
+  ns.set("footprint_topic", S("fp"));
+  ns.set("static_map", B(true));
   ns.set("plugins", ParamValue::makeList());
   ns.set("leftover_layer", ParamValue::makeMap());
   ns.set("my_layer", ParamValue::makeMap());
@@ -468,7 +459,7 @@ TEST(UnknownKeys, CostmapLevelWithSkipsAndNamespaces)
 TEST(UnknownKeys, LogsNestAndStop)
 {
   ParamValue ns = ParamValue::makeMap();
-  ns.set("a", num(1.0));
+  ns.set("a", D(1.0));
   {
     ParamReadLog outer;
     {
@@ -488,9 +479,9 @@ TEST(Yaml, RendersBlockMapsAndInlineLists)
 {
   ParamValue ns = ParamValue::makeMap();
   ParamValue layer = ParamValue::makeMap();
-  layer.set("observation_sources", str("scan"));
+  layer.set("observation_sources", S("scan"));
   ParamValue scan = ParamValue::makeMap();
-  scan.set("marking", flag(true));
+  scan.set("marking", B(true));
   scan.set("range", ParamValue::makeInt(3));
   layer.set("scan", scan);
   ns.set("obstacle_layer", layer);

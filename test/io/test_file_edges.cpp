@@ -24,6 +24,7 @@
 #include "costmap_layers/io/features_file.hpp"
 #include "costmap_layers/io/map_file.hpp"
 #include "costmap_layers/io/param_yaml.hpp"
+#include "temp_dir_test.hpp"
 
 using costmap_layers::io::decodeMapImage;
 using costmap_layers::io::loadFeaturesFile;
@@ -78,31 +79,15 @@ const char* kMapYamlKeys =
     "resolution: 0.05\norigin: [0.0, 0.0, 0.0]\nnegate: 0\noccupied_thresh: 0.65\n"
     "free_thresh: 0.196\n";
 
-class FileEdges : public ::testing::Test
+class FileEdges : public TempDirTest
 {
 protected:
-  void SetUp() override
-  {
-    char pattern[] = "/tmp/costmap_io_edges_XXXXXX";
-    const char* dir = mkdtemp(pattern);
-    ASSERT_NE(dir, nullptr);
-    tmp_ = dir;
-  }
-  void TearDown() override
-  {
-    std::error_code ec;
-    if (!tmp_.empty()) std::filesystem::remove_all(tmp_, ec);
-  }
-  std::string tmp(const std::string& name) const { return tmp_ + "/" + name; }
-
   /// A map YAML naming `image`.
   std::string mapYaml(const std::string& name, const std::string& image)
   {
     writeBytes(tmp(name), "image: " + image + "\n" + kMapYamlKeys);
     return tmp(name);
   }
-
-  std::string tmp_;
 };
 
 /// Runs load(path) on a FIFO without ever blocking the test, whatever the loader does: a helper

@@ -2,6 +2,7 @@
 // negate, alpha, colour/palette/16-bit images, the flip, PNG == PGM, every error, and the real maps
 // copied into test/data/maps (sources and licences in test/data/README.md).
 #include "costmap_layers/io/map_file.hpp"
+#include "temp_dir_test.hpp"
 
 #include <gtest/gtest.h>
 #include <png.h>
@@ -132,23 +133,9 @@ void expectError(F&& f, const std::vector<std::string>& parts)
   }
 }
 
-class MapFileTest : public ::testing::Test
+class MapFileTest : public TempDirTest
 {
 protected:
-  void SetUp() override
-  {
-    char pattern[] = "/tmp/costmap_io_map_XXXXXX";
-    const char* dir = mkdtemp(pattern);
-    ASSERT_NE(dir, nullptr);
-    tmp_ = dir;
-  }
-  void TearDown() override
-  {
-    std::error_code ec;
-    if (!tmp_.empty()) std::filesystem::remove_all(tmp_, ec);
-  }
-  std::string tmp(const std::string& name) const { return tmp_ + "/" + name; }
-
   /// A map YAML in the temp folder; `extra` lines are appended, keys in `drop` left out.
   std::string writeYaml(const std::string& name, const std::map<std::string, std::string>& overrides,
                         const std::set<std::string>& drop = {})
@@ -166,8 +153,6 @@ protected:
     writeText(tmp(name), text);
     return tmp(name);
   }
-
-  std::string tmp_;
 };
 
 // Hand computation for the 3x2 fixture (top row 0 127 128, bottom row 205 254 255), thresholds

@@ -1,6 +1,7 @@
 // Tests of costmap_layers::io PNG/raw writers: read the PNG back with libpng and check the colour of
 // every class, the vertical flip, the legend band and the errors.
 #include "costmap_layers/io/png_writer.hpp"
+#include "temp_dir_test.hpp"
 
 #include <gtest/gtest.h>
 #include <png.h>
@@ -108,23 +109,8 @@ std::string errorOf(F&& f)
   return "<no exception>";
 }
 
-class PngWriterTest : public ::testing::Test
+class PngWriterTest : public TempDirTest
 {
-protected:
-  void SetUp() override
-  {
-    char pattern[] = "/tmp/costmap_io_png_XXXXXX";
-    const char* dir = mkdtemp(pattern);
-    ASSERT_NE(dir, nullptr);
-    tmp_ = dir;
-  }
-  void TearDown() override
-  {
-    std::error_code ec;
-    if (!tmp_.empty()) std::filesystem::remove_all(tmp_, ec);
-  }
-  std::string tmp(const std::string& name) const { return tmp_ + "/" + name; }
-  std::string tmp_;
 };
 
 const Rgb kWhite{255, 255, 255};
