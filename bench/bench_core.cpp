@@ -2,6 +2,8 @@
 // run (the machines are shared: compare ratios, not absolute times). Run with scripts/bench.sh.
 #include <benchmark/benchmark.h>
 
+#include "bench_stats.hpp"
+
 #include <cstring>
 #include <memory>
 #include <random>
@@ -125,8 +127,8 @@ void BM_KeepoutFilter(benchmark::State& state)
 }
 }  // namespace
 
-BENCHMARK(BM_Memcpy)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_GradientFullUpdate)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_UpdateWithMax)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_KeepoutFilter)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+COSTMAP_BENCH(BM_Memcpy)->Unit(benchmark::kMillisecond);
+COSTMAP_BENCH(BM_GradientFullUpdate)->Unit(benchmark::kMillisecond);
+COSTMAP_BENCH(BM_UpdateWithMax)->Unit(benchmark::kMillisecond);
+COSTMAP_BENCH(BM_KeepoutFilter)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

@@ -6,6 +6,8 @@
 //  - BM_LanesFullUpdate: a LanesFilter update over the whole 4000x4000 master, costs already computed.
 #include <benchmark/benchmark.h>
 
+#include "bench_stats.hpp"
+
 #include <cstring>
 #include <memory>
 #include <vector>
@@ -117,7 +119,7 @@ void BM_LanesFullUpdate(benchmark::State& state)
 }
 }  // namespace
 
-BENCHMARK(BM_Memcpy)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_LanesRecompute)->Arg(50)->Arg(150)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_LanesFullUpdate)->Unit(benchmark::kMillisecond);
+COSTMAP_BENCH(BM_Memcpy)->Unit(benchmark::kMillisecond);
+COSTMAP_BENCH(BM_LanesRecompute)->Arg(50)->Arg(150)->Unit(benchmark::kMillisecond);
+COSTMAP_BENCH(BM_LanesFullUpdate)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

@@ -3,6 +3,8 @@
 // costmaps after a 360-beam scan.
 #include <benchmark/benchmark.h>
 
+#include "bench_stats.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -129,7 +131,7 @@ void BM_Memcpy16M(benchmark::State& state)
   }
   state.SetBytesProcessed(static_cast<int64_t>(state.iterations() * n));
 }
-BENCHMARK(BM_Memcpy16M)->Unit(benchmark::kMillisecond);
+COSTMAP_BENCH(BM_Memcpy16M)->Unit(benchmark::kMillisecond);
 
 /// Full inflation of the map: the layer's updateCosts over the whole grid. Inflating an inflated grid
 /// does exactly the same work (the sources do not change), so the grid is not restored in between.
@@ -152,7 +154,7 @@ void BM_InflationFull(benchmark::State& state)
   state.SetLabel(distanceTransformKernel());
   setDistanceTransformSimd(true);
 }
-BENCHMARK(BM_InflationFull)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);
+COSTMAP_BENCH(BM_InflationFull)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);
 
 /// The whole update: reset, static layer copy, inflation, over the whole map.
 void BM_StaticPlusInflationFull(benchmark::State& state)
@@ -171,7 +173,7 @@ void BM_StaticPlusInflationFull(benchmark::State& state)
   }
   state.SetLabel(distanceTransformKernel());
 }
-BENCHMARK(BM_StaticPlusInflationFull)->Unit(benchmark::kMillisecond);
+COSTMAP_BENCH(BM_StaticPlusInflationFull)->Unit(benchmark::kMillisecond);
 
 /// Marks the end points of a 360-beam scan (a synthetic room) around the robot, every cycle.
 class ScanLayer : public Layer
@@ -231,7 +233,7 @@ void BM_RollingScanInflation(benchmark::State& state)
   }
   state.SetLabel(distanceTransformKernel());
 }
-BENCHMARK(BM_RollingScanInflation)->Arg(200)->Arg(400)->Unit(benchmark::kMicrosecond);
+COSTMAP_BENCH(BM_RollingScanInflation)->Arg(200)->Arg(400)->Unit(benchmark::kMicrosecond);
 }  // namespace
 
 BENCHMARK_MAIN();

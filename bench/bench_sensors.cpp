@@ -5,6 +5,8 @@
 // and 2.4 ms (400x400) for that cycle. And a 640x480 PointCloud2 into the VoxelLayer.
 #include <benchmark/benchmark.h>
 
+#include "bench_stats.hpp"
+
 #include <cmath>
 #include <cstring>
 #include <memory>
@@ -36,7 +38,7 @@ void BM_MemcpyGrid(benchmark::State& state)
     benchmark::ClobberMemory();
   }
 }
-BENCHMARK(BM_MemcpyGrid)->Arg(200)->Arg(400)->Unit(benchmark::kMicrosecond);
+COSTMAP_BENCH(BM_MemcpyGrid)->Arg(200)->Arg(400)->Unit(benchmark::kMicrosecond);
 
 /// A room of walls 1.5 .. 6 m away with some clutter, as bench_inflation's scan.
 LaserScanData roomScan()
@@ -88,7 +90,7 @@ void BM_RollingObstacleInflationCycle(benchmark::State& state)
     lethal += m.data()[k] == LETHAL_OBSTACLE;
   state.counters["lethal"] = lethal;
 }
-BENCHMARK(BM_RollingObstacleInflationCycle)->Arg(200)->Arg(400)->Unit(benchmark::kMicrosecond);
+COSTMAP_BENCH(BM_RollingObstacleInflationCycle)->Arg(200)->Arg(400)->Unit(benchmark::kMicrosecond);
 
 /// A depth camera's cloud: 640x480 float32 points on a wall 2.5 m ahead with a box in front, 1.2 rad
 /// wide, in the camera's frame (x forward).
@@ -139,7 +141,7 @@ void BM_VoxelLayerCameraCloud(benchmark::State& state)
   state.SetLabel(parse_only ? "parse+project+buffer" : "parse+project+buffer+raytrace+mark+merge");
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * 640 * 480);
 }
-BENCHMARK(BM_VoxelLayerCameraCloud)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+COSTMAP_BENCH(BM_VoxelLayerCameraCloud)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 }  // namespace
 
 BENCHMARK_MAIN();

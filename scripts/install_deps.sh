@@ -13,6 +13,8 @@ PKGS=(
   libpng-dev libbenchmark-dev libstd-srvs-dev ros-std-srvs python3-std-srvs python3-rospy
   python3-tf2-ros python3-yaml libsensor-msgs-dev ros-sensor-msgs python3-sensor-msgs
   libmessage-filters-dev libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
+  libdiagnostic-updater-dev libdiagnostic-msgs-dev ros-diagnostic-msgs python3-diagnostic-msgs
+  libcli11-dev nlohmann-json3-dev
   clang libclang-rt-14-dev
 )
 missing=()

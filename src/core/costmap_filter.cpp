@@ -222,9 +222,18 @@ std::string CostmapFilter::setMask(std::shared_ptr<const OccupancyGridData> mask
       if (!mask_changed_) pending_old_ = mask_;
       mask_ = std::move(mask);
       mask_changed_ = true;
+      ++masks_accepted_;
+      mask_received_ns_ = now;
+      latest_rejected_ = false;
       return {};
     }
     error = InputError::of("header.stamp", outOfOrderError(mask->stamp_ns, mask_->stamp_ns, "mask"));
+  }
+  {
+    std::lock_guard<std::mutex> lock(mask_mutex_);
+    ++masks_rejected_;
+    last_rejection_ = error.message;
+    latest_rejected_ = true;
   }
   if (context_)
     context_->report(Severity::Error, "mask/" + error.field,
@@ -294,6 +303,7 @@ void CostmapFilter::updateBounds(double robot_x, double robot_y, double robot_ya
       std::string error;
       const auto t = context_->lookupTransform(active_mask_->frame_id, global, &error);
       have_transform_ = t.has_value();
+      transform_error_ = t ? std::string() : error;
       if (t)
         to_mask_ = *t;
       else
@@ -348,5 +358,47 @@ std::optional<int8_t> CostmapFilter::maskValueAt(const OccupancyGridData& mask, 
   const double gy = (-sm * fx + cm * fy) / mask.resolution;
   if (!(gx >= 0.0) || !(gy >= 0.0) || gx >= mask.width || gy >= mask.height) return std::nullopt;
   return mask.data[static_cast<std::size_t>(gy) * mask.width + static_cast<std::size_t>(gx)];
+}
+}  // namespace costmap_layers
+
+namespace costmap_layers
+{
+LayerStatus CostmapFilter::status() const
+{
+  LayerStatus s;
+  const uint64_t now = context_ ? context_->nowNs() : 0;
+  std::lock_guard<std::mutex> lock(mask_mutex_);
+  s.add("enabled", filter_enabled_ ? "true" : "false");
+  s.add("mask topic", mask_topic_);
+  s.add("masks accepted", std::to_string(masks_accepted_));
+  s.add("masks rejected", std::to_string(masks_rejected_));
+  s.add("last mask accepted", mask_ ? describeAge(secondsBetween(mask_received_ns_, now)) : "never");
+  if (masks_rejected_ > 0) s.add("last rejection", last_rejection_);
+  if (mask_)
+  {
+    s.add("mask size [cells]", std::to_string(mask_->width) + " x " + std::to_string(mask_->height));
+    s.add("mask frame", mask_->frame_id);
+  }
+  if (!filter_enabled_)
+  {
+    s.message = "switched off";
+    return s;
+  }
+  if (!mask_)
+  {
+    s.raise(StatusLevel::Warn, "no mask yet on " + mask_topic_ +
+                                   (masks_rejected_ > 0 ? " (every mask so far rejected: " + last_rejection_ + ")"
+                                                        : ": the filter does nothing until one arrives"));
+    return s;
+  }
+  if (latest_rejected_)
+    s.raise(StatusLevel::Warn, "the latest mask on " + mask_topic_ + " was rejected (" + last_rejection_ +
+                                   "); the previous one stays in force");
+  if (active_mask_ && !have_transform_)
+    s.raise(StatusLevel::Warn,
+            "cannot place the mask: no transform into " + active_mask_->frame_id + " (" + transform_error_ + ")");
+  if (s.level == StatusLevel::Ok)
+    s.message = active_mask_ ? "mask from " + mask_topic_ + " in force" : "mask received, applied at the next update";
+  return s;
 }
 }  // namespace costmap_layers

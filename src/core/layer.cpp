@@ -55,6 +55,44 @@ void Layer::emit(OutputKind kind, const std::string& topic, double value)
   if (listener_) listener_(event);
 }
 
+const char* inputKindName(InputKind kind)
+{
+  switch (kind)
+  {
+    case InputKind::Map:
+      return "map";
+    case InputKind::Mask:
+      return "mask";
+    case InputKind::MapUpdates:
+      return "map updates";
+    case InputKind::SpeedLimits:
+      return "speed limits";
+    case InputKind::LaserScan:
+      return "laser scans";
+    case InputKind::PointCloud2:
+      return "point clouds";
+    case InputKind::Range:
+      return "ranges";
+  }
+  return "?";
+}
+
+LayerStatus Layer::status() const
+{
+  LayerStatus s;
+  s.add("enabled", enabled_ ? "true" : "false");
+  s.add("current", current_ ? "true" : "false");
+  for (const auto& in : inputs_)
+    s.add(std::string("input ") + inputKindName(in.kind), in.topic);
+  if (!enabled_)
+    s.message = "disabled";
+  else if (!current_)
+    s.raise(StatusLevel::Warn, "not current: its inputs are out of date");
+  else
+    s.message = "current";
+  return s;
+}
+
 const std::vector<Eigen::Vector2d>& Layer::getFootprint() const
 {
   static const std::vector<Eigen::Vector2d> empty;

@@ -113,6 +113,10 @@ void ObstacleLayer::onInitialize()
   matchSize();
   const uint64_t now = context_->nowNs();
   buffers_.clear();
+  {
+    std::lock_guard<std::mutex> lock(counts_mutex_);
+    counts_.assign(config_.sources.size(), SourceCounts{});
+  }
   for (std::size_t i = 0; i < config_.sources.size(); ++i)
   {
     const ObservationSourceConfig& s = config_.sources[i];
@@ -155,6 +159,65 @@ std::string ObstacleLayer::sourceLabel(std::size_t source) const
   return name_ + ": observation source '" + s.name + "' (topic '" + s.topic + "')";
 }
 
+std::string ObstacleLayer::noteReading(std::size_t source, std::string result)
+{
+  const uint64_t now = context_->nowNs();
+  std::lock_guard<std::mutex> lock(counts_mutex_);
+  SourceCounts& c = counts_.at(source);
+  if (result.empty())
+  {
+    ++c.accepted;
+    c.last_accepted_ns = now;
+  }
+  else
+  {
+    ++c.rejected;
+    c.last_rejection = result;
+  }
+  return result;
+}
+
+LayerStatus ObstacleLayer::status() const
+{
+  LayerStatus s = Layer::status();
+  s.level = StatusLevel::Ok;
+  s.message.clear();
+  const uint64_t now = context_ ? context_->nowNs() : 0;
+  std::lock_guard<std::mutex> lock(counts_mutex_);
+  for (std::size_t i = 0; i < buffers_.size() && i < counts_.size(); ++i)
+  {
+    const ObservationSourceConfig& src = config_.sources[i];
+    const SourceCounts& c = counts_[i];
+    const ObservationBuffer& b = *buffers_[i];
+    const double age = b.secondsSinceUpdate(now);
+    char text[160];
+    std::snprintf(
+        text, sizeof(text), "%llu accepted, %llu rejected, last accepted %s, expected every %s",
+        static_cast<unsigned long long>(c.accepted), static_cast<unsigned long long>(c.rejected),
+        c.accepted > 0 ? describeAge(secondsBetween(c.last_accepted_ns, now)).c_str() : "never",
+        src.expected_update_rate > 0.0 ? (std::to_string(src.expected_update_rate) + " s").c_str() : "(unchecked)");
+    s.add("source " + src.name + " (" + src.topic + ")", text);
+    if (c.rejected > 0) s.add("source " + src.name + " last rejection", c.last_rejection);
+    if (!enabled_) continue;
+    if (!b.isCurrent(now))
+    {
+      std::snprintf(text, sizeof(text), "%.2f s without a reading (expected every %.2f s)", age,
+                    src.expected_update_rate);
+      s.raise(StatusLevel::Warn, "source " + src.name + " on " + src.topic + " is late: " +
+                                     (c.accepted == 0 ? std::string("no reading yet, ") : std::string()) + text);
+    }
+    else if (c.accepted == 0 && c.rejected > 0)
+      s.raise(StatusLevel::Warn,
+              "source " + src.name + " on " + src.topic + ": every reading rejected (" + c.last_rejection + ")");
+  }
+  if (!enabled_)
+    s.message = "disabled";
+  else if (s.level == StatusLevel::Ok)
+    s.message = buffers_.empty() ? "no observation sources: only clears the footprint"
+                                 : std::to_string(buffers_.size()) + " source(s) current";
+  return s;
+}
+
 std::string ObstacleLayer::addLaserScan(std::size_t source, const LaserScanData& scan, const SensorPose& pose)
 {
   if (source >= config_.sources.size()) return "no observation source " + std::to_string(source);
@@ -167,9 +230,9 @@ std::string ObstacleLayer::addLaserScan(std::size_t source, const LaserScanData&
   {
     context_->report(Severity::Warn, "invalid/" + config_.sources[source].name,
                      sourceLabel(source) + ": reading rejected: " + r.error);
-    return r.error;
+    return noteReading(source, r.error);
   }
-  return bufferPoints(source, local, local_clear, scan.stamp_ns, pose);
+  return noteReading(source, bufferPoints(source, local, local_clear, scan.stamp_ns, pose));
 }
 
 std::string ObstacleLayer::addPointCloud2(std::size_t source, const PointCloud2Data& cloud, const SensorPose& pose)
@@ -184,9 +247,9 @@ std::string ObstacleLayer::addPointCloud2(std::size_t source, const PointCloud2D
   {
     context_->report(Severity::Warn, "invalid/" + config_.sources[source].name,
                      sourceLabel(source) + ": reading rejected: " + r.error);
-    return r.error;
+    return noteReading(source, r.error);
   }
-  return bufferPoints(source, local, local_clear, cloud.stamp_ns, pose);
+  return noteReading(source, bufferPoints(source, local, local_clear, cloud.stamp_ns, pose));
 }
 
 std::string ObstacleLayer::bufferPoints(std::size_t source, const std::vector<Point3f>& local,

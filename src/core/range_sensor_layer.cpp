@@ -107,6 +107,57 @@ void RangeSensorLayer::onInitialize()
 
 std::string RangeSensorLayer::addRange(const RangeData& range, const SensorPose& pose)
 {
+  std::string result = queueRange(range, pose);
+  const uint64_t now = context_->nowNs();
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (result.empty())
+  {
+    ++readings_accepted_;
+    last_accepted_ns_ = now;
+  }
+  else
+  {
+    ++readings_rejected_;
+    last_rejection_ = result;
+  }
+  return result;
+}
+
+LayerStatus RangeSensorLayer::status() const
+{
+  LayerStatus s = Layer::status();
+  s.level = StatusLevel::Ok;
+  s.message.clear();
+  const uint64_t now = context_ ? context_->nowNs() : 0;
+  std::string topics;
+  for (const auto& t : config_.topics)
+    topics += (topics.empty() ? "" : " ") + t;
+  std::lock_guard<std::mutex> lock(mutex_);
+  s.add("readings accepted", std::to_string(readings_accepted_));
+  s.add("readings rejected", std::to_string(readings_rejected_));
+  s.add("last reading accepted",
+        readings_accepted_ > 0 ? describeAge(secondsBetween(last_accepted_ns_, now)) : "never");
+  if (readings_rejected_ > 0) s.add("last rejection", last_rejection_);
+  s.add("no_readings_timeout [s]", std::to_string(config_.no_readings_timeout));
+  if (!enabled_)
+  {
+    s.message = "disabled";
+    return s;
+  }
+  if (config_.topics.empty()) s.raise(StatusLevel::Warn, "no topics configured");
+  if (!current_)
+    s.raise(StatusLevel::Warn, "no range readings on " + topics + " for " +
+                                   std::to_string(secondsBetween(last_reading_ns_, now)) + " s (no_readings_timeout " +
+                                   std::to_string(config_.no_readings_timeout) + " s)");
+  else if (readings_accepted_ == 0 && readings_rejected_ > 0)
+    s.raise(StatusLevel::Warn, "every range reading on " + topics + " rejected (" + last_rejection_ + ")");
+  if (s.level == StatusLevel::Ok)
+    s.message = readings_accepted_ > 0 ? "readings arriving on " + topics : "no reading yet on " + topics;
+  return s;
+}
+
+std::string RangeSensorLayer::queueRange(const RangeData& range, const SensorPose& pose)
+{
   const RangeInterpretation r = interpretRange(range, config_.input_sensor_type, config_.clear_on_max_reading);
   if (!r.ok())
   {

@@ -80,11 +80,20 @@ std::string StaticLayer::setMap(std::shared_ptr<const OccupancyGridData> map)
       pending_updates_.clear();  // they referred to the previous map
       pending_update_cells_ = 0;
       accepted_any_ = true;
+      ++maps_accepted_;
+      map_received_ns_ = now;
+      latest_rejected_ = false;
       map_stamp_ns_ = pending_map_->stamp_ns;
       latest_width_ = pending_map_->width;
       latest_height_ = pending_map_->height;
       return {};
     }
+  }
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++maps_rejected_;
+    last_rejection_ = error.message;
+    latest_rejected_ = true;
   }
   // Throttled per field, so that each distinct problem is still reported once.
   const std::string text = name_ + ": map on " + config_.map_topic + " rejected, keeping the previous one: " + error.message;
@@ -123,6 +132,7 @@ std::string StaticLayer::applyUpdate(int64_t x, int64_t y, uint32_t width, uint3
           PendingUpdate{static_cast<uint32_t>(x), static_cast<uint32_t>(y), width, height, data});
       pending_update_cells_ += cells;
     }
+    ++(why.empty() ? updates_accepted_ : updates_rejected_);
   }
   if (why.empty())
   {
@@ -348,5 +358,49 @@ void StaticLayer::updateCosts(Costmap2D& master_grid, int min_i, int min_j, int 
       row[i] = use_max ? std::max(v, row[i]) : v;
     }
   }
+}
+}  // namespace costmap_layers
+
+namespace costmap_layers
+{
+LayerStatus StaticLayer::status() const
+{
+  LayerStatus s = Layer::status();
+  s.message.clear();
+  s.level = StatusLevel::Ok;
+  const uint64_t now = context_ ? context_->nowNs() : 0;
+  std::lock_guard<std::mutex> lock(mutex_);
+  s.add("map topic", config_.map_topic);
+  s.add("maps accepted", std::to_string(maps_accepted_));
+  s.add("maps rejected", std::to_string(maps_rejected_));
+  s.add("last map accepted", accepted_any_ ? describeAge(secondsBetween(map_received_ns_, now)) : "never");
+  if (config_.subscribe_to_updates)
+  {
+    s.add("updates accepted", std::to_string(updates_accepted_));
+    s.add("updates rejected", std::to_string(updates_rejected_));
+  }
+  if (maps_rejected_ > 0) s.add("last rejection", last_rejection_);
+  if (map_received_)
+  {
+    s.add("map size [cells]", std::to_string(latest_width_) + " x " + std::to_string(latest_height_));
+    s.add("map frame", map_frame_);
+  }
+  if (!accepted_any_)
+  {
+    s.raise(StatusLevel::Error, "no map yet on " + config_.map_topic +
+                                    (maps_rejected_ > 0 ? " (every map so far rejected: " + last_rejection_ + ")"
+                                                        : ": the static layer draws nothing until one arrives"));
+    return s;
+  }
+  if (latest_rejected_)
+    s.raise(StatusLevel::Warn, "the latest map on " + config_.map_topic + " was rejected (" + last_rejection_ +
+                                   "); the previous one stays in force");
+  else if (!map_received_)
+    s.message = "map received on " + config_.map_topic + ", drawn at the next update";
+  else
+    s.message = "map " + std::to_string(latest_width_) + " x " + std::to_string(latest_height_) + " cells from " +
+                config_.map_topic + " in force";
+  if (!enabled_) s.message = "disabled; " + s.message;
+  return s;
 }
 }  // namespace costmap_layers

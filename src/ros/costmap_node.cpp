@@ -12,6 +12,7 @@
 #include "costmap_layers/core/costmap_builder.hpp"
 #include "costmap_layers/core/costmap_clearing.hpp"
 #include "costmap_layers/core/layer.hpp"
+#include "costmap_layers/core/layer_status.hpp"
 #include "costmap_layers/ros/conversions.hpp"
 
 namespace costmap_layers_ros
@@ -193,12 +194,91 @@ void CostmapNode::setUp()
         ROS_INFO("costmap: cleared %d clearable layer(s) outside %.2f m around the robot", n, config_.reset_distance);
         return true;
       });
+  setUpDiagnostics(names);
+}
+
+void CostmapNode::setUpDiagnostics(const std::vector<std::string>& layer_names)
+{
+  diagnostics_ = std::make_unique<diagnostic_updater::Updater>(nh_, private_nh_);
+  diagnostics_->setHardwareID(private_nh_.getNamespace());
+  diagnostics_->add("costmap", [this](diagnostic_updater::DiagnosticStatusWrapper& stat) { costmapStatus(stat); });
+  // ports_ was filled in plugin-list order, the same order as layer_names.
+  for (std::size_t k = 0; k < layer_names.size(); ++k)
+  {
+    const std::string name = layer_names[k];
+    diagnostics_->add("layer " + name, [this, name, k](diagnostic_updater::DiagnosticStatusWrapper& stat)
+                      { layerStatus(name, k, stat); });
+  }
+  // A spinner thread, not the update loop, publishes them: they keep coming while the loop waits for tf.
+  // Updater::update() itself publishes once per ~diagnostic_period (default 1 s).
+  diagnostics_timer_ = private_nh_.createWallTimer(ros::WallDuration(0.1),
+                                                   [this](const ros::WallTimerEvent&)
+                                                   {
+                                                     std::lock_guard<std::mutex> lock(update_mutex_);
+                                                     diagnostics_->update();
+                                                   });
+}
+
+void CostmapNode::costmapStatus(diagnostic_updater::DiagnosticStatusWrapper& stat)
+{
+  using diagnostic_msgs::DiagnosticStatus;
+  const double period = 1.0 / config_.update_frequency;
+  const auto& grid = costmap_->getCostmap();
+  stat.add("global_frame", config_.global_frame);
+  stat.add("robot_base_frame", config_.robot_base_frame);
+  stat.add("rolling_window", config_.rolling_window ? "true" : "false");
+  stat.addf("size [cells]", "%u x %u", grid.getSizeInCellsX(), grid.getSizeInCellsY());
+  stat.add("resolution [m]", grid.getResolution());
+  stat.add("cycles", cycles_);
+  stat.add("update period [s]", period);
+  stat.add("last cycle [s]", last_cycle_s_);
+  stat.add("longest cycle since last report [s]", worst_cycle_s_);
+  stat.add("last cycle ended", cycles_ == 0
+                                   ? std::string("never")
+                                   : costmap_layers::describeAge((ros::WallTime::now() - last_cycle_end_).toSec()));
+  std::string not_current;
+  for (const auto* list : {&costmap_->getPlugins(), &costmap_->getFilters()})
+    for (const auto& layer : *list)
+      if (layer->enabled() && !layer->isCurrent()) not_current += (not_current.empty() ? "" : ", ") + layer->getName();
+  stat.add("layers not current", not_current.empty() ? std::string("none") : not_current);
+
+  stat.summary(DiagnosticStatus::OK, "updating");
+  if (!pose_error_.empty())
+    stat.mergeSummary(DiagnosticStatus::ERROR, "no robot pose (" + config_.robot_base_frame + " in " +
+                                                   config_.global_frame + "): " + pose_error_);
+  else if (cycles_ == 0)
+    stat.mergeSummary(DiagnosticStatus::WARN, "waiting for the transform " + config_.robot_base_frame + " -> " +
+                                                  config_.global_frame + " before the first update");
+  if (cycles_ > 0 && worst_cycle_s_ > period)
+    stat.mergeSummaryf(DiagnosticStatus::WARN, "an update took %.3f s, longer than the period %.3f s", worst_cycle_s_,
+                       period);
+  if (!not_current.empty()) stat.mergeSummary(DiagnosticStatus::WARN, "not current: " + not_current);
+  worst_cycle_s_ = last_cycle_s_;
+}
+
+void CostmapNode::layerStatus(const std::string& name, std::size_t ports_index,
+                              diagnostic_updater::DiagnosticStatusWrapper& stat)
+{
+  const auto layer = costmap_->findLayer(name);
+  if (!layer)
+  {
+    stat.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "no layer " + name);
+    return;
+  }
+  const costmap_layers::LayerStatus s = layer->status();
+  stat.summary(static_cast<unsigned char>(s.level), s.message);
+  for (const auto& [key, value] : s.values)
+    stat.add(key, value);
+  if (ports_index < ports_.size())
+    for (const auto& [key, value] : ports_[ports_index]->receipts())
+      stat.add(key, value);
 }
 
 CostmapNode::~CostmapNode()
 {
   // Subscriptions first (their callbacks reach into the layers), then the layers, while the plugin
-  // library that made them is still loaded.
+  // library that made them is still loaded. The diagnostics timer reads both: stopped before.
+  diagnostics_timer_.stop();
   ports_.clear();
   reconfigure_.clear();
   costmap_.reset();
@@ -209,6 +289,10 @@ std::optional<costmap_layers::Transform2D> CostmapNode::robotPose()
   std::string error;
   auto pose =
       lookupTransform2D(tf_, config_.global_frame, config_.robot_base_frame, config_.transform_tolerance, &error);
+  {
+    std::lock_guard<std::mutex> lock(update_mutex_);
+    pose_error_ = pose ? std::string() : (error.empty() ? std::string("no transform") : error);
+  }
   if (!pose)
     log_->log(costmap_layers::Severity::Warn, "robot_pose",
               "costmap: cannot get the robot pose (" + config_.robot_base_frame + " in " + config_.global_frame +
@@ -221,6 +305,7 @@ bool CostmapNode::updateOnce()
   const auto pose = robotPose();
   if (!pose) return false;
   std::lock_guard<std::mutex> lock(update_mutex_);
+  const ros::WallTime start = ros::WallTime::now();
   costmap_->updateMap(pose->x, pose->y, pose->yaw);
   last_x_ = pose->x;
   last_y_ = pose->y;
@@ -242,6 +327,10 @@ bool CostmapNode::updateOnce()
 
   // Publish once a cycle ran, even if no layer had anything to draw yet: the grid is valid then.
   if (schedule_->due(ros::WallTime::now().toSec())) publish();
+  last_cycle_end_ = ros::WallTime::now();
+  last_cycle_s_ = (last_cycle_end_ - start).toSec();
+  worst_cycle_s_ = std::max(worst_cycle_s_, last_cycle_s_);
+  ++cycles_;
   return true;
 }
 

@@ -1,5 +1,8 @@
 #include "costmap_layers/ros/costmap_tool_app.hpp"
 
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -14,6 +17,7 @@
 #include "costmap_layers/core/layer.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
 #include "costmap_layers/core/limits.hpp"
+#include "costmap_layers/core/run_timing.hpp"
 #include "costmap_layers/io/features_file.hpp"
 #include "costmap_layers/io/map_file.hpp"
 #include "costmap_layers/io/param_yaml.hpp"
@@ -26,10 +30,13 @@ using namespace costmap_layers;
 
 namespace
 {
-const char* kUsage =
-    "usage: costmap_tool --map MAP.yaml --params PARAMS.yaml [--namespace NS]\n"
-    "                    [--mask PLUGIN_NAME=MASK.yaml]... [--features PLUGIN_NAME=FEATURES.yaml]...\n"
-    "                    [--pose X,Y,YAW] [--repeat N] [--out-raw FILE] [--out-png FILE]";
+const char* kDescription =
+    "costmap_tool: the offline twin of costmap_node. Builds the costmap the params YAML describes, feeds it\n"
+    "the map file (and masks and speed-limit files) where the node gets topics, runs an update at --pose\n"
+    "and prints one JSON line: width, height, resolution, origin_x, origin_y, update_ms_median,\n"
+    "update_ms_min, repeats, max_speed. On a rolling_window costmap the result is the window of the\n"
+    "configured width/height centred on --pose, as costmap_node publishes it. Each option may be given\n"
+    "once, except --mask and --features (once per plugin name).";
 
 struct ToolArgs
 {
@@ -53,71 +60,135 @@ std::pair<std::string, std::string> splitAssignment(const std::string& flag, con
   return {value.substr(0, eq), value.substr(eq + 1)};
 }
 
-ToolArgs parseArgs(const std::vector<std::string>& args)
+/// PLUGIN_NAME=FILE assignments of a repeatable flag; one plugin named twice is an error.
+std::vector<std::pair<std::string, std::string>> assignments(const std::string& flag,
+                                                             const std::vector<std::string>& values)
 {
-  ToolArgs a;
-  for (std::size_t i = 0; i < args.size(); ++i)
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& v : values)
   {
-    const std::string& flag = args[i];
-    if (flag == "-h" || flag == "--help") throw UsageError("");
-    if (i + 1 >= args.size()) throw UsageError("missing value after " + flag);
-    const std::string& v = args[++i];
-    if (flag == "--map")
-      a.map = v;
-    else if (flag == "--params")
-      a.params = v;
-    else if (flag == "--namespace")
-      a.ns = v;
-    else if (flag == "--mask")
-      a.masks.push_back(splitAssignment(flag, v));
-    else if (flag == "--features")
-      a.features.push_back(splitAssignment(flag, v));
-    else if (flag == "--out-raw")
-      a.out_raw = v;
-    else if (flag == "--out-png")
-      a.out_png = v;
-    else if (flag == "--repeat")
-    {
-      std::size_t used = 0;
-      long n = -1;
-      try
-      {
-        n = std::stol(v, &used);
-      }
-      catch (const std::exception&)
-      {
-      }
-      if (used != v.size() || n < 1 || n > 100000)
-        throw UsageError("--repeat expects a count in 1..100000 (got \"" + v + "\")");
-      a.repeat = static_cast<int>(n);
-    }
-    else if (flag == "--pose")
-    {
-      double p[3];
-      std::istringstream in(v);
-      char c1 = 0, c2 = 0;
-      // NaN fails every comparison below, so it is refused with the infinities.
-      if (!(in >> p[0] >> c1 >> p[1] >> c2 >> p[2]) || c1 != ',' || c2 != ',' || !in.eof() ||
-          !(std::fabs(p[0]) <= limits::kMaxCoordinate) || !(std::fabs(p[1]) <= limits::kMaxCoordinate) ||
-          !(std::fabs(p[2]) <= limits::kMaxYaw))
-      {
-        std::ostringstream msg;
-        msg << "--pose expects X,Y,YAW as three finite numbers, |X| and |Y| at most " << limits::kMaxCoordinate
-            << " m and |YAW| at most " << limits::kMaxYaw << " rad (got \"" << v << "\")";
-        throw UsageError(msg.str());
-      }
-      a.has_pose = true;
-      a.x = p[0];
-      a.y = p[1];
-      a.yaw = p[2];
-    }
-    else
-      throw UsageError("unknown option " + flag);
+    auto a = splitAssignment(flag, v);
+    for (const auto& [name, file] : out)
+      if (name == a.first)
+        throw UsageError(flag + " names plugin '" + name + "' twice (\"" + file + "\" and \"" + a.second +
+                         "\"): give one file per plugin");
+    out.push_back(std::move(a));
   }
-  if (a.map.empty()) throw UsageError("--map is required");
-  if (a.params.empty()) throw UsageError("--params is required");
-  return a;
+  return out;
 }
+
+int parseRepeat(const std::string& v)
+{
+  std::size_t used = 0;
+  long n = -1;
+  try
+  {
+    n = std::stol(v, &used);
+  }
+  catch (const std::exception&)
+  {
+  }
+  if (used != v.size() || n < 1 || n > 100000)
+    throw UsageError("--repeat expects a count in 1..100000 (got \"" + v + "\")");
+  return static_cast<int>(n);
+}
+
+void parsePose(const std::string& v, ToolArgs& a)
+{
+  double p[3];
+  std::istringstream in(v);
+  char c1 = 0, c2 = 0;
+  // NaN fails every comparison below, so it is refused with the infinities.
+  if (!(in >> p[0] >> c1 >> p[1] >> c2 >> p[2]) || c1 != ',' || c2 != ',' || !in.eof() ||
+      !(std::fabs(p[0]) <= limits::kMaxCoordinate) || !(std::fabs(p[1]) <= limits::kMaxCoordinate) ||
+      !(std::fabs(p[2]) <= limits::kMaxYaw))
+  {
+    std::ostringstream msg;
+    msg << "--pose expects X,Y,YAW as three finite numbers, |X| and |Y| at most " << limits::kMaxCoordinate
+        << " m and |YAW| at most " << limits::kMaxYaw << " rad (got \"" << v << "\")";
+    throw UsageError(msg.str());
+  }
+  a.has_pose = true;
+  a.x = p[0];
+  a.y = p[1];
+  a.yaw = p[2];
+}
+
+/// The command line. Each single-valued option may appear once (CLI11's Throw policy: a second one is
+/// an error naming the option); --mask and --features repeat, once per plugin name.
+class ToolCommandLine
+{
+public:
+  ToolCommandLine() : app_(kDescription, "costmap_tool")
+  {
+    app_.add_option("--map", map_, "map_server map YAML: the map every map input receives")
+        ->required()
+        ->type_name("MAP.yaml");
+    app_.add_option("--params", params_, "costmap parameters YAML (costmap_node's)")
+        ->required()
+        ->type_name("PARAMS.yaml");
+    app_.add_option("--namespace", ns_, "the costmap's key path inside PARAMS.yaml, e.g. local_costmap/costmap")
+        ->type_name("NS");
+    app_.add_option("--mask", masks_, "a filter mask for the named filter (repeatable)")
+        ->allow_extra_args(false)
+        ->type_name("PLUGIN_NAME=MASK.yaml");
+    app_.add_option("--features", features_, "speed limits for the named SpeedFilter (repeatable)")
+        ->allow_extra_args(false)
+        ->type_name("PLUGIN_NAME=FEATURES.yaml");
+    app_.add_option("--pose", pose_, "robot pose in the global frame [m, m, rad]; default: the map's centre, yaw 0")
+        ->type_name("X,Y,YAW");
+    app_.add_option("--repeat", repeat_, "time N full updates (after one warm-up) and report median and min")
+        ->type_name("N");
+    app_.add_option("--out-raw", out_raw_, "write the costs, one byte per cell, row 0 first")->type_name("FILE");
+    app_.add_option("--out-png", out_png_, "write the costs as a PNG picture")->type_name("FILE");
+    app_.allow_extras(true);  // reported below as unknown options, in the tool's own words
+  }
+
+  std::string usage() const { return app_.help(); }
+
+  /// Throws UsageError; CLI::CallForHelp for -h / --help.
+  ToolArgs parse(const std::vector<std::string>& args)
+  {
+    std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 takes them last first
+    try
+    {
+      app_.parse(reversed);
+    }
+    catch (const CLI::CallForHelp&)
+    {
+      throw;
+    }
+    catch (const CLI::ArgumentMismatch& e)
+    {
+      std::string what = e.what();
+      if (what.find("At Most") != std::string::npos)
+        what += " (each option may be given once; --mask and --features once per plugin name)";
+      throw UsageError(what);
+    }
+    catch (const CLI::ParseError& e)
+    {
+      throw UsageError(e.what());
+    }
+    for (const auto& extra : app_.remaining())
+      throw UsageError(extra.rfind("-", 0) == 0 ? "unknown option " + extra : "unexpected argument \"" + extra + "\"");
+    ToolArgs a;
+    a.map = map_;
+    a.params = params_;
+    a.ns = ns_;
+    a.out_raw = out_raw_;
+    a.out_png = out_png_;
+    a.masks = assignments("--mask", masks_);
+    a.features = assignments("--features", features_);
+    if (app_.count("--repeat")) a.repeat = parseRepeat(repeat_);
+    if (app_.count("--pose")) parsePose(pose_, a);
+    return a;
+  }
+
+private:
+  CLI::App app_;
+  std::string map_, params_, ns_, out_raw_, out_png_, pose_, repeat_;
+  std::vector<std::string> masks_, features_;
+};
 
 /// The tool's LayerContext: no tf (every frame is the global frame), reports to stderr. The tool itself
 /// plays the host's part for inputs and outputs: files to the layers' input ports.
@@ -169,33 +240,6 @@ private:
   std::map<std::string, int> reported_count_;
 };
 
-std::string jsonString(const std::string& s)
-{
-  std::string out = "\"";
-  for (char c : s)
-  {
-    if (c == '"' || c == '\\')
-      out += std::string("\\") + c;
-    else if (static_cast<unsigned char>(c) < 0x20)
-    {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", c);
-      out += buf;
-    }
-    else
-      out += c;
-  }
-  return out + "\"";
-}
-
-std::string jsonNumber(double v)
-{
-  if (!std::isfinite(v)) return "null";
-  std::ostringstream o;
-  o << std::setprecision(10) << v;
-  return o.str();
-}
-
 int run(const ToolArgs& a, std::ostream& out, std::ostream& err)
 {
   ParamValue root = io::loadParamsYamlFile(a.params);
@@ -220,8 +264,14 @@ int run(const ToolArgs& a, std::ostream& out, std::ostream& err)
     ~Release() { c.reset(); }
   } release{costmap};
 
-  // The map sets the master grid, as a static map does.
-  costmap->resizeMap(map->width, map->height, map->resolution, map->origin_x, map->origin_y);
+  // Not rolling: the map sets the master grid, as a static map does. Rolling: the master grid is the
+  // configured window (width x height at the configured resolution), as costmap_node sizes it; the
+  // update at the pose centres it there.
+  if (config.rolling_window)
+    costmap->resizeMap(config.sizeInCellsX(), config.sizeInCellsY(), config.resolution, config.origin_x,
+                       config.origin_y);
+  else
+    costmap->resizeMap(map->width, map->height, map->resolution, map->origin_x, map->origin_y);
   loadPlugins(
       *costmap, lists, [&factory](const std::string& type) { return factory.create(type); },
       [&](const PluginSpec& spec)
@@ -293,37 +343,23 @@ int run(const ToolArgs& a, std::ostream& out, std::ostream& err)
                              });
   }
 
-  auto pose = [&](double& x, double& y, double& yaw)
-  {
-    const Costmap2D& g = costmap->getCostmap();
-    x = a.has_pose ? a.x : g.getOriginX() + g.getSizeInMetersX() / 2;
-    y = a.has_pose ? a.y : g.getOriginY() + g.getSizeInMetersY() / 2;
-    yaw = a.has_pose ? a.yaw : 0.0;
-  };
-  double x, y, yaw;
-  using Clock = std::chrono::steady_clock;
-  std::vector<double> times_ms;
-  const int timed = a.repeat > 0 ? a.repeat : 1;
-  for (int k = 0; k < timed + (a.repeat > 0 ? 1 : 0); ++k)
-  {
-    const bool warm_up = a.repeat > 0 && k == 0;
-    const auto t0 = Clock::now();
-    if (k > 0)
-    {
-      // Redo every layer's full work, as when a new map (and new masks) arrive.
-      costmap->setFootprint(footprint);
-      deliverMaps();
-      deliverMasks();
-    }
-    pose(x, y, yaw);
-    costmap->updateMap(x, y, yaw);
-    const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-    if (!warm_up) times_ms.push_back(ms);
-  }
-  std::vector<double> sorted = times_ms;
-  std::sort(sorted.begin(), sorted.end());
-  const std::size_t n = sorted.size();
-  const double median = n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
+  // Without --pose: the map's centre (the map's, not the grid's: a rolling window moves).
+  const double x = a.has_pose ? a.x : map->origin_x + map->width * map->resolution / 2;
+  const double y = a.has_pose ? a.y : map->origin_y + map->height * map->resolution / 2;
+  const double yaw = a.has_pose ? a.yaw : 0.0;
+  // --repeat N: one warm-up, then N timed updates; each redoes every layer's full work, as when a new
+  // map (and new masks) arrive. Summarised by the same code as the benchmarks' "min" (run_timing.hpp).
+  const RunTimes times = timeRuns(a.repeat > 0 ? 1 : 0, a.repeat > 0 ? a.repeat : 1,
+                                  [&](int k)
+                                  {
+                                    if (k > 0)
+                                    {
+                                      costmap->setFootprint(footprint);
+                                      deliverMaps();
+                                      deliverMasks();
+                                    }
+                                    costmap->updateMap(x, y, yaw);
+                                  });
 
   // A layer that refused an input (a map, a mask, speed limits) reported it as an error above: the
   // costmap is not what the files describe, so nothing is written and the exit status says so.
@@ -334,43 +370,45 @@ int run(const ToolArgs& a, std::ostream& out, std::ostream& err)
   if (!a.out_raw.empty()) io::writeRawBytes(a.out_raw, grid.data(), grid.cellCount());
   if (!a.out_png.empty()) io::writeCostmapPng(a.out_png, grid.data(), grid.getSizeInCellsX(), grid.getSizeInCellsY());
 
-  std::ostringstream json;
-  json << "{\"width\": " << grid.getSizeInCellsX() << ", \"height\": " << grid.getSizeInCellsY()
-       << ", \"resolution\": " << jsonNumber(grid.getResolution()) << ", \"update_ms_median\": " << jsonNumber(median)
-       << ", \"update_ms_min\": " << jsonNumber(sorted.front()) << ", \"repeats\": " << n << ", \"max_speed\": {";
-  bool first = true;
+  nlohmann::ordered_json json;
+  json["width"] = grid.getSizeInCellsX();
+  json["height"] = grid.getSizeInCellsY();
+  json["resolution"] = grid.getResolution();
+  json["origin_x"] = grid.getOriginX();
+  json["origin_y"] = grid.getOriginY();
+  json["update_ms_median"] = times.median_ms();
+  json["update_ms_min"] = times.min_ms();
+  json["repeats"] = times.ms.size();
+  json["max_speed"] = nlohmann::ordered_json::object();
   for (const auto* list : {&lists.plugins, &lists.filters})
-  {
     for (const auto& spec : *list)
     {
       const auto it = max_speeds.find(spec.name);
-      if (it == max_speeds.end()) continue;
-      json << (first ? "" : ", ") << jsonString(spec.name) << ": " << jsonNumber(it->second);
-      first = false;
+      if (it != max_speeds.end()) json["max_speed"][spec.name] = it->second;  // a non-finite number is null
     }
-  }
-  json << "}}";
   err.flush();
-  out << json.str() << std::endl;
+  out << json.dump() << std::endl;
   return 0;
 }
 }  // namespace
 
 int runCostmapTool(const std::vector<std::string>& args, std::ostream& out, std::ostream& err)
 {
+  ToolCommandLine command_line;
   ToolArgs parsed;
   try
   {
-    parsed = parseArgs(args);
+    parsed = command_line.parse(args);
+  }
+  catch (const CLI::CallForHelp&)
+  {
+    out << command_line.usage() << std::endl;
+    return 0;
   }
   catch (const UsageError& e)
   {
-    if (std::string(e.what()).empty())
-    {
-      out << kUsage << std::endl;
-      return 0;
-    }
-    err << "costmap_tool: " << e.what() << "\n" << kUsage << std::endl;
+    err << "costmap_tool: " << e.what() << "\n"
+        << "run costmap_tool --help for the options" << std::endl;
     return 2;
   }
   try

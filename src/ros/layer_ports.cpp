@@ -9,6 +9,7 @@
 #include <std_srvs/SetBool.h>
 #include <tf2/exceptions.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <deque>
@@ -105,6 +106,39 @@ std::string LayerPorts::resolveTopic(const std::string& topic) const
   return ros::names::append(topic_ns_, topic);
 }
 
+void LayerPorts::Receipts::note()
+{
+  count.fetch_add(1);
+  last.store(ros::Time::now().toSec());
+}
+
+std::shared_ptr<LayerPorts::Receipts> LayerPorts::receiptsFor(const std::string& topic)
+{
+  const std::string resolved = resolveTopic(topic);
+  for (const auto& [t, r] : receipts_)
+    if (t == resolved) return r;
+  receipts_.emplace_back(resolved, std::make_shared<Receipts>());
+  return receipts_.back().second;
+}
+
+std::vector<std::pair<std::string, std::string>> LayerPorts::receipts() const
+{
+  std::vector<std::pair<std::string, std::string>> out;
+  const double now = ros::Time::now().toSec();
+  for (const auto& [topic, r] : receipts_)
+  {
+    const uint64_t n = r->count.load();
+    char text[96];
+    if (n == 0)
+      std::snprintf(text, sizeof(text), "nothing yet");
+    else
+      std::snprintf(text, sizeof(text), "%llu message(s), last %.2f s ago", static_cast<unsigned long long>(n),
+                    std::max(0.0, now - r->last.load()));
+    out.emplace_back("received on " + public_nh_.resolveName(topic), text);
+  }
+  return out;
+}
+
 LayerPorts::~LayerPorts()
 {
   if (!publishers_.empty()) layer_.setOutputListener({});
@@ -124,10 +158,12 @@ void LayerPorts::publish(const costmap_layers::OutputEvent& e)
 void LayerPorts::subscribeGrid(const std::string& topic, costmap_layers::GridCallback cb)
 {
   const std::string owner = private_nh_.getNamespace();
+  auto receipts = receiptsFor(topic);
   subscribers_.push_back(public_nh_.subscribe<nav_msgs::OccupancyGrid>(
       resolveTopic(topic), 1,
-      [cb, owner, topic, log = log_](const nav_msgs::OccupancyGrid::ConstPtr& msg)
+      [cb, owner, topic, receipts, log = log_](const nav_msgs::OccupancyGrid::ConstPtr& msg)
       {
+        receipts->note();
         try
         {
           std::string note;
@@ -146,10 +182,12 @@ void LayerPorts::subscribeGrid(const std::string& topic, costmap_layers::GridCal
 void LayerPorts::subscribeGridUpdates(const std::string& topic, costmap_layers::GridUpdateCallback cb)
 {
   const std::string owner = private_nh_.getNamespace();
+  auto receipts = receiptsFor(topic);
   subscribers_.push_back(public_nh_.subscribe<map_msgs::OccupancyGridUpdate>(
       resolveTopic(topic), 10,
-      [cb, owner, topic, log = log_](const map_msgs::OccupancyGridUpdate::ConstPtr& msg)
+      [cb, owner, topic, receipts, log = log_](const map_msgs::OccupancyGridUpdate::ConstPtr& msg)
       {
+        receipts->note();
         try
         {
           cb(std::make_shared<const costmap_layers::OccupancyGridUpdateData>(fromMsg(*msg)));
@@ -164,10 +202,12 @@ void LayerPorts::subscribeGridUpdates(const std::string& topic, costmap_layers::
 void LayerPorts::subscribeSpeedLimits(const std::string& topic, costmap_layers::SpeedLimitsCallback cb)
 {
   const std::string owner = private_nh_.getNamespace();
+  auto receipts = receiptsFor(topic);
   subscribers_.push_back(public_nh_.subscribe<costmap_layers::SpeedLimits>(
       resolveTopic(topic), 1,
-      [cb, owner, topic, log = log_](const costmap_layers::SpeedLimits::ConstPtr& msg)
+      [cb, owner, topic, receipts, log = log_](const costmap_layers::SpeedLimits::ConstPtr& msg)
       {
+        receipts->note();
         try
         {
           cb(std::make_shared<const costmap_layers::SpeedLimitsData>(fromMsg(*msg)));
@@ -200,13 +240,15 @@ public:
 
   static std::shared_ptr<TfGate> create(ros::NodeHandle& nh, const std::string& topic, tf2_ros::Buffer& tf,
                                         std::string target, std::function<void(const Ptr&)> ready,
-                                        std::function<void(const Ptr&, TfVerdict)> failed)
+                                        std::function<void(const Ptr&, TfVerdict)> failed,
+                                        std::shared_ptr<LayerPorts::Receipts> receipts)
   {
     std::shared_ptr<TfGate> gate(new TfGate(tf, std::move(target), std::move(ready), std::move(failed)));
     std::weak_ptr<TfGate> weak = gate;  // callbacks still in flight after destruction do nothing
     gate->subscriber_ = nh.subscribe<Msg>(topic, 5,
-                                          [weak](const Ptr& msg)
+                                          [weak, receipts](const Ptr& msg)
                                           {
+                                            receipts->note();
                                             if (auto g = weak.lock()) g->arrive(msg);
                                           });
     gate->timer_ = nh.createWallTimer(ros::WallDuration(kRetryPeriod),
@@ -327,6 +369,7 @@ void LayerPorts::subscribeSensor(const std::string& topic, const std::string& se
              owner + ": dropped a reading on " + topic + ": cannot transform frame '" + msg->header.frame_id +
                  "' into '" + global + "': " + why);
   };
-  sensor_inputs_.push_back(TfGate<Msg>::create(public_nh_, resolveTopic(topic), tf_, global_frame_, ready, failed));
+  sensor_inputs_.push_back(
+      TfGate<Msg>::create(public_nh_, resolveTopic(topic), tf_, global_frame_, ready, failed, receiptsFor(topic)));
 }
 }  // namespace costmap_layers_ros

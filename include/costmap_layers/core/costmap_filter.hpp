@@ -129,6 +129,10 @@ public:
   /// mask's extent so that the filter's effect appears or disappears at once. Thread-safe.
   void setFilterEnabled(bool on);
   bool filterEnabled() const { return filter_enabled_; }
+  /// OK when switched off or when a mask is in force; WARN while no mask has arrived (naming the topic
+  /// and the last rejection), when the latest mask was rejected, or when the mask cannot be placed (no
+  /// transform into its frame).
+  LayerStatus status() const override;
 
 protected:
   /// Reads the base's parameters (mask_topic), declares the mask input, then calls onInitializeFilter().
@@ -169,6 +173,11 @@ private:
   std::shared_ptr<const OccupancyGridData> mask_;         ///< guarded by mask_mutex_
   std::shared_ptr<const OccupancyGridData> pending_old_;  ///< the mask replaced since the last bounds
   bool mask_changed_ = false;                             ///< guarded by mask_mutex_
+  // For status(), guarded by mask_mutex_: what arrived and when (context clock).
+  uint64_t masks_accepted_ = 0, masks_rejected_ = 0, mask_received_ns_ = 0;
+  std::string last_rejection_;
+  bool latest_rejected_ = false;
+  std::string transform_error_;  ///< why the last cycle could not place the mask (update thread)
   std::shared_ptr<const OccupancyGridData> active_mask_;  ///< the mask of this cycle (update thread only)
   bool have_transform_ = false;
   double robot_x_ = 0, robot_y_ = 0, robot_yaw_ = 0;

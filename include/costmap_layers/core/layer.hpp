@@ -12,6 +12,7 @@
 
 #include "costmap_layers/core/layer_context.hpp"
 #include "costmap_layers/core/layer_io.hpp"
+#include "costmap_layers/core/layer_status.hpp"
 #include "costmap_layers/core/param_reader.hpp"
 
 namespace costmap_layers
@@ -71,6 +72,11 @@ public:
 
   /// Whether the layer's inputs are up to date.
   bool isCurrent() const { return current_; }
+  /// What the layer has received and when, and what it waits for: one level, one line and key/values,
+  /// for /diagnostics. The host calls it on the update thread between cycles (the node holds its
+  /// update lock), so update-thread state may be read; state shared with input threads needs its lock.
+  /// The default says enabled / current (isCurrent()) and lists the inputs; layers with inputs say more.
+  virtual LayerStatus status() const;
   /// Whether the layer takes part in updates (a filter always does: its switch is its own).
   bool enabled() const { return enabled_; }
   /// The layer's one on/off switch: what `enabled` and (for filters) the ~toggle service set.

@@ -26,6 +26,9 @@ enum class InputKind
   Range         ///< sensor_msgs/Range, delivered with the sensor pose
 };
 
+/// A short name of what an input carries ("map", "laser scans", ...), for messages.
+const char* inputKindName(InputKind kind);
+
 using GridCallback = std::function<void(const std::shared_ptr<const OccupancyGridData>&)>;
 using GridUpdateCallback = std::function<void(const std::shared_ptr<const OccupancyGridUpdateData>&)>;
 using SpeedLimitsCallback = std::function<void(const std::shared_ptr<const SpeedLimitsData>&)>;

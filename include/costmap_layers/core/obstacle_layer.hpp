@@ -84,6 +84,9 @@ public:
   const ObstacleConfig& config() const { return config_; }
   std::size_t sourceCount() const { return buffers_.size(); }
   const ObservationBuffer& buffer(std::size_t source) const { return *buffers_.at(source); }
+  /// Per source: readings accepted and rejected, the age of the last one, expected_update_rate. WARN
+  /// for each source that is late (ObservationBuffer::isCurrent()) or whose every reading was rejected.
+  LayerStatus status() const override;
 
   /// What the subscriptions call (safe from any thread): validates and projects a reading of source
   /// `source` into the global frame and buffers it. A reading stamped more than
@@ -124,7 +127,18 @@ private:
   std::string bufferPoints(std::size_t source, const std::vector<Point3f>& local,
                            const std::vector<Point3f>& local_clear, uint64_t stamp_ns, const SensorPose& pose);
 
+  /// Records what happened to one reading of `source` for status(); returns result.
+  std::string noteReading(std::size_t source, std::string result);
+
   std::vector<std::unique_ptr<ObservationBuffer>> buffers_;
+  struct SourceCounts
+  {
+    uint64_t accepted = 0, rejected = 0;
+    uint64_t last_accepted_ns = 0;
+    std::string last_rejection;
+  };
+  mutable std::mutex counts_mutex_;
+  std::vector<SourceCounts> counts_;  ///< per source, guarded by counts_mutex_
   std::atomic<bool> active_{true};
 
   std::mutex static_mutex_;

@@ -85,6 +85,9 @@ public:
   static constexpr uint64_t kMaxCellsPerUpdate = 2'000'000;
   /// Readings waiting for the next update.
   std::size_t pending() const;
+  /// Readings accepted and rejected and when; WARN when not current (no_readings_timeout passed) or when
+  /// every reading was rejected.
+  LayerStatus status() const override;
 
 protected:
   void onInitialize() override;
@@ -97,6 +100,7 @@ private:
     double max_angle;       ///< half the field of view [rad]
     bool clear;
   };
+  std::string queueRange(const RangeData& range, const SensorPose& pose);
   void applyReading(const Pending& reading);
   void updateCell(double ox, double oy, double ot, double r, double max_angle, unsigned int x, unsigned int y,
                   bool clear);
@@ -105,6 +109,8 @@ private:
   mutable std::mutex mutex_;
   std::deque<Pending> queue_;
   uint64_t dropped_ = 0;  ///< readings pushed out of the full queue since the last update
+  uint64_t readings_accepted_ = 0, readings_rejected_ = 0, last_accepted_ns_ = 0;  ///< for status()
+  std::string last_rejection_;
   bool active_ = true;
 
   // Update thread only.

@@ -76,6 +76,9 @@ public:
   bool mapReceived() const { return map_received_; }
   /// The frame of the map in force.
   const std::string& mapFrame() const { return map_frame_; }
+  /// ERROR while no map was accepted (naming the topic and the last rejection), WARN when the latest map
+  /// was rejected (the previous one stays), else OK with the map in force and when it arrived.
+  LayerStatus status() const override;
 
 protected:
   void onInitialize() override;
@@ -95,7 +98,7 @@ private:
   uint8_t table_[256] = {};  ///< cost per occupancy byte
 
   // Shared with the threads that deliver maps and updates.
-  std::mutex mutex_;
+  mutable std::mutex mutex_;
   std::shared_ptr<const OccupancyGridData> pending_map_;
   std::vector<PendingUpdate> pending_updates_;
   uint64_t pending_update_cells_ = 0;
@@ -103,6 +106,11 @@ private:
   bool accepted_any_ = false;  ///< a map was accepted (for first_map_only and updates)
   uint32_t latest_width_ = 0, latest_height_ = 0;
   uint64_t map_stamp_ns_ = 0;  ///< header.stamp of the latest accepted map
+  // For status(): what arrived, and when (context clock).
+  uint64_t maps_accepted_ = 0, maps_rejected_ = 0, updates_accepted_ = 0, updates_rejected_ = 0;
+  uint64_t map_received_ns_ = 0;
+  std::string last_rejection_;    ///< why the latest rejected map was refused
+  bool latest_rejected_ = false;  ///< the newest map that arrived was rejected
 
   // Update thread only.
   bool map_received_ = false;

@@ -2,6 +2,7 @@
 // through tf2 and runs the update loop; publishes ~costmap, ~costmap_updates and ~footprint.
 #pragma once
 
+#include <diagnostic_updater/diagnostic_updater.h>
 #include <ros/ros.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
@@ -59,6 +60,11 @@ private:
   void publish();
   /// costmap_2d's rule: each new subscriber of ~costmap gets the current grid at once.
   void sendCurrentGrid(const ros::SingleSubscriberPublisher& subscriber);
+  /// /diagnostics: one status for the costmap and one per layer (Layer::status() plus what arrived on
+  /// each of its topics). Called from a timer on a spinner thread, under update_mutex_.
+  void setUpDiagnostics(const std::vector<std::string>& layer_names);
+  void costmapStatus(diagnostic_updater::DiagnosticStatusWrapper& stat);
+  void layerStatus(const std::string& name, std::size_t ports_index, diagnostic_updater::DiagnosticStatusWrapper& stat);
 
   ros::NodeHandle nh_;
   ros::NodeHandle private_nh_;
@@ -83,5 +89,13 @@ private:
   double last_x_ = 0, last_y_ = 0;                             ///< the robot position of the last update [m]
   bool cycled_once_ = false;                                   ///< a whole update cycle ran: the grid is worth sending
   std::unique_ptr<costmap_layers::PublishSchedule> schedule_;  ///< guarded by update_mutex_
+  // For the costmap's diagnostics, guarded by update_mutex_.
+  uint64_t cycles_ = 0;           ///< update cycles run
+  double last_cycle_s_ = 0.0;     ///< how long the last cycle took [s]
+  double worst_cycle_s_ = 0.0;    ///< the longest cycle since the last diagnostics [s]
+  ros::WallTime last_cycle_end_;  ///< when the last cycle ended
+  std::string pose_error_;        ///< why the last attempt had no robot pose ("" = it had one)
+  std::unique_ptr<diagnostic_updater::Updater> diagnostics_;
+  ros::WallTimer diagnostics_timer_;
 };
 }  // namespace costmap_layers_ros

@@ -7,6 +7,7 @@
 #include <ros/ros.h>
 #include <tf2_ros/buffer.h>
 
+#include <atomic>
 #include <map>
 #include <memory>
 #include <string>
@@ -32,6 +33,16 @@ public:
              std::string topic_ns = "");
   /// The name a topic is subscribed or advertised under.
   std::string resolveTopic(const std::string& topic) const;
+  /// Per subscribed topic (resolved name): "N message(s), last X s ago" or "nothing yet", counted when a
+  /// message arrives (before tf or validation), for /diagnostics.
+  std::vector<std::pair<std::string, std::string>> receipts() const;
+  /// How many messages arrived on a topic and when (ros::Time, seconds; 0 = never). Any thread.
+  struct Receipts
+  {
+    std::atomic<uint64_t> count{0};
+    std::atomic<double> last{0.0};
+    void note();
+  };
   ~LayerPorts();
   LayerPorts(const LayerPorts&) = delete;
   LayerPorts& operator=(const LayerPorts&) = delete;
@@ -46,6 +57,8 @@ private:
   void subscribeSensor(const std::string& topic, const std::string& sensor_frame,
                        costmap_layers::SensorCallback<Reading> cb);
   void publish(const costmap_layers::OutputEvent& event);
+  /// The receipt counter of a topic (created on first use).
+  std::shared_ptr<Receipts> receiptsFor(const std::string& topic);
 
   ros::NodeHandle public_nh_;
   ros::NodeHandle private_nh_;
@@ -58,5 +71,6 @@ private:
   std::vector<std::shared_ptr<void>> sensor_inputs_;  ///< tf gates with their subscribers
   std::map<std::string, ros::Publisher> publishers_;  ///< by topic
   ros::ServiceServer toggle_;
+  std::vector<std::pair<std::string, std::shared_ptr<Receipts>>> receipts_;  ///< by resolved topic, in order
 };
 }  // namespace costmap_layers_ros
