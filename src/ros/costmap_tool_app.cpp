@@ -29,12 +29,13 @@ namespace
 const char* kUsage =
     "usage: costmap_tool --map MAP.yaml --params PARAMS.yaml [--namespace NS]\n"
     "                    [--mask PLUGIN_NAME=MASK.yaml]... [--features PLUGIN_NAME=FEATURES.yaml]...\n"
+    "                    [--filter-info PLUGIN_NAME=TYPE,BASE,MULTIPLIER]...\n"
     "                    [--pose X,Y,YAW] [--repeat N] [--out-raw FILE] [--out-png FILE]";
 
 struct ToolArgs
 {
   std::string map, params, ns, out_raw, out_png;
-  std::vector<std::pair<std::string, std::string>> masks, features;
+  std::vector<std::pair<std::string, std::string>> masks, features, infos;
   bool has_pose = false;
   double x = 0, y = 0, yaw = 0;
   int repeat = 0;
@@ -72,6 +73,8 @@ ToolArgs parseArgs(const std::vector<std::string>& args)
       a.masks.push_back(splitAssignment(flag, v));
     else if (flag == "--features")
       a.features.push_back(splitAssignment(flag, v));
+    else if (flag == "--filter-info")
+      a.infos.push_back(splitAssignment(flag, v));
     else if (flag == "--out-raw")
       a.out_raw = v;
     else if (flag == "--out-png")
@@ -249,15 +252,54 @@ int run(const ToolArgs& a, std::ostream& out, std::ostream& err)
       if (in.kind == kind) ports.push_back(&in);
     return ports;
   };
-  std::vector<std::pair<const InputPort*, std::shared_ptr<const OccupancyGridData>>> masks;
+  // Filters in Nav2's form (filter_info_topic) take their info from --filter-info; the mask port the
+  // info connects replaces the declared one (kept here, as the node re-subscribes).
+  std::map<std::string, std::map<std::size_t, InputPort>> replaced;
+  std::map<std::string, bool> has_info;
+  for (const auto& [name, spec] : a.infos)
+  {
+    auto layer = layerNamed(name, "--filter-info");
+    const auto ports = portsOf(*layer, InputKind::FilterInfo);
+    if (ports.empty())
+      throw std::runtime_error("--filter-info names plugin '" + name +
+                               "', which reads no filter info (no filter_info_topic)");
+    auto info = std::make_shared<FilterInfoData>();
+    std::istringstream in(spec);
+    int type = -1;
+    char c1 = 0, c2 = 0;
+    if (!(in >> type >> c1 >> info->base >> c2 >> info->multiplier) || c1 != ',' || c2 != ',' || !in.eof() ||
+        type < 0 || type > 255)
+      throw std::runtime_error("--filter-info expects PLUGIN_NAME=TYPE,BASE,MULTIPLIER (got \"" + name + "=" + spec +
+                               "\")");
+    info->type = static_cast<uint8_t>(type);
+    info->filter_mask_topic = "costmap_tool/" + name;
+    layer->setInputListener([&replaced, name = name](std::size_t index, const InputPort& port)
+                            { replaced[name][index] = port; });
+    for (const InputPort* port : ports)
+      port->on_info(info);
+    layer->setInputListener({});
+    has_info[name] = true;
+  }
+  std::vector<std::pair<GridCallback, std::shared_ptr<const OccupancyGridData>>> masks;
   for (const auto& [name, file] : a.masks)
   {
-    const auto ports = portsOf(*layerNamed(name, "--mask"), InputKind::Mask);
-    if (ports.empty()) throw std::runtime_error("--mask names plugin '" + name + "', which takes no mask");
+    auto layer = layerNamed(name, "--mask");
+    if (!portsOf(*layer, InputKind::FilterInfo).empty() && !has_info[name])
+      throw std::runtime_error("--mask names plugin '" + name +
+                               "', which reads its mask's meaning from a filter info " +
+                               "(filter_info_topic): give --filter-info " + name + "=TYPE,BASE,MULTIPLIER too");
+    std::vector<GridCallback> handlers;
+    for (std::size_t i = 0; i < layer->inputs().size(); ++i)
+    {
+      if (layer->inputs()[i].kind != InputKind::Mask) continue;
+      const auto r = replaced[name].find(i);
+      handlers.push_back(r != replaced[name].end() ? r->second.on_grid : layer->inputs()[i].on_grid);
+    }
+    if (handlers.empty()) throw std::runtime_error("--mask names plugin '" + name + "', which takes no mask");
     auto mask = std::make_shared<OccupancyGridData>(io::loadMapFile(file));
     mask->frame_id = config.global_frame;
-    for (const InputPort* port : ports)
-      masks.emplace_back(port, mask);
+    for (const GridCallback& handler : handlers)
+      masks.emplace_back(handler, mask);
   }
   for (const auto& [name, file] : a.features)
   {
@@ -270,8 +312,8 @@ int run(const ToolArgs& a, std::ostream& out, std::ostream& err)
   }
   auto deliverMasks = [&]
   {
-    for (const auto& [port, mask] : masks)
-      port->on_grid(mask);
+    for (const auto& [handler, mask] : masks)
+      handler(mask);
   };
   deliverMasks();
   auto deliverMaps = [&]
@@ -287,10 +329,11 @@ int run(const ToolArgs& a, std::ostream& out, std::ostream& err)
   {
     auto layer = costmap->findLayer(name);
     if (layer->outputs().empty()) continue;
-    layer->setOutputListener([&max_speeds, name = name](const OutputEvent& e)
-                             {
-                               if (e.kind == OutputKind::MaxSpeed) max_speeds[name] = e.value;
-                             });
+    layer->setOutputListener(
+        [&max_speeds, name = name](const OutputEvent& e)
+        {
+          if (e.kind == OutputKind::MaxSpeed) max_speeds[name] = e.value;
+        });
   }
 
   auto pose = [&](double& x, double& y, double& yaw)
