@@ -5,6 +5,7 @@
 
 #include <map>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -74,6 +75,7 @@ public:
     layer.setInputListener(
         [this](std::size_t index, const InputPort& port)
         {
+          std::lock_guard<std::mutex> lock(subs_mutex);
           for (auto& s : grid_subs)
             if (s.port == index)
             {
@@ -133,6 +135,7 @@ public:
   uint64_t nowNs() const override { return now_ns; }
   void report(Severity severity, const std::string& key, const std::string& message) override
   {
+    std::lock_guard<std::mutex> lock(reports_mutex);  // layers report from the hosts' threads too
     reports.push_back({severity, key, message});
   }
 
@@ -151,9 +154,11 @@ public:
       s.cb(shared);
   }
   /// Delivers a grid to the grid subscriptions of that topic only (the mask a filter info names).
+  /// Safe against a concurrent port replacement (as the node's subscriptions are).
   int publishGridOn(const std::string& topic, const OccupancyGridData& grid)
   {
     auto shared = std::make_shared<const OccupancyGridData>(grid);
+    std::lock_guard<std::mutex> lock(subs_mutex);
     int n = 0;
     for (auto& s : grid_subs)
       if (s.topic == topic && !topic.empty()) s.cb(shared), ++n;
@@ -230,6 +235,8 @@ public:
 
   ParamValue params_;
   std::string global_frame_;
+  std::mutex reports_mutex;
+  std::mutex subs_mutex;  ///< guards grid_subs' topics and handlers against replacements
   std::vector<GridSub> grid_subs;
   std::vector<InfoSub> info_subs;
   int replaced_inputs = 0;

@@ -5,11 +5,13 @@
 //   percent (type 1): L outside [0, 100] -> no limit; m/s (type 2): L < 0 -> no limit.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 #include "costmap_layers/core/cost_values.hpp"
 #include "costmap_layers/core/filter_info.hpp"
@@ -407,4 +409,44 @@ TEST(FilterInfoSpeed, RejectsKeepoutInfo)
   r.ctx->publishFilterInfo(info(0, "/keepout_filter_mask"));
   EXPECT_EQ(r.ctx->countKey("filter_info/type"), 1);
   EXPECT_EQ(r.maskSubscription(), "");
+}
+
+// ---- threads: infos and masks arrive on the host's threads while the update loop runs
+
+TEST(FilterInfoThreads, InfosAndMasksFromOtherThreads)
+{
+  Rig<SpeedFilter> r(speedParams(1.0), "speed_filter");
+  // Two infos alternate between two mask topics; each topic's mask holds one value everywhere, read by
+  // its own info as 40 % (a: 10 + 1 * 30) or 70 % (b: 20 + 0.5 * 100). A mask read with the other
+  // topic's info would give 35 % (b on 30) or 110 %, out of range (a on 100): any mix-up shows.
+  const FilterInfoData info_a = info(1, "/mask_a", 10.0, 1.0);
+  const FilterInfoData info_b = info(1, "/mask_b", 20.0, 0.5);
+  const OccupancyGridData mask_a = row({30, 30}), mask_b = row({100, 100});
+  std::atomic<bool> stop{false};
+  std::thread infos(
+      [&]
+      {
+        for (int k = 0; !stop; ++k)
+          r.ctx->publishFilterInfo(k % 2 ? info_a : info_b);
+      });
+  std::thread masks(
+      [&]
+      {
+        while (!stop)
+        {
+          r.ctx->publishGridOn("/mask_a", mask_a);
+          r.ctx->publishGridOn("/mask_b", mask_b);
+        }
+      });
+  for (int k = 0; k < 3000; ++k)
+  {
+    r.cycle(0.5, 0.5);
+    if (r.ctx->published_limits.empty()) continue;
+    const double v = r.ctx->published_limits.back().second;
+    EXPECT_TRUE(v == 0.0 || v == 40.0 || v == 70.0) << v;
+  }
+  stop = true;
+  infos.join();
+  masks.join();
+  EXPECT_EQ(r.ctx->countKey("mask/value"), 0);
 }
