@@ -296,14 +296,20 @@ std::string CostmapFilter::setMask(std::shared_ptr<const OccupancyGridData> mask
 
 std::string CostmapFilter::setMaskOf(uint64_t generation, std::shared_ptr<const OccupancyGridData> mask)
 {
+  static const char* const kStale = "the mask came from a topic no longer in force";
+  {
+    // From a topic the filter info has moved away from (delivered while the host re-subscribed):
+    // neither used nor judged.
+    std::lock_guard<std::mutex> lock(mask_mutex_);
+    if (generation != mask_generation_) return kStale;
+  }
   InputError error = mask ? validateGrid(*mask) : InputError::of("data", "no mask");
   std::string topic;
   if (error.ok())
   {
     const uint64_t now = context_ ? context_->nowNs() : UINT64_MAX;
     std::lock_guard<std::mutex> lock(mask_mutex_);
-    // From a topic the filter info has moved away from: delivered while the host re-subscribed.
-    if (generation != mask_generation_) return "the mask came from a topic no longer in force";
+    if (generation != mask_generation_) return kStale;  // the info moved on while this mask was checked
     if (!mask_ || !isOutOfOrder(mask->stamp_ns, mask_->stamp_ns, now))
     {
       if (!mask_changed_) pending_old_ = mask_;

@@ -38,6 +38,10 @@ InputError validateFilterInfo(const FilterInfoData& info)
     return InputError::of("type", err.str());
   }
   if (info.filter_mask_topic.empty()) return InputError::of("filter_mask_topic", "filter_mask_topic is empty");
+  constexpr std::size_t kMaxTopicLength = 1024;  // it is printed in reports
+  if (info.filter_mask_topic.size() > kMaxTopicLength)
+    return InputError::of("filter_mask_topic", "filter_mask_topic is " + std::to_string(info.filter_mask_topic.size()) +
+                                                   " characters long, more than " + std::to_string(kMaxTopicLength));
   for (const char c : info.filter_mask_topic)
     if (std::isspace(static_cast<unsigned char>(c)) || std::iscntrl(static_cast<unsigned char>(c)))
     {

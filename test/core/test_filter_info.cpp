@@ -99,6 +99,9 @@ TEST(FilterInfoRules, TypesAndFields)
   EXPECT_EQ(e.field, "filter_mask_topic");
   e = validateFilterInfo(info(0, "/a mask"));
   EXPECT_EQ(e.field, "filter_mask_topic");
+  e = validateFilterInfo(info(0, "/" + std::string(2000, 'm')));
+  EXPECT_EQ(e.field, "filter_mask_topic");
+  EXPECT_LT(e.message.size(), 200u);  // a long topic is not repeated in the report
 
   e = validateFilterInfo(info(1, "/m", std::nan(""), 1.0));
   EXPECT_EQ(e.field, "base");

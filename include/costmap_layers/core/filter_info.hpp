@@ -37,8 +37,9 @@ const char* filterInfoTypeName(int type);
 /// Whether `type` is one of the four types above.
 bool isKnownFilterInfoType(int type);
 
-/// The checks every filter makes of an info, whatever its type: filter_mask_topic not empty and a
-/// valid-looking topic name (no whitespace), base and multiplier finite, type known.
+/// The checks every filter makes of an info, whatever its type: filter_mask_topic not empty, at most
+/// 1024 characters and a valid-looking topic name (no blanks or control characters), base and
+/// multiplier finite, type known.
 /// @return ok() when usable, else the field at fault ("type", "filter_mask_topic", "base",
 ///         "multiplier") and one line naming it and its value.
 InputError validateFilterInfo(const FilterInfoData& info);
