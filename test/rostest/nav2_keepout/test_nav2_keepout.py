@@ -102,6 +102,16 @@ class Nav2KeepoutTest(unittest.TestCase):
             "a new info naming another mask topic did not move the filter to it")
         # The tutorial's filter is untouched.
         self.assertEqual(value_at(self.grid, 1.8, 0.5), 100)
+        # Each move is logged by the node, with the layer's key.
+        deadline = rospy.Time.now() + rospy.Duration(10.0)
+
+        def moved():
+            return [m.msg for m in self.logs if m.msg.endswith("[late_keepout/input]") and "/late_mask_b" in m.msg]
+
+        with self.log_cond:
+            while not moved() and rospy.Time.now() < deadline:
+                self.log_cond.wait(0.5)
+            self.assertTrue(moved(), "no [late_keepout/input] line naming /late_mask_b on /rosout")
 
     def run_info_server(self, name, *args):
         exe = roslib.packages.find_node("costmap_layers", "costmap_filter_info_server")
