@@ -530,13 +530,6 @@ const std::vector<IgnoredKey>& ignoredKeys()
       {"StaticLayer", "map_subscribe_transient_local", "Nav2's QoS switch; ROS 1 map topics are latched"},
       {"StaticLayer", "transform_tolerance", "Nav2's; the map is placed with the costmap's transform_tolerance"},
       {"RangeSensorLayer", "ns", "the ROS 1 plugin's topic prefix; write the full topic names in `topics`"},
-      {"KeepoutFilter", "filter_info_topic",
-       "Nav2 learns the mask topic from a CostmapFilterInfo server; here set mask_topic in the filter's namespace"},
-      {"SpeedFilter", "filter_info_topic",
-       "Nav2 learns the mask topic, base and multiplier from a CostmapFilterInfo server; here set mask_topic, base "
-       "and multiplier in the filter's namespace"},
-      {"SpeedFilter", "speed_limit_topic",
-       "Nav2 publishes nav2_msgs/SpeedLimit there; here the limit is a costmap_layers/MaxSpeed on max_speed_topic"},
       {"KeepoutFilter", "transform_tolerance", "Nav2's; the mask is placed with the costmap's transform_tolerance"},
       {"SpeedFilter", "transform_tolerance", "Nav2's; the mask is placed with the costmap's transform_tolerance"},
   };

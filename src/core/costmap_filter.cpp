@@ -186,13 +186,87 @@ void MaskMapping::build(const Costmap2D& master, const CellWindow& window, const
 void CostmapFilter::onInitialize()
 {
   ParamReader params(context_->params(), name_);
-  mask_topic_ = params.getString("mask_topic", defaultMaskTopic());
+  filter_info_topic_ = params.getString("filter_info_topic", "");
+  if (usesFilterInfo() && params.has("mask_topic"))
+    params.fail("filter_info_topic",
+                "is set together with 'mask_topic' (" + params.raw("mask_topic")->toString() +
+                    "): set one of them: filter_info_topic (Nav2's form) takes the mask topic from the filter info "
+                    "(costmap_filter_info_server), mask_topic names the mask directly");
+  if (!usesFilterInfo()) mask_topic_ = params.getString("mask_topic", defaultMaskTopic());
   // The filter always takes part in updates, so that switching it off can clear its own effect.
   filter_enabled_ = enabled_;
   enabled_ = true;
   onInitializeFilter(params);
+  mask_port_ = inputs().size();
   addInput(InputPort::grid(InputKind::Mask, mask_topic_,
-                           [this](const std::shared_ptr<const OccupancyGridData>& mask) { setMask(mask); }));
+                           [this](const std::shared_ptr<const OccupancyGridData>& mask) { setMaskOf(0, mask); }));
+  if (usesFilterInfo())
+    addInput(InputPort::filterInfo(filter_info_topic_,
+                                   [this](const std::shared_ptr<const FilterInfoData>& info) { setFilterInfo(info); }));
+}
+
+std::string CostmapFilter::maskTopic() const
+{
+  std::lock_guard<std::mutex> lock(mask_mutex_);
+  return mask_topic_;
+}
+
+std::shared_ptr<const FilterInfoData> CostmapFilter::getFilterInfo() const
+{
+  std::lock_guard<std::mutex> lock(mask_mutex_);
+  return info_;
+}
+
+std::string CostmapFilter::setFilterInfo(std::shared_ptr<const FilterInfoData> info)
+{
+  std::lock_guard<std::mutex> serial(info_mutex_);
+  const InputError error = info ? checkFilterInfoFor(filterFamily(), *info) : InputError::of("data", "no filter info");
+  if (!error.ok())
+  {
+    const bool had = getFilterInfo() != nullptr;
+    context_->report(Severity::Error, "filter_info/" + error.field,
+                     name_ + ": filter info on " + filter_info_topic_ + " ignored" +
+                         (had ? ", the previous one stays in force" : "") + ": " + error.message);
+    return error.message;
+  }
+  std::string old_topic;
+  bool moved = false;
+  uint64_t generation = 0;
+  {
+    std::lock_guard<std::mutex> lock(mask_mutex_);
+    old_topic = mask_topic_;
+    info_ = info;
+    if (!mask_changed_) pending_old_ = mask_;
+    mask_changed_ = true;  // the mask's meaning may have changed: redraw its extent
+    if (info->filter_mask_topic != mask_topic_)
+    {
+      moved = true;
+      generation = ++mask_generation_;
+      mask_ = nullptr;  // from the old topic: not what this info describes
+      mask_topic_ = info->filter_mask_topic;
+    }
+  }
+  std::ostringstream text;
+  text << name_ << ": filter info from " << filter_info_topic_ << ": type " << static_cast<int>(info->type) << " ("
+       << filterInfoTypeName(info->type) << "), mask on " << info->filter_mask_topic << ", value = " << info->base
+       << " + " << info->multiplier << " * mask value";
+  if (moved && !old_topic.empty()) text << "; the mask topic was " << old_topic << ": its mask is dropped";
+  context_->report(Severity::Info, "filter_info", text.str());
+  if (filterFamily() == FilterFamily::Keepout &&
+      (info->base != filter_info::kBaseDefault || info->multiplier != filter_info::kMultiplierDefault))
+  {
+    std::ostringstream warn;
+    warn << name_ << ": filter info on " << filter_info_topic_ << " has base " << info->base << " and multiplier "
+         << info->multiplier << ": this filter reads mask values as they are and ignores both (Nav2's keepout filter "
+         << "expects 0 and 1)";
+    context_->report(Severity::Warn, "filter_info/base", warn.str());
+  }
+  onFilterInfo(*info);
+  if (moved)
+    replaceInput(mask_port_, InputPort::grid(InputKind::Mask, info->filter_mask_topic,
+                                             [this, generation](const std::shared_ptr<const OccupancyGridData>& mask)
+                                             { setMaskOf(generation, mask); }));
+  return {};
 }
 
 void CostmapFilter::setEnabled(bool on)
@@ -212,11 +286,30 @@ void CostmapFilter::setFilterEnabled(bool on)
 
 std::string CostmapFilter::setMask(std::shared_ptr<const OccupancyGridData> mask)
 {
+  uint64_t generation;
+  {
+    std::lock_guard<std::mutex> lock(mask_mutex_);
+    generation = mask_generation_;
+  }
+  return setMaskOf(generation, std::move(mask));
+}
+
+std::string CostmapFilter::setMaskOf(uint64_t generation, std::shared_ptr<const OccupancyGridData> mask)
+{
+  static const char* const kStale = "the mask came from a topic no longer in force";
+  {
+    // From a topic the filter info has moved away from (delivered while the host re-subscribed):
+    // neither used nor judged.
+    std::lock_guard<std::mutex> lock(mask_mutex_);
+    if (generation != mask_generation_) return kStale;
+  }
   InputError error = mask ? validateGrid(*mask) : InputError::of("data", "no mask");
+  std::string topic;
   if (error.ok())
   {
     const uint64_t now = context_ ? context_->nowNs() : UINT64_MAX;
     std::lock_guard<std::mutex> lock(mask_mutex_);
+    if (generation != mask_generation_) return kStale;  // the info moved on while this mask was checked
     if (!mask_ || !isOutOfOrder(mask->stamp_ns, mask_->stamp_ns, now))
     {
       if (!mask_changed_) pending_old_ = mask_;
@@ -228,7 +321,10 @@ std::string CostmapFilter::setMask(std::shared_ptr<const OccupancyGridData> mask
       return {};
     }
     error = InputError::of("header.stamp", outOfOrderError(mask->stamp_ns, mask_->stamp_ns, "mask"));
+    topic = mask_topic_;
   }
+  else
+    topic = maskTopic();
   {
     std::lock_guard<std::mutex> lock(mask_mutex_);
     ++masks_rejected_;
@@ -237,7 +333,7 @@ std::string CostmapFilter::setMask(std::shared_ptr<const OccupancyGridData> mask
   }
   if (context_)
     context_->report(Severity::Error, "mask/" + error.field,
-                     name_ + ": mask on " + mask_topic_ + " rejected, keeping the previous one: " + error.message);
+                     name_ + ": mask on " + topic + " rejected, keeping the previous one: " + error.message);
   return error.message;
 }
 
@@ -284,12 +380,16 @@ void CostmapFilter::updateBounds(double robot_x, double robot_y, double robot_ya
   robot_yaw_ = robot_yaw;
   std::shared_ptr<const OccupancyGridData> old;
   bool changed = false;
+  std::string mask_topic;
   {
     std::lock_guard<std::mutex> lock(mask_mutex_);
-    active_mask_ = mask_;
+    active_info_ = info_;
+    // In the filter_info_topic form a mask means nothing until an info says how to read it.
+    active_mask_ = usesFilterInfo() && !info_ ? nullptr : mask_;
     changed = mask_changed_;
     mask_changed_ = false;
     old = std::move(pending_old_);
+    mask_topic = mask_topic_;
   }
   have_transform_ = false;
   if (active_mask_)
@@ -314,8 +414,17 @@ void CostmapFilter::updateBounds(double robot_x, double robot_y, double robot_ya
     if (have_transform_ && filter_enabled_) processPose(*active_mask_, to_mask_, robot_x, robot_y, robot_yaw);
   }
   if (!active_mask_ && filter_enabled_)
-    context_->report(Severity::Warn, "waiting",
-                     name_ + ": no mask yet on " + mask_topic_ + ": the filter does nothing until one arrives");
+  {
+    if (usesFilterInfo() && !active_info_)
+      context_->report(Severity::Warn, "waiting",
+                       name_ + ": waiting for filter info on " + filter_info_topic_ +
+                           " (from costmap_filter_info_server): the filter does nothing until one arrives");
+    else
+      context_->report(Severity::Warn, "waiting",
+                       name_ + ": no mask yet on " + mask_topic +
+                           (usesFilterInfo() ? " (named by the filter info on " + filter_info_topic_ + ")" : "") +
+                           ": the filter does nothing until one arrives");
+  }
   if (!active_mask_ || !filter_enabled_) processInactive();
   if (!changed) return;
   for (const auto* m : {&active_mask_, &old})

@@ -1,6 +1,7 @@
 #include "costmap_layers/core/layer.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "costmap_layers/core/layered_costmap.hpp"
 #include "costmap_layers/core/param_reader.hpp"
@@ -42,10 +43,42 @@ void Layer::setOutputListener(OutputListener listener)
       listener_(e);
 }
 
+void Layer::setInputListener(InputListener listener)
+{
+  std::lock_guard<std::mutex> lock(input_mutex_);
+  input_listener_ = std::move(listener);
+  if (input_listener_)
+    for (const auto& [index, port] : replaced_)
+      input_listener_(index, port);
+}
+
+void Layer::replaceInput(std::size_t index, InputPort port)
+{
+  if (index >= inputs_.size() || port.kind != inputs_[index].kind)
+    throw std::logic_error(name_ + ": replaceInput() of an input that was not declared with that kind");
+  std::lock_guard<std::mutex> lock(input_mutex_);
+  auto it = std::find_if(replaced_.begin(), replaced_.end(), [&](const auto& r) { return r.first == index; });
+  if (it == replaced_.end())
+    it = replaced_.insert(replaced_.end(), {index, std::move(port)});
+  else
+    it->second = std::move(port);
+  if (input_listener_) input_listener_(index, it->second);
+}
+
 void Layer::emit(OutputKind kind, const std::string& topic, double value)
 {
+  OutputEvent event;
+  event.kind = kind;
+  event.topic = topic;
+  event.value = value;
+  emit(event);
+}
+
+void Layer::emit(const OutputEvent& event)
+{
   std::lock_guard<std::mutex> lock(output_mutex_);
-  const OutputEvent event{kind, topic, value};
+  const OutputKind kind = event.kind;
+  const std::string& topic = event.topic;
   auto it = std::find_if(latest_.begin(), latest_.end(),
                          [&](const OutputEvent& e) { return e.kind == kind && e.topic == topic; });
   if (it == latest_.end())

@@ -31,6 +31,15 @@ InputPort InputPort::speedLimits(std::string topic, SpeedLimitsCallback cb)
   return p;
 }
 
+InputPort InputPort::filterInfo(std::string topic, FilterInfoCallback cb)
+{
+  InputPort p;
+  p.kind = InputKind::FilterInfo;
+  p.topic = std::move(topic);
+  p.on_info = std::move(cb);
+  return p;
+}
+
 InputPort InputPort::laserScan(std::string topic, std::string sensor_frame, SensorCallback<LaserScanData> cb)
 {
   InputPort p;

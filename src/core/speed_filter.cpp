@@ -21,9 +21,25 @@ std::string num(double v)
 SpeedFilterConfig parseSpeedFilterConfig(const ParamReader& params)
 {
   SpeedFilterConfig c;
-  c.features_topic = params.getString("features_topic", c.features_topic);
+  // Read without recording (the base reads it): it cannot change at run time.
+  const ParamValue* info_topic = params.raw("filter_info_topic");
+  c.filter_info = info_topic && info_topic->type() == ParamValue::Type::String && !info_topic->asString().empty();
+  if (c.filter_info)
+    for (const char* held : {"mask_mode", "base", "multiplier", "speed_limit_in_percent", "features_topic"})
+      if (params.has(held))
+        params.fail(held, std::string("is set together with 'filter_info_topic' (") + info_topic->toString() +
+                              "): the filter info (costmap_filter_info_server) gives the unit (type 1 percent, 2 "
+                              "m/s), base and multiplier, and the mask holds the limits; remove '" +
+                              held + "', or configure the filter with mask_topic instead");
   c.max_speed_topic = params.getString("max_speed_topic", c.max_speed_topic);
+  c.speed_limit_topic = params.getString("speed_limit_topic", c.speed_limit_topic);
   c.default_max_speed = params.getDouble("default_max_speed", c.default_max_speed, 0.0);
+  if (c.filter_info)
+  {
+    c.mask_mode = SpeedMaskMode::Nav2;
+    return c;
+  }
+  c.features_topic = params.getString("features_topic", c.features_topic);
   c.speed_limit_in_percent = params.getBool("speed_limit_in_percent", c.speed_limit_in_percent);
   const std::string mode = params.getChoice("mask_mode", "area_id", {"area_id", "nav2"});
   c.mask_mode = mode == "nav2" ? SpeedMaskMode::Nav2 : SpeedMaskMode::AreaId;
@@ -35,6 +51,20 @@ SpeedFilterConfig parseSpeedFilterConfig(const ParamReader& params)
                 "default_max_speed, so set default_max_speed to the robot's top speed [m/s] (> 0) or set "
                 "speed_limit_in_percent to false");
   return c;
+}
+
+Nav2SpeedLimit nav2SpeedLimit(int v, double base, double multiplier, bool percent)
+{
+  Nav2SpeedLimit r;
+  if (v == 0) return r;  // a free cell: no limit
+  r.computed = base + multiplier * v;
+  const bool in_range =
+      percent ? (r.computed >= 0.0 && r.computed <= 100.0) : (std::isfinite(r.computed) && r.computed >= 0.0);
+  if (in_range)
+    r.speed_limit = r.computed;
+  else
+    r.out_of_range = true;  // Nav2: "setting it to no-limit value"
+  return r;
 }
 
 SpeedLimitTable buildSpeedLimitTable(const SpeedLimitsData& limits, const SpeedFilterConfig& config,
@@ -84,7 +114,8 @@ void SpeedFilter::onInitializeFilter(const ParamReader& params)
 {
   config_ = parseSpeedFilterConfig(params);
   addOutput(OutputPort{OutputKind::MaxSpeed, config_.max_speed_topic});
-  if (config_.mask_mode == SpeedMaskMode::AreaId)
+  if (!config_.speed_limit_topic.empty()) addOutput(OutputPort{OutputKind::SpeedLimit, config_.speed_limit_topic});
+  if (!config_.filter_info && config_.mask_mode == SpeedMaskMode::AreaId)
     addInput(InputPort::speedLimits(config_.features_topic,
                                     [this](const std::shared_ptr<const SpeedLimitsData>& m)
                                     {
@@ -148,7 +179,7 @@ namespace
 {
 bool runTimeTunable(const std::string& name)
 {
-  return name != "features_topic" && name != "max_speed_topic" && name != "mask_mode";
+  return name != "features_topic" && name != "max_speed_topic" && name != "speed_limit_topic" && name != "mask_mode";
 }
 }  // namespace
 
@@ -157,8 +188,11 @@ void SpeedFilter::onReconfigure(const ParamValue& params)
   const ParamReader reader(params, name_);
   const SpeedFilterConfig next = parseSpeedFilterConfig(reader);  // validates first
   if (next.features_topic != config_.features_topic || next.max_speed_topic != config_.max_speed_topic ||
-      next.mask_mode != config_.mask_mode)
-    throw std::invalid_argument(name_ + ": features_topic, max_speed_topic and mask_mode cannot change at run time");
+      next.speed_limit_topic != config_.speed_limit_topic || next.mask_mode != config_.mask_mode ||
+      next.filter_info != config_.filter_info)
+    throw std::invalid_argument(name_ +
+                                ": features_topic, max_speed_topic, speed_limit_topic, mask_mode and "
+                                "filter_info_topic cannot change at run time");
   std::shared_ptr<const SpeedLimitsData> features;
   {
     std::lock_guard<std::mutex> lock(limits_mutex_);
@@ -185,19 +219,97 @@ void SpeedFilter::warnValueOnce(int8_t v, const std::string& message)
   context_->report(Severity::Warn, "mask/value", name_ + ": " + message);
 }
 
-double SpeedFilter::limitForValue(int8_t v, const SpeedLimitTable* table)
+bool SpeedFilter::nav2Rule() const
 {
-  const double none = config_.default_max_speed;
+  return config_.filter_info || config_.mask_mode == SpeedMaskMode::Nav2;
+}
+
+bool SpeedFilter::percentUnit() const
+{
+  if (config_.filter_info) return activeInfo() && activeInfo()->type == filter_info::kSpeedPercent;
+  return config_.speed_limit_in_percent;
+}
+
+SpeedFilter::Publication SpeedFilter::noLimit() const
+{
+  Publication p;
+  p.max_speed = config_.default_max_speed;
+  if (nav2Rule())
+  {
+    p.percentage = percentUnit();
+    p.speed_limit = 0.0;
+  }
+  else
+    p.speed_limit = config_.default_max_speed;  // area_id: the same m/s value as MaxSpeed
+  return p;
+}
+
+SpeedFilter::Publication SpeedFilter::fromNav2Limit(double speed_limit) const
+{
+  Publication p;
+  p.percentage = percentUnit();
+  p.speed_limit = speed_limit;
+  if (speed_limit == 0.0)
+    p.max_speed = config_.default_max_speed;
+  else if (!p.percentage)
+    p.max_speed = speed_limit;
+  else if (config_.default_max_speed > 0.0)
+    p.max_speed = config_.default_max_speed * speed_limit / 100.0;
+  return p;  // a percentage without default_max_speed has no m/s value
+}
+
+std::string SpeedFilter::describe(const Publication& p) const
+{
+  std::string text = "publishing ";
+  text += p.max_speed ? "max_speed " + num(*p.max_speed) + " m/s" + (*p.max_speed == 0.0 ? " (no limit)" : "") +
+                            " on " + config_.max_speed_topic
+                      : "nothing on " + config_.max_speed_topic + " (a percentage, and default_max_speed is 0)";
+  if (!config_.speed_limit_topic.empty())
+    text += " and speed_limit " + num(p.speed_limit) + (p.percentage ? " %" : " m/s") +
+            (p.speed_limit == 0.0 ? " (no limit)" : "") + " on " + config_.speed_limit_topic;
+  return text;
+}
+
+void SpeedFilter::onFilterInfo(const FilterInfoData& info)
+{
+  SpeedFilterConfig config;  // on the info's thread: read under the lock onReconfigure() writes under
+  {
+    std::lock_guard<std::mutex> lock(limits_mutex_);
+    config = config_;
+  }
+  if (info.type != filter_info::kSpeedPercent || config.default_max_speed > 0.0) return;
+  context_->report(config.speed_limit_topic.empty() ? Severity::Error : Severity::Warn, "default_max_speed",
+                   name_ + ": the filter info on " + filterInfoTopic() +
+                       " gives limits in percent (type 1), but default_max_speed is 0: a percentage cannot be "
+                       "published in m/s on " +
+                       config.max_speed_topic + ", which gets only \"no limit\"" +
+                       (config.speed_limit_topic.empty()
+                            ? "; set default_max_speed to the robot's top speed [m/s], or set speed_limit_topic "
+                              "to publish the percentage"
+                            : "; the percentage is published on " + config.speed_limit_topic +
+                                  " (set default_max_speed to the robot's top speed [m/s] to have it in m/s too)"));
+}
+
+SpeedFilter::Publication SpeedFilter::limitForValue(int8_t v, const SpeedLimitTable* table)
+{
+  const Publication none = noLimit();
   if (v == 0) return none;
   if (v < 0 || v > 100)
   {
     warnValueOnce(v, "the mask holds the value " + std::to_string(v) +
-                         " (outside -1..100, invalid in an OccupancyGrid); publishing default_max_speed there");
+                         " (outside -1..100, invalid in an OccupancyGrid); " + describe(none) + " there");
     return none;
   }
-  if (config_.mask_mode == SpeedMaskMode::AreaId)
+  if (!nav2Rule())
   {
-    if (table && table->limit_mps[static_cast<std::size_t>(v)]) return *table->limit_mps[static_cast<std::size_t>(v)];
+    Publication p;
+    p.max_speed = config_.default_max_speed;
+    p.speed_limit = config_.default_max_speed;
+    if (table && table->limit_mps[static_cast<std::size_t>(v)])
+    {
+      p.max_speed = p.speed_limit = *table->limit_mps[static_cast<std::size_t>(v)];
+      return p;
+    }
     if (!warned_ids_.test(static_cast<std::size_t>(v)))
     {
       warned_ids_.set(static_cast<std::size_t>(v));
@@ -206,24 +318,23 @@ double SpeedFilter::limitForValue(int8_t v, const SpeedLimitTable* table)
                            " of the mask, which has no speed "
                            "limit" +
                            (table ? " in the last message on " : " yet (nothing received on ") +
-                           config_.features_topic + (table ? "" : ")") +
-                           "; treating it as no area (default_max_speed " + num(none) + " m/s)");
+                           config_.features_topic + (table ? "" : ")") + "; treating it as no area: " + describe(p));
     }
-    return none;
+    return p;
   }
-  // Nav2 speed mask: the value encodes the limit.
-  const double limit = config_.base + config_.multiplier * v;
-  if (config_.speed_limit_in_percent)
-  {
-    if (limit > 0.0 && limit <= 100.0) return config_.default_max_speed * limit / 100.0;
-    warnValueOnce(v, "mask value " + std::to_string(v) + " gives base + multiplier * v = " + num(limit) +
-                         " %, outside (0, 100]; publishing default_max_speed (no limit) there");
-    return none;
-  }
-  if (std::isfinite(limit) && limit > 0.0) return limit;
-  warnValueOnce(v, "mask value " + std::to_string(v) + " gives base + multiplier * v = " + num(limit) +
-                       " m/s, not > 0; publishing default_max_speed (no limit) there");
-  return none;
+  // Nav2's speed mask: the value encodes the limit.
+  const bool percent = percentUnit();
+  const FilterInfoData* info = activeInfo().get();
+  const double base = info ? info->base : config_.base;
+  const double multiplier = info ? info->multiplier : config_.multiplier;
+  const Nav2SpeedLimit limit = nav2SpeedLimit(v, base, multiplier, percent);
+  const Publication p = fromNav2Limit(limit.speed_limit);
+  if (limit.out_of_range)
+    warnValueOnce(v, "mask value " + std::to_string(v) + " gives base + multiplier * v = " + num(base) + " + " +
+                         num(multiplier) + " * " + std::to_string(v) + " = " + num(limit.computed) +
+                         (percent ? " %, outside [0, 100]" : " m/s, below 0") + " (Nav2's rule: no limit); " +
+                         describe(p) + " there");
+  return p;
 }
 
 void SpeedFilter::processPose(const OccupancyGridData& mask, const Transform2D& to_mask, double robot_x, double robot_y,
@@ -239,19 +350,37 @@ void SpeedFilter::processPose(const OccupancyGridData& mask, const Transform2D& 
     active_limits_ = std::move(table);
     warned_ids_.reset();  // a new message: its missing ids are a new problem
   }
+  if (activeInfo() != warned_for_info_)
+  {
+    warned_for_info_ = activeInfo();
+    warned_values_.reset();  // a new info: its out-of-range values are a new problem
+  }
   const std::optional<int8_t> v = maskValueAt(mask, to_mask, robot_x, robot_y);
-  double speed = config_.default_max_speed;
   if (v && *v == -1)
-    speed = last_published_ ? *last_published_ : config_.default_max_speed;
-  else if (v)
-    speed = limitForValue(*v, active_limits_.get());
-  publishIfChanged(speed);
+  {
+    // Unknown: keep what was published (no limit when nothing was).
+    if (!last_published_ && !last_speed_limit_) publishIfChanged(noLimit());
+    return;
+  }
+  publishIfChanged(v ? limitForValue(*v, active_limits_.get()) : noLimit());
 }
 
-void SpeedFilter::publishIfChanged(double speed)
+void SpeedFilter::publishIfChanged(const Publication& p)
 {
-  if (last_published_ && *last_published_ == speed) return;
-  last_published_ = speed;
-  emit(OutputKind::MaxSpeed, config_.max_speed_topic, speed);
+  if (p.max_speed && !(last_published_ && *last_published_ == *p.max_speed))
+  {
+    last_published_ = *p.max_speed;
+    emit(OutputKind::MaxSpeed, config_.max_speed_topic, *p.max_speed);
+  }
+  if (config_.speed_limit_topic.empty()) return;
+  const std::pair<bool, double> limit{p.percentage, p.speed_limit};
+  if (last_speed_limit_ && *last_speed_limit_ == limit) return;
+  last_speed_limit_ = limit;
+  OutputEvent e;
+  e.kind = OutputKind::SpeedLimit;
+  e.topic = config_.speed_limit_topic;
+  e.value = p.speed_limit;
+  e.percentage = p.percentage;
+  emit(e);
 }
 }  // namespace costmap_layers

@@ -76,6 +76,18 @@ costmap_layers::SpeedLimitsData fromMsg(const costmap_layers::SpeedLimits& msg)
   return d;
 }
 
+costmap_layers::FilterInfoData fromMsg(const costmap_layers::CostmapFilterInfo& msg)
+{
+  costmap_layers::FilterInfoData d;
+  d.frame_id = msg.header.frame_id;
+  d.stamp_ns = msg.header.stamp.toNSec();
+  d.type = msg.type;
+  d.filter_mask_topic = msg.filter_mask_topic;
+  d.base = msg.base;
+  d.multiplier = msg.multiplier;
+  return d;
+}
+
 costmap_layers::OccupancyGridUpdateData fromMsg(const map_msgs::OccupancyGridUpdate& msg)
 {
   costmap_layers::OccupancyGridUpdateData u;

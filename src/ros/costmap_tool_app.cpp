@@ -36,12 +36,12 @@ const char* kDescription =
     "and prints one JSON line: width, height, resolution, origin_x, origin_y, update_ms_median,\n"
     "update_ms_min, repeats, max_speed. On a rolling_window costmap the result is the window of the\n"
     "configured width/height centred on --pose, as costmap_node publishes it. Each option may be given\n"
-    "once, except --mask and --features (once per plugin name).";
+    "once, except --mask, --features and --filter-info (once per plugin name).";
 
 struct ToolArgs
 {
   std::string map, params, ns, out_raw, out_png;
-  std::vector<std::pair<std::string, std::string>> masks, features;
+  std::vector<std::pair<std::string, std::string>> masks, features, infos;
   bool has_pose = false;
   double x = 0, y = 0, yaw = 0;
   int repeat = 0;
@@ -135,6 +135,10 @@ public:
     app_.add_option("--features", features_, "speed limits for the named SpeedFilter (repeatable)")
         ->allow_extra_args(false)
         ->type_name("PLUGIN_NAME=FEATURES.yaml");
+    app_.add_option("--filter-info", infos_,
+                    "the filter info of a filter configured Nav2's way (filter_info_topic), repeatable")
+        ->allow_extra_args(false)
+        ->type_name("PLUGIN_NAME=TYPE,BASE,MULTIPLIER");
     app_.add_option("--pose", pose_, "robot pose in the global frame [m, m, rad]; default: the map's centre, yaw 0")
         ->type_name("X,Y,YAW");
     app_.add_option("--repeat", repeat_, "time N full updates (after one warm-up) and report median and min")
@@ -162,7 +166,7 @@ public:
     {
       std::string what = e.what();
       if (what.find("At Most") != std::string::npos)
-        what += " (each option may be given once; --mask and --features once per plugin name)";
+        what += " (each option may be given once; --mask, --features and --filter-info once per plugin name)";
       throw UsageError(what);
     }
     catch (const CLI::ParseError& e)
@@ -179,6 +183,7 @@ public:
     a.out_png = out_png_;
     a.masks = assignments("--mask", masks_);
     a.features = assignments("--features", features_);
+    a.infos = assignments("--filter-info", infos_);
     if (app_.count("--repeat")) a.repeat = parseRepeat(repeat_);
     if (app_.count("--pose")) parsePose(pose_, a);
     return a;
@@ -187,7 +192,7 @@ public:
 private:
   CLI::App app_;
   std::string map_, params_, ns_, out_raw_, out_png_, pose_, repeat_;
-  std::vector<std::string> masks_, features_;
+  std::vector<std::string> masks_, features_, infos_;
 };
 
 /// The tool's LayerContext: no tf (every frame is the global frame), reports to stderr. The tool itself
@@ -299,15 +304,54 @@ int run(const ToolArgs& a, std::ostream& out, std::ostream& err)
       if (in.kind == kind) ports.push_back(&in);
     return ports;
   };
-  std::vector<std::pair<const InputPort*, std::shared_ptr<const OccupancyGridData>>> masks;
+  // Filters in Nav2's form (filter_info_topic) take their info from --filter-info; the mask port the
+  // info connects replaces the declared one (kept here, as the node re-subscribes).
+  std::map<std::string, std::map<std::size_t, InputPort>> replaced;
+  std::map<std::string, bool> has_info;
+  for (const auto& [name, spec] : a.infos)
+  {
+    auto layer = layerNamed(name, "--filter-info");
+    const auto ports = portsOf(*layer, InputKind::FilterInfo);
+    if (ports.empty())
+      throw std::runtime_error("--filter-info names plugin '" + name +
+                               "', which reads no filter info (no filter_info_topic)");
+    auto info = std::make_shared<FilterInfoData>();
+    std::istringstream in(spec);
+    int type = -1;
+    char c1 = 0, c2 = 0;
+    if (!(in >> type >> c1 >> info->base >> c2 >> info->multiplier) || c1 != ',' || c2 != ',' || !in.eof() ||
+        type < 0 || type > 255)
+      throw std::runtime_error("--filter-info expects PLUGIN_NAME=TYPE,BASE,MULTIPLIER (got \"" + name + "=" + spec +
+                               "\")");
+    info->type = static_cast<uint8_t>(type);
+    info->filter_mask_topic = "costmap_tool/" + name;
+    layer->setInputListener([&replaced, name = name](std::size_t index, const InputPort& port)
+                            { replaced[name][index] = port; });
+    for (const InputPort* port : ports)
+      port->on_info(info);
+    layer->setInputListener({});
+    has_info[name] = true;
+  }
+  std::vector<std::pair<GridCallback, std::shared_ptr<const OccupancyGridData>>> masks;
   for (const auto& [name, file] : a.masks)
   {
-    const auto ports = portsOf(*layerNamed(name, "--mask"), InputKind::Mask);
-    if (ports.empty()) throw std::runtime_error("--mask names plugin '" + name + "', which takes no mask");
+    auto layer = layerNamed(name, "--mask");
+    if (!portsOf(*layer, InputKind::FilterInfo).empty() && !has_info[name])
+      throw std::runtime_error("--mask names plugin '" + name +
+                               "', which reads its mask's meaning from a filter info " +
+                               "(filter_info_topic): give --filter-info " + name + "=TYPE,BASE,MULTIPLIER too");
+    std::vector<GridCallback> handlers;
+    for (std::size_t i = 0; i < layer->inputs().size(); ++i)
+    {
+      if (layer->inputs()[i].kind != InputKind::Mask) continue;
+      const auto r = replaced[name].find(i);
+      handlers.push_back(r != replaced[name].end() ? r->second.on_grid : layer->inputs()[i].on_grid);
+    }
+    if (handlers.empty()) throw std::runtime_error("--mask names plugin '" + name + "', which takes no mask");
     auto mask = std::make_shared<OccupancyGridData>(io::loadMapFile(file));
     mask->frame_id = config.global_frame;
-    for (const InputPort* port : ports)
-      masks.emplace_back(port, mask);
+    for (const GridCallback& handler : handlers)
+      masks.emplace_back(handler, mask);
   }
   for (const auto& [name, file] : a.features)
   {
@@ -320,8 +364,8 @@ int run(const ToolArgs& a, std::ostream& out, std::ostream& err)
   }
   auto deliverMasks = [&]
   {
-    for (const auto& [port, mask] : masks)
-      port->on_grid(mask);
+    for (const auto& [handler, mask] : masks)
+      handler(mask);
   };
   deliverMasks();
   auto deliverMaps = [&]
@@ -337,10 +381,11 @@ int run(const ToolArgs& a, std::ostream& out, std::ostream& err)
   {
     auto layer = costmap->findLayer(name);
     if (layer->outputs().empty()) continue;
-    layer->setOutputListener([&max_speeds, name = name](const OutputEvent& e)
-                             {
-                               if (e.kind == OutputKind::MaxSpeed) max_speeds[name] = e.value;
-                             });
+    layer->setOutputListener(
+        [&max_speeds, name = name](const OutputEvent& e)
+        {
+          if (e.kind == OutputKind::MaxSpeed) max_speeds[name] = e.value;
+        });
   }
 
   // Without --pose: the map's centre (the map's, not the grid's: a rolling window moves).

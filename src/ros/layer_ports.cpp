@@ -1,8 +1,8 @@
 #include "costmap_layers/ros/layer_ports.hpp"
 
 #include <map_msgs/OccupancyGridUpdate.h>
-#include <ros/names.h>
 #include <nav_msgs/OccupancyGrid.h>
+#include <ros/names.h>
 #include <sensor_msgs/LaserScan.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <sensor_msgs/Range.h>
@@ -15,7 +15,9 @@
 #include <deque>
 #include <mutex>
 
+#include "costmap_layers/CostmapFilterInfo.h"
 #include "costmap_layers/MaxSpeed.h"
+#include "costmap_layers/Nav2SpeedLimit.h"
 #include "costmap_layers/SpeedLimits.h"
 #include "costmap_layers/core/costmap_filter.hpp"
 #include "costmap_layers/ros/conversions.hpp"
@@ -26,8 +28,8 @@ namespace costmap_layers_ros
 using costmap_layers::InputKind;
 using costmap_layers::Severity;
 
-TfVerdict tfVerdict(tf2::BufferCore& tf, const std::string& target, const std::string& frame,
-                    const ros::Time& stamp, const ros::Time& now, double max_ahead)
+TfVerdict tfVerdict(tf2::BufferCore& tf, const std::string& target, const std::string& frame, const ros::Time& stamp,
+                    const ros::Time& now, double max_ahead)
 {
   if (frame.empty()) return TfVerdict::NoFrame;
   if ((stamp - now).toSec() > max_ahead) return TfVerdict::Future;
@@ -57,19 +59,18 @@ LayerPorts::LayerPorts(ros::NodeHandle public_nh, ros::NodeHandle private_nh, co
       tf_(tf),
       log_(std::move(log))
 {
-  for (const costmap_layers::InputPort& in : layer.inputs())
+  port_subscribers_.resize(layer.inputs().size());
+  for (std::size_t i = 0; i < layer.inputs().size(); ++i)
   {
+    const costmap_layers::InputPort& in = layer.inputs()[i];
     switch (in.kind)
     {
       case InputKind::Map:
       case InputKind::Mask:
-        subscribeGrid(in.topic, in.on_grid);
-        break;
       case InputKind::MapUpdates:
-        subscribeGridUpdates(in.topic, in.on_update);
-        break;
       case InputKind::SpeedLimits:
-        subscribeSpeedLimits(in.topic, in.on_limits);
+      case InputKind::FilterInfo:
+        port_subscribers_[i] = subscribe(in);
         break;
       case InputKind::LaserScan:
         subscribeSensor<sensor_msgs::LaserScan>(in.topic, in.sensor_frame, in.on_scan);
@@ -82,11 +83,30 @@ LayerPorts::LayerPorts(ros::NodeHandle public_nh, ros::NodeHandle private_nh, co
         break;
     }
   }
+  // A port the layer replaces at run time (a filter whose filter info named the mask topic): the old
+  // subscription ends (roscpp waits for a delivery in progress), the new one starts. Replacements of
+  // one layer arrive one at a time and in order (Layer::setInputListener()).
+  layer.setInputListener(
+      [this](std::size_t index, const costmap_layers::InputPort& port)
+      {
+        std::lock_guard<std::mutex> lock(ports_mutex_);
+        if (index >= port_subscribers_.size()) return;
+        port_subscribers_[index].shutdown();
+        port_subscribers_[index] = subscribe(port);
+        // Not throttled (a replacement is rare and each one matters); ends with the layer's stable key.
+        const std::string& ns = private_nh_.getNamespace();
+        ROS_INFO("%s: now reading %s [%s/input]", ns.c_str(), resolveTopic(port.topic).c_str(),
+                 ns.substr(ns.rfind('/') + 1).c_str());
+      });
   for (const costmap_layers::OutputPort& out : layer.outputs())
+  {
+    const std::string topic = resolveTopic(out.topic);
     if (out.kind == costmap_layers::OutputKind::MaxSpeed)
-      publishers_[out.topic] = public_nh_.advertise<costmap_layers::MaxSpeed>(resolveTopic(out.topic), 1, true);
-  if (!publishers_.empty())
-    layer.setOutputListener([this](const costmap_layers::OutputEvent& e) { publish(e); });
+      publishers_[{out.kind, out.topic}] = public_nh_.advertise<costmap_layers::MaxSpeed>(topic, 1, true);
+    else if (out.kind == costmap_layers::OutputKind::SpeedLimit)
+      publishers_[{out.kind, out.topic}] = public_nh_.advertise<costmap_layers::Nav2SpeedLimit>(topic, 1, true);
+  }
+  if (!publishers_.empty()) layer.setOutputListener([this](const costmap_layers::OutputEvent& e) { publish(e); });
   // A filter's one switch, as a service: the same flag as its `enabled` parameter.
   if (auto* filter = dynamic_cast<costmap_layers::CostmapFilter*>(&layer))
     toggle_ = private_nh_.advertiseService<std_srvs::SetBool::Request, std_srvs::SetBool::Response>(
@@ -115,6 +135,7 @@ void LayerPorts::Receipts::note()
 std::shared_ptr<LayerPorts::Receipts> LayerPorts::receiptsFor(const std::string& topic)
 {
   const std::string resolved = resolveTopic(topic);
+  std::lock_guard<std::mutex> lock(receipts_mutex_);
   for (const auto& [t, r] : receipts_)
     if (t == resolved) return r;
   receipts_.emplace_back(resolved, std::make_shared<Receipts>());
@@ -125,6 +146,7 @@ std::vector<std::pair<std::string, std::string>> LayerPorts::receipts() const
 {
   std::vector<std::pair<std::string, std::string>> out;
   const double now = ros::Time::now().toSec();
+  std::lock_guard<std::mutex> lock(receipts_mutex_);
   for (const auto& [topic, r] : receipts_)
   {
     const uint64_t n = r->count.load();
@@ -141,13 +163,24 @@ std::vector<std::pair<std::string, std::string>> LayerPorts::receipts() const
 
 LayerPorts::~LayerPorts()
 {
+  layer_.setInputListener({});
   if (!publishers_.empty()) layer_.setOutputListener({});
 }
 
 void LayerPorts::publish(const costmap_layers::OutputEvent& e)
 {
-  const auto it = publishers_.find(e.topic);
+  const auto it = publishers_.find({e.kind, e.topic});
   if (it == publishers_.end()) return;
+  if (e.kind == costmap_layers::OutputKind::SpeedLimit)
+  {
+    costmap_layers::Nav2SpeedLimit msg;
+    msg.header.frame_id = global_frame_;
+    msg.header.stamp = ros::Time::now();
+    msg.percentage = e.percentage;
+    msg.speed_limit = e.value;
+    it->second.publish(msg);
+    return;
+  }
   costmap_layers::MaxSpeed msg;
   msg.header.frame_id = global_frame_;
   msg.header.stamp = ros::Time::now();
@@ -155,11 +188,30 @@ void LayerPorts::publish(const costmap_layers::OutputEvent& e)
   it->second.publish(msg);
 }
 
-void LayerPorts::subscribeGrid(const std::string& topic, costmap_layers::GridCallback cb)
+ros::Subscriber LayerPorts::subscribe(const costmap_layers::InputPort& in)
+{
+  if (in.topic.empty()) return {};  // not connected yet: the layer replaces the port later
+  switch (in.kind)
+  {
+    case InputKind::Map:
+    case InputKind::Mask:
+      return subscribeGrid(in.topic, in.on_grid);
+    case InputKind::MapUpdates:
+      return subscribeGridUpdates(in.topic, in.on_update);
+    case InputKind::SpeedLimits:
+      return subscribeSpeedLimits(in.topic, in.on_limits);
+    case InputKind::FilterInfo:
+      return subscribeFilterInfo(in.topic, in.on_info);
+    default:
+      return {};  // sensors go through subscribeSensor()
+  }
+}
+
+ros::Subscriber LayerPorts::subscribeGrid(const std::string& topic, costmap_layers::GridCallback cb)
 {
   const std::string owner = private_nh_.getNamespace();
   auto receipts = receiptsFor(topic);
-  subscribers_.push_back(public_nh_.subscribe<nav_msgs::OccupancyGrid>(
+  return (public_nh_.subscribe<nav_msgs::OccupancyGrid>(
       resolveTopic(topic), 1,
       [cb, owner, topic, receipts, log = log_](const nav_msgs::OccupancyGrid::ConstPtr& msg)
       {
@@ -169,7 +221,8 @@ void LayerPorts::subscribeGrid(const std::string& topic, costmap_layers::GridCal
           std::string note;
           auto grid = std::make_shared<const costmap_layers::OccupancyGridData>(fromMsg(*msg, &note));
           if (!note.empty())
-            log->log(Severity::Warn, owner + topic + "/info.origin.orientation", owner + ": grid on " + topic + ": " + note);
+            log->log(Severity::Warn, owner + topic + "/info.origin.orientation",
+                     owner + ": grid on " + topic + ": " + note);
           cb(grid);
         }
         catch (const std::exception& e)
@@ -179,11 +232,11 @@ void LayerPorts::subscribeGrid(const std::string& topic, costmap_layers::GridCal
       }));
 }
 
-void LayerPorts::subscribeGridUpdates(const std::string& topic, costmap_layers::GridUpdateCallback cb)
+ros::Subscriber LayerPorts::subscribeGridUpdates(const std::string& topic, costmap_layers::GridUpdateCallback cb)
 {
   const std::string owner = private_nh_.getNamespace();
   auto receipts = receiptsFor(topic);
-  subscribers_.push_back(public_nh_.subscribe<map_msgs::OccupancyGridUpdate>(
+  return (public_nh_.subscribe<map_msgs::OccupancyGridUpdate>(
       resolveTopic(topic), 10,
       [cb, owner, topic, receipts, log = log_](const map_msgs::OccupancyGridUpdate::ConstPtr& msg)
       {
@@ -199,11 +252,32 @@ void LayerPorts::subscribeGridUpdates(const std::string& topic, costmap_layers::
       }));
 }
 
-void LayerPorts::subscribeSpeedLimits(const std::string& topic, costmap_layers::SpeedLimitsCallback cb)
+ros::Subscriber LayerPorts::subscribeFilterInfo(const std::string& topic, costmap_layers::FilterInfoCallback cb)
 {
   const std::string owner = private_nh_.getNamespace();
   auto receipts = receiptsFor(topic);
-  subscribers_.push_back(public_nh_.subscribe<costmap_layers::SpeedLimits>(
+  // Several infos may be latched on one topic (one per info server): keep them all.
+  return public_nh_.subscribe<costmap_layers::CostmapFilterInfo>(
+      resolveTopic(topic), 10,
+      [cb, owner, topic, receipts, log = log_](const costmap_layers::CostmapFilterInfo::ConstPtr& msg)
+      {
+        receipts->note();
+        try
+        {
+          cb(std::make_shared<const costmap_layers::FilterInfoData>(fromMsg(*msg)));
+        }
+        catch (const std::exception& e)
+        {
+          log->log(Severity::Error, owner + topic, owner + ": dropped a filter info on " + topic + ": " + e.what());
+        }
+      });
+}
+
+ros::Subscriber LayerPorts::subscribeSpeedLimits(const std::string& topic, costmap_layers::SpeedLimitsCallback cb)
+{
+  const std::string owner = private_nh_.getNamespace();
+  auto receipts = receiptsFor(topic);
+  return (public_nh_.subscribe<costmap_layers::SpeedLimits>(
       resolveTopic(topic), 1,
       [cb, owner, topic, receipts, log = log_](const costmap_layers::SpeedLimits::ConstPtr& msg)
       {
@@ -309,7 +383,7 @@ private:
 
 template <class Msg, class Reading>
 void LayerPorts::subscribeSensor(const std::string& topic, const std::string& sensor_frame,
-                                      costmap_layers::SensorCallback<Reading> cb)
+                                 costmap_layers::SensorCallback<Reading> cb)
 {
   const std::string owner = private_nh_.getNamespace();
   const std::string global = global_frame_;

@@ -5,6 +5,7 @@
 
 #include <map>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -40,13 +41,18 @@ public:
   /// can publish to them), its output events and, for a filter, its switch (the ~toggle service).
   void bind(Layer& layer)
   {
-    for (const InputPort& in : layer.inputs())
+    for (std::size_t index = 0; index < layer.inputs().size(); ++index)
     {
+      const InputPort& in = layer.inputs()[index];
       switch (in.kind)
       {
         case InputKind::Map:
         case InputKind::Mask:
-          grid_subs.push_back({in.topic, in.kind == InputKind::Map ? GridKind::Map : GridKind::Mask, in.on_grid});
+          grid_subs.push_back(
+              {in.topic, in.kind == InputKind::Map ? GridKind::Map : GridKind::Mask, in.on_grid, index});
+          break;
+        case InputKind::FilterInfo:
+          info_subs.push_back({in.topic, in.on_info});
           break;
         case InputKind::MapUpdates:
           update_subs.push_back({in.topic, in.on_update});
@@ -65,10 +71,33 @@ public:
           break;
       }
     }
+    // A replaced port (a filter info naming the mask topic): the test's "subscription" follows it.
+    layer.setInputListener(
+        [this](std::size_t index, const InputPort& port)
+        {
+          std::lock_guard<std::mutex> lock(subs_mutex);
+          for (auto& s : grid_subs)
+            if (s.port == index)
+            {
+              s.topic = port.topic;
+              s.cb = port.on_grid;
+            }
+          ++replaced_inputs;
+        });
     for (const OutputPort& out : layer.outputs())
-      max_speed_topic = out.topic;
+      if (out.kind == OutputKind::MaxSpeed)
+        max_speed_topic = out.topic;
+      else
+        speed_limit_topic = out.topic;
     if (!layer.outputs().empty())
-      layer.setOutputListener([this](const OutputEvent& e) { published_speeds.push_back(e.value); });
+      layer.setOutputListener(
+          [this](const OutputEvent& e)
+          {
+            if (e.kind == OutputKind::MaxSpeed)
+              published_speeds.push_back(e.value);
+            else
+              published_limits.push_back({e.percentage, e.value});
+          });
     if (auto* filter = dynamic_cast<CostmapFilter*>(&layer)) toggle = [filter](bool on) { filter->setEnabled(on); };
   }
   /// Delivers a reading to every subscription of its topic (as the node would once tf had the pose).
@@ -106,6 +135,7 @@ public:
   uint64_t nowNs() const override { return now_ns; }
   void report(Severity severity, const std::string& key, const std::string& message) override
   {
+    std::lock_guard<std::mutex> lock(reports_mutex);  // layers report from the hosts' threads too
     reports.push_back({severity, key, message});
   }
 
@@ -122,6 +152,31 @@ public:
     auto shared = std::make_shared<const OccupancyGridUpdateData>(update);
     for (auto& s : update_subs)
       s.cb(shared);
+  }
+  /// Delivers a grid to the grid subscriptions of that topic only (the mask a filter info names).
+  /// Safe against a concurrent port replacement (as the node's subscriptions are).
+  int publishGridOn(const std::string& topic, const OccupancyGridData& grid)
+  {
+    auto shared = std::make_shared<const OccupancyGridData>(grid);
+    std::lock_guard<std::mutex> lock(subs_mutex);
+    int n = 0;
+    for (auto& s : grid_subs)
+      if (s.topic == topic && !topic.empty()) s.cb(shared), ++n;
+    return n;
+  }
+  void publishFilterInfo(const FilterInfoData& info)
+  {
+    auto shared = std::make_shared<const FilterInfoData>(info);
+    for (auto& s : info_subs)
+      s.cb(shared);
+  }
+  /// Number of reports with this key.
+  int countKey(const std::string& key) const
+  {
+    int n = 0;
+    for (const auto& r : reports)
+      if (r.key == key) ++n;
+    return n;
   }
   void publishSpeedLimits(const SpeedLimitsData& limits)
   {
@@ -143,6 +198,12 @@ public:
     std::string topic;
     GridKind kind;
     GridCallback cb;
+    std::size_t port = 0;  ///< index of the layer's input
+  };
+  struct InfoSub
+  {
+    std::string topic;
+    FilterInfoCallback cb;
   };
   struct SpeedSub
   {
@@ -174,11 +235,17 @@ public:
 
   ParamValue params_;
   std::string global_frame_;
+  std::mutex reports_mutex;
+  std::mutex subs_mutex;  ///< guards grid_subs' topics and handlers against replacements
   std::vector<GridSub> grid_subs;
+  std::vector<InfoSub> info_subs;
+  int replaced_inputs = 0;
   std::vector<SpeedSub> speed_subs;
   std::vector<UpdateSub> update_subs;
   std::string max_speed_topic;
   std::vector<double> published_speeds;
+  std::string speed_limit_topic;
+  std::vector<std::pair<bool, double>> published_limits;  ///< (percentage, speed_limit)
   std::function<void(bool)> toggle;
   std::map<std::pair<std::string, std::string>, Transform2D> transforms;  ///< (target, source) -> T
   uint64_t now_ns = 0;

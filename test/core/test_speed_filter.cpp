@@ -78,7 +78,8 @@ struct Rig
 
   explicit Rig(ParamValue p = params()) : ctx(std::make_shared<FakeContext>(std::move(p)))
   {
-    filter->initialize(&lc, "speed_filter", ctx); ctx->bind(*filter);
+    filter->initialize(&lc, "speed_filter", ctx);
+    ctx->bind(*filter);
   }
   /// One update cycle with the robot at (x, y); returns how many values were published by it.
   std::size_t at(double x, double y)
@@ -155,7 +156,8 @@ TEST(SpeedFilterConfig, PercentModeWithoutDefaultIsRefusedAtStartUp)
   auto filter = std::make_shared<SpeedFilter>();
   try
   {
-    filter->initialize(&lc, "speed_filter", ctx); ctx->bind(*filter);
+    filter->initialize(&lc, "speed_filter", ctx);
+    ctx->bind(*filter);
     ADD_FAILURE() << "percent mode with default_max_speed 0 accepted";
   }
   catch (const std::invalid_argument& e)
@@ -658,7 +660,8 @@ TEST(SpeedFilterNav2, LimitsNotAboveZeroMeanNoLimit)
     }
   for (int v = 1; v <= 4; ++v)
     EXPECT_EQ(r.ctx->countReports("mask value " + std::to_string(v) + " gives"), 1) << v;
-  EXPECT_EQ(r.ctx->reports.size(), 5u);  // v = 5 gives 0 (or within rounding of it)
+  // v = 5 gives exactly 0: no limit, which Nav2's rule does not count as out of range (not warned).
+  EXPECT_EQ(r.ctx->reports.size(), 4u);
 }
 
 TEST(SpeedFilterNav2, Percent)
@@ -670,7 +673,8 @@ TEST(SpeedFilterNav2, Percent)
   p.set("multiplier", ParamValue::makeDouble(2.0));
   Rig r(p);
   r.ctx->publishGrid(GridKind::Mask, makeMask());
-  // v = 1..10 give -18 .. 0 % (no limit); 11..60 give 2 .. 100 %; 61..100 give > 100 % (no limit).
+  // v = 1..9 give -18 .. -2 % and 61..100 give > 100 %: out of range (no limit, warned); v = 10 gives
+  // 0 %, which is no limit itself (Nav2's rule: in range, not warned); 11..60 give 2 .. 100 %.
   for (int v = 1; v <= 100; ++v)
   {
     r.atArea(v);
@@ -680,14 +684,14 @@ TEST(SpeedFilterNav2, Percent)
     else
       EXPECT_DOUBLE_EQ(r.last(), kDefault) << v;
   }
-  EXPECT_EQ(r.ctx->countReports("outside (0, 100]"), 10 + 40);
-  EXPECT_EQ(r.ctx->countReports("mask value 61 gives base + multiplier * v = 102 %"), 1);
-  EXPECT_EQ(r.ctx->countReports("mask value 10 gives base + multiplier * v = 0 %"), 1);
+  EXPECT_EQ(r.ctx->countReports("outside [0, 100]"), 9 + 40);
+  EXPECT_EQ(r.ctx->countReports("mask value 61 gives base + multiplier * v = -20 + 2 * 61 = 102 %"), 1);
+  EXPECT_EQ(r.ctx->countReports("mask value 10 gives"), 0);
   // Once per value.
   r.atArea(61);
   r.atArea(30);
   r.atArea(61);
-  EXPECT_EQ(r.ctx->countReports("outside (0, 100]"), 50);
+  EXPECT_EQ(r.ctx->countReports("outside [0, 100]"), 49);
 }
 
 TEST(SpeedFilter, OutOfOrderFeaturesAreDroppedWhole)

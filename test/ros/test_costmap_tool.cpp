@@ -172,6 +172,39 @@ filters: [{name: keepout, type: costmap_layers/KeepoutFilter}]
   EXPECT_EQ(cells2, expected);
 }
 
+TEST(CostmapTool, FilterInNav2FormTakesItsInfoFromTheCommandLine)
+{
+  TempDir dir;
+  const std::string map = writeMap(dir, "map", 10, 10, std::vector<uint8_t>(100, 254), 1.0, 0.0, 0.0);
+  std::vector<uint8_t> mask_pixels(100, 254);
+  mask_pixels[(9 - 3) * 10 + 4] = 0;  // cell (4, 3)
+  const std::string mask = writeMap(dir, "mask", 10, 10, mask_pixels, 1.0, 0.0, 0.0);
+  const std::string params = dir.write("params.yaml", R"(
+plugins: [{name: g, type: costmap_layers/GradientLayer}]
+filters: ["keepout"]
+keepout: {plugin: "nav2_costmap_2d::KeepoutFilter", filter_info_topic: /costmap_filter_info}
+)");
+  const ToolResult r = runTool({"--map", map, "--params", params, "--filter-info", "keepout=0,0,1", "--mask",
+                                "keepout=" + mask, "--out-raw", dir.file("out.raw")},
+                               dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto expected = expectedGradient(10, 10, 20, 10);
+  expected[3 * 10 + 4] = 254;
+  EXPECT_EQ(rawCells(dir.file("out.raw")), expected);
+
+  // Without the info the mask means nothing to this filter: refused, saying what is missing.
+  const ToolResult no_info =
+      runTool({"--map", map, "--params", params, "--mask", "keepout=" + mask, "--out-raw", dir.file("out.raw")}, dir);
+  EXPECT_NE(no_info.exit_code, 0);
+  EXPECT_NE(no_info.err.find("--filter-info keepout=TYPE,BASE,MULTIPLIER"), std::string::npos) << no_info.err;
+  // An info the filter cannot use (a speed type) is reported, and the tool fails on reported errors.
+  const ToolResult wrong = runTool({"--map", map, "--params", params, "--filter-info", "keepout=1,100,-1", "--mask",
+                                    "keepout=" + mask, "--out-raw", dir.file("out.raw")},
+                                   dir);
+  EXPECT_NE(wrong.exit_code, 0);
+  EXPECT_NE(wrong.err.find("type 1"), std::string::npos) << wrong.err;
+}
+
 TEST(CostmapTool, BadInputGivesOneClearLineAndNonZeroExit)
 {
   TempDir dir;

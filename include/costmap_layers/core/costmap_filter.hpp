@@ -1,6 +1,18 @@
 // The base of costmap filters (Nav2's design): the base owns the mask, its frame transform and the
 // robot pose; a subclass only says what a mask value means, in process(). A new mask replaces the old
 // one atomically, and the next update covers the union of the old and new mask extents.
+//
+// Where the mask comes from, one of two forms (setting both is a start-up error naming both):
+//  - `mask_topic`: the mask is read from that topic (default: the filter's defaultMaskTopic()).
+//  - `filter_info_topic` (Nav2's form): the filter reads a filter info (CostmapFilterInfo, as
+//    published by costmap_filter_info_server) there, and reads the mask from the topic the info names,
+//    with the info's type, base and multiplier (filter_info.hpp says which types a filter takes).
+//    Until an info arrives the filter does nothing and says so (a throttled "waiting" warning); an
+//    info the filter cannot use is reported (an Error keyed "filter_info/<field>") and ignored, the
+//    previous info staying in force. A later info naming another mask topic moves the subscription:
+//    the mask from the old topic is dropped (it is not what the new info describes) and the filter
+//    waits for a mask on the new one; masks still arriving from the old topic are ignored. An info
+//    naming the same topic keeps the mask and changes only how it is read.
 #pragma once
 
 #include <algorithm>
@@ -19,6 +31,7 @@
 #endif
 
 #include "costmap_layers/core/costmap_2d.hpp"
+#include "costmap_layers/core/filter_info.hpp"
 #include "costmap_layers/core/input_error.hpp"
 #include "costmap_layers/core/layer.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
@@ -124,7 +137,19 @@ public:
   std::string setMask(std::shared_ptr<const OccupancyGridData> mask);
   /// The mask in force (nullptr before the first one).
   std::shared_ptr<const OccupancyGridData> getMask() const;
-  const std::string& maskTopic() const { return mask_topic_; }
+  /// The topic the mask is read from: `mask_topic`, or the one the filter info named (empty before
+  /// the first info).
+  std::string maskTopic() const;
+
+  /// Whether the filter is configured in Nav2's form (`filter_info_topic`).
+  bool usesFilterInfo() const { return !filter_info_topic_.empty(); }
+  const std::string& filterInfoTopic() const { return filter_info_topic_; }
+  /// Installs a filter info (what the filter_info_topic subscription calls), as the file comment says.
+  /// Thread-safe; infos are applied one at a time.
+  /// @return an empty string when accepted, else the error (also reported).
+  std::string setFilterInfo(std::shared_ptr<const FilterInfoData> info);
+  /// The filter info in force (nullptr before the first accepted one, and always in the mask_topic form).
+  std::shared_ptr<const FilterInfoData> getFilterInfo() const;
   /// Turns the filter on or off at run time (the ~<name>/toggle service); the next update covers the
   /// mask's extent so that the filter's effect appears or disappears at once. Thread-safe.
   void setFilterEnabled(bool on);
@@ -135,8 +160,14 @@ public:
   LayerStatus status() const override;
 
 protected:
-  /// Reads the base's parameters (mask_topic), declares the mask input, then calls onInitializeFilter().
+  /// Reads the base's parameters (mask_topic or filter_info_topic), calls onInitializeFilter(), then
+  /// declares the inputs: the mask (with an empty topic in the filter_info_topic form, until an info
+  /// names it) and, in that form, the filter info.
   void onInitialize() final;
+  /// Which infos this filter takes (checkFilterInfoFor()).
+  virtual FilterFamily filterFamily() const { return FilterFamily::Keepout; }
+  /// Called once an info was accepted (any thread), for the subclass's own warnings.
+  virtual void onFilterInfo(const FilterInfoData& info) { (void)info; }
   virtual void onInitializeFilter(const ParamReader& params) { (void)params; }
   /// The subclass's meaning of the mask. `mapping` maps the window onto `mask`.
   /// robot pose in the global frame [m, rad].
@@ -160,6 +191,9 @@ protected:
   /// The mask of the current cycle (the one process() receives); the pointer changes only when a new
   /// mask was accepted, so subclasses can key derived data on it.
   const std::shared_ptr<const OccupancyGridData>& activeMask() const { return active_mask_; }
+  /// The filter info of the current cycle (update thread only; nullptr in the mask_topic form). While
+  /// the filter waits for its first info, no mask is active either.
+  const std::shared_ptr<const FilterInfoData>& activeInfo() const { return active_info_; }
   /// The transform used by the last update (global frame -> mask frame).
   const Transform2D& lastTransform() const { return to_mask_; }
 
@@ -167,9 +201,18 @@ private:
   /// The mask's extent as a box in the global frame [m], when the transform is known.
   bool maskBoundsInGlobal(const OccupancyGridData& mask, double& x0, double& y0, double& x1, double& y1);
 
-  std::string mask_topic_;
+  /// setMask() for a mask delivered by the subscription of mask generation `generation`: masks of an
+  /// older generation (a topic no longer in force) are ignored.
+  std::string setMaskOf(uint64_t generation, std::shared_ptr<const OccupancyGridData> mask);
+
+  std::string filter_info_topic_;  ///< set once in onInitialize()
+  std::size_t mask_port_ = 0;      ///< index of the mask input
   std::atomic<bool> filter_enabled_{true};
+  std::mutex info_mutex_;  ///< one setFilterInfo() at a time, so that port replacements stay in order
   mutable std::mutex mask_mutex_;
+  std::string mask_topic_;                                ///< guarded by mask_mutex_
+  uint64_t mask_generation_ = 0;                          ///< guarded by mask_mutex_; +1 per topic change
+  std::shared_ptr<const FilterInfoData> info_;            ///< guarded by mask_mutex_
   std::shared_ptr<const OccupancyGridData> mask_;         ///< guarded by mask_mutex_
   std::shared_ptr<const OccupancyGridData> pending_old_;  ///< the mask replaced since the last bounds
   bool mask_changed_ = false;                             ///< guarded by mask_mutex_
@@ -179,6 +222,7 @@ private:
   bool latest_rejected_ = false;
   std::string transform_error_;  ///< why the last cycle could not place the mask (update thread)
   std::shared_ptr<const OccupancyGridData> active_mask_;  ///< the mask of this cycle (update thread only)
+  std::shared_ptr<const FilterInfoData> active_info_;     ///< the info of this cycle (update thread only)
   bool have_transform_ = false;
   double robot_x_ = 0, robot_y_ = 0, robot_yaw_ = 0;
   Transform2D to_mask_;

@@ -1,5 +1,5 @@
-// Plain data types the core receives from outside: an occupancy grid (map or filter mask) and
-// speed limits. The ROS adapter converts messages into them; costmap_tool fills them from files.
+// Plain data types the core receives from outside: an occupancy grid (map or filter mask), speed
+// limits, and a costmap filter info. The ROS adapter converts messages into them; costmap_tool fills them from files.
 #pragma once
 
 #include <cstdint>
@@ -46,5 +46,19 @@ struct SpeedLimitsData
   std::string frame_id;
   uint64_t stamp_ns = 0;
   std::vector<SpeedLimitEntry> limits;
+};
+
+/// What Nav2's CostmapFilterInfo message says (costmap_layers/CostmapFilterInfo carries the same
+/// fields): which mask a filter reads and how its values map to the filter's quantity,
+/// value = base + multiplier * mask value.
+struct FilterInfoData
+{
+  std::string frame_id;
+  uint64_t stamp_ns = 0;
+  /// 0 keepout / lanes, 1 speed limit in percent, 2 speed limit in m/s, 3 binary (filter_info.hpp)
+  uint8_t type = 0;
+  std::string filter_mask_topic;
+  double base = 0.0;        ///< float32 in the message
+  double multiplier = 1.0;  ///< float32 in the message
 };
 }  // namespace costmap_layers

@@ -6,6 +6,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -40,6 +41,11 @@ public:
   const std::vector<InputPort>& inputs() const { return inputs_; }
   /// What the layer gives out: the host advertises each port and publishes the events the layer emits.
   const std::vector<OutputPort>& outputs() const { return outputs_; }
+  /// Where port replacements go (replaceInput()): the host re-subscribes that input. The latest
+  /// replacement of each port made before a listener is set is delivered to it at once. The listener
+  /// is called with the layer's input lock held, so replacements of one layer reach it one at a time
+  /// and in order; it must not call back into setInputListener().
+  void setInputListener(InputListener listener);
   /// Where emitted events go. The latest event of each port emitted before a listener is set is
   /// delivered to it at once (outputs are latched).
   void setOutputListener(OutputListener listener);
@@ -100,8 +106,13 @@ protected:
   }
   void addInput(InputPort port) { inputs_.push_back(std::move(port)); }
   void addOutput(OutputPort port) { outputs_.push_back(std::move(port)); }
+  /// Replaces input `index` (declared with addInput()) by `port` of the same kind at run time, from any
+  /// thread: the host unsubscribes the old topic (waiting for a delivery in progress) and subscribes
+  /// port.topic with port's handler. inputs() keeps what was declared.
+  void replaceInput(std::size_t index, InputPort port);
   /// Emits an event on an output port (any thread); the host publishes it.
   void emit(OutputKind kind, const std::string& topic, double value);
+  void emit(const OutputEvent& event);
 
   LayeredCostmap* layered_costmap_ = nullptr;
   std::shared_ptr<LayerContext> context_;
@@ -116,5 +127,8 @@ private:
   std::mutex output_mutex_;
   OutputListener listener_;
   std::vector<OutputEvent> latest_;  ///< the latest event of each port, for a listener set later
+  std::mutex input_mutex_;
+  InputListener input_listener_;
+  std::vector<std::pair<std::size_t, InputPort>> replaced_;  ///< the latest replacement of each port
 };
 }  // namespace costmap_layers

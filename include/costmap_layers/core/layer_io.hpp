@@ -23,7 +23,8 @@ enum class InputKind
   SpeedLimits,  ///< costmap_layers/SpeedLimits
   LaserScan,    ///< sensor_msgs/LaserScan, delivered with the sensor pose
   PointCloud2,  ///< sensor_msgs/PointCloud2, delivered with the sensor pose
-  Range         ///< sensor_msgs/Range, delivered with the sensor pose
+  Range,        ///< sensor_msgs/Range, delivered with the sensor pose
+  FilterInfo    ///< costmap_layers/CostmapFilterInfo (Nav2's CostmapFilterInfo fields)
 };
 
 /// A short name of what an input carries ("map", "laser scans", ...), for messages.
@@ -32,6 +33,7 @@ const char* inputKindName(InputKind kind);
 using GridCallback = std::function<void(const std::shared_ptr<const OccupancyGridData>&)>;
 using GridUpdateCallback = std::function<void(const std::shared_ptr<const OccupancyGridUpdateData>&)>;
 using SpeedLimitsCallback = std::function<void(const std::shared_ptr<const SpeedLimitsData>&)>;
+using FilterInfoCallback = std::function<void(const std::shared_ptr<const FilterInfoData>&)>;
 template <class Reading>
 using SensorCallback = std::function<void(const std::shared_ptr<const Reading>&, const SensorPose&)>;
 
@@ -39,15 +41,20 @@ using SensorCallback = std::function<void(const std::shared_ptr<const Reading>&,
 /// thread; sensor handlers only once the host has the transform from the reading's frame into the
 /// global frame at the reading's stamp (it waits a bounded time for tf, then drops the reading with a
 /// throttled warning naming the frames).
+///
+/// An empty topic means "not connected yet": the host subscribes to nothing for that port until the
+/// layer replaces the port (Layer::replaceInput(), e.g. a filter once its filter info named the mask
+/// topic); from then on the host subscribes the replacement's topic and calls its handler instead.
 struct InputPort
 {
   InputKind kind = InputKind::Map;
   std::string topic;
   /// Sensors: when not empty, the frame whose origin is the sensor origin (else the reading's frame).
   std::string sensor_frame;
-  GridCallback on_grid;              ///< Map, Mask
-  GridUpdateCallback on_update;      ///< MapUpdates
-  SpeedLimitsCallback on_limits;     ///< SpeedLimits
+  GridCallback on_grid;           ///< Map, Mask
+  GridUpdateCallback on_update;   ///< MapUpdates
+  SpeedLimitsCallback on_limits;  ///< SpeedLimits
+  FilterInfoCallback on_info;     ///< FilterInfo
   SensorCallback<LaserScanData> on_scan;
   SensorCallback<PointCloud2Data> on_cloud;
   SensorCallback<RangeData> on_range;
@@ -55,15 +62,21 @@ struct InputPort
   static InputPort grid(InputKind kind, std::string topic, GridCallback cb);
   static InputPort mapUpdates(std::string topic, GridUpdateCallback cb);
   static InputPort speedLimits(std::string topic, SpeedLimitsCallback cb);
+  static InputPort filterInfo(std::string topic, FilterInfoCallback cb);
   static InputPort laserScan(std::string topic, std::string sensor_frame, SensorCallback<LaserScanData> cb);
   static InputPort pointCloud2(std::string topic, std::string sensor_frame, SensorCallback<PointCloud2Data> cb);
   static InputPort range(std::string topic, SensorCallback<RangeData> cb);
 };
 
+/// Where a host hears that a layer replaced one of its input ports: index into Layer::inputs(), and
+/// the port now in force (its topic and handler replace the declared ones).
+using InputListener = std::function<void(std::size_t index, const InputPort& port)>;
+
 /// What an output carries.
 enum class OutputKind
 {
-  MaxSpeed  ///< costmap_layers/MaxSpeed, latched: the speed limit in force [m/s] (0 = none)
+  MaxSpeed,   ///< costmap_layers/MaxSpeed, latched: the speed limit in force [m/s] (0 = none)
+  SpeedLimit  ///< costmap_layers/Nav2SpeedLimit (Nav2's SpeedLimit fields): percentage + speed_limit
 };
 
 /// One output of a layer: the host advertises it when the layer is loaded.
@@ -78,7 +91,8 @@ struct OutputEvent
 {
   OutputKind kind = OutputKind::MaxSpeed;
   std::string topic;
-  double value = 0.0;
+  double value = 0.0;       ///< MaxSpeed: [m/s]; SpeedLimit: [%] or [m/s] as `percentage` says (0 = none)
+  bool percentage = false;  ///< SpeedLimit only
 };
 using OutputListener = std::function<void(const OutputEvent&)>;
 }  // namespace costmap_layers

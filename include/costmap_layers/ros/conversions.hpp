@@ -10,6 +10,7 @@
 #include <sensor_msgs/Range.h>
 #include <xmlrpcpp/XmlRpcValue.h>
 
+#include "costmap_layers/CostmapFilterInfo.h"
 #include "costmap_layers/SpeedLimits.h"
 #include "costmap_layers/core/costmap_2d.hpp"
 #include "costmap_layers/core/grid_data.hpp"
@@ -35,6 +36,8 @@ double planarYaw(const geometry_msgs::Quaternion& q, double max_tilt, const std:
 /// which throws for an unusable one; *note says when it had to be normalised). Does not validate the rest.
 costmap_layers::OccupancyGridData fromMsg(const nav_msgs::OccupancyGrid& msg, std::string* note = nullptr);
 costmap_layers::SpeedLimitsData fromMsg(const costmap_layers::SpeedLimits& msg);
+/// The fields as they are (base and multiplier widened from float32); the filter checks them.
+costmap_layers::FilterInfoData fromMsg(const costmap_layers::CostmapFilterInfo& msg);
 costmap_layers::OccupancyGridUpdateData fromMsg(const map_msgs::OccupancyGridUpdate& msg);
 /// Sensor messages: plain copies; the core validates them.
 costmap_layers::LaserScanData fromMsg(const sensor_msgs::LaserScan& msg);

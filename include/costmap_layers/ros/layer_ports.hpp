@@ -10,7 +10,9 @@
 #include <atomic>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "costmap_layers/core/layer.hpp"
@@ -48,9 +50,12 @@ public:
   LayerPorts& operator=(const LayerPorts&) = delete;
 
 private:
-  void subscribeGrid(const std::string& topic, costmap_layers::GridCallback cb);
-  void subscribeGridUpdates(const std::string& topic, costmap_layers::GridUpdateCallback cb);
-  void subscribeSpeedLimits(const std::string& topic, costmap_layers::SpeedLimitsCallback cb);
+  /// The subscription of one non-sensor port (none when its topic is empty).
+  ros::Subscriber subscribe(const costmap_layers::InputPort& in);
+  ros::Subscriber subscribeGrid(const std::string& topic, costmap_layers::GridCallback cb);
+  ros::Subscriber subscribeGridUpdates(const std::string& topic, costmap_layers::GridUpdateCallback cb);
+  ros::Subscriber subscribeSpeedLimits(const std::string& topic, costmap_layers::SpeedLimitsCallback cb);
+  ros::Subscriber subscribeFilterInfo(const std::string& topic, costmap_layers::FilterInfoCallback cb);
   /// Subscribes through a tf gate (see layer_ports.cpp): a reading is delivered once its frame can be
   /// transformed into the global frame at its stamp, or dropped with a throttled warning.
   template <class Msg, class Reading>
@@ -67,10 +72,14 @@ private:
   std::string global_frame_;
   tf2_ros::Buffer& tf_;
   std::shared_ptr<ThrottledLog> log_;
-  std::vector<ros::Subscriber> subscribers_;
+  std::mutex ports_mutex_;
+  std::vector<ros::Subscriber> port_subscribers_;     ///< by input index (guarded by ports_mutex_)
   std::vector<std::shared_ptr<void>> sensor_inputs_;  ///< tf gates with their subscribers
-  std::map<std::string, ros::Publisher> publishers_;  ///< by topic
+  std::map<std::pair<costmap_layers::OutputKind, std::string>, ros::Publisher> publishers_;  ///< by kind, topic
   ros::ServiceServer toggle_;
-  std::vector<std::pair<std::string, std::shared_ptr<Receipts>>> receipts_;  ///< by resolved topic, in order
+  /// By resolved topic, in order. Guarded by receipts_mutex_: a port replaced at run time adds a topic
+  /// on a callback thread while the diagnostics read them on another.
+  mutable std::mutex receipts_mutex_;
+  std::vector<std::pair<std::string, std::shared_ptr<Receipts>>> receipts_;
 };
 }  // namespace costmap_layers_ros

@@ -1,0 +1,156 @@
+#include "costmap_layers/ros/node_params.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace costmap_layers_ros
+{
+NodeParams::NodeParams(const ros::NodeHandle& private_nh)
+{
+  XmlRpc::XmlRpcValue all;
+  if (!ros::param::get(private_nh.getNamespace(), all) || all.getType() != XmlRpc::XmlRpcValue::TypeStruct) return;
+  const std::string& ns = private_nh.getNamespace();
+  const std::string own = ns.substr(ns.rfind('/') + 1);
+  values_ = all;
+  // A section named like the node: the file was loaded with ns="<node name>" (one level down), or with
+  // that ns inside the <node> tag (two levels down).
+  for (int depth = 0; depth < 2 && !own.empty(); ++depth)
+  {
+    if (!values_.hasMember(own) || values_[own].getType() != XmlRpc::XmlRpcValue::TypeStruct) break;
+    XmlRpc::XmlRpcValue section = values_[own];
+    // Scalars beside the section that the section sets too: two places for the same settings.
+    for (auto it = values_.begin(); it != values_.end(); ++it)
+      if (it->second.getType() != XmlRpc::XmlRpcValue::TypeStruct && section.hasMember(it->first))
+        throw std::invalid_argument("parameter " + where_ + it->first + " (" + show(it->second) + ") is set both in " +
+                                    where_ + " and in " + where_ + own + "/ (" + show(section[it->first]) +
+                                    "): load the parameter file once, either at the top level (its key '" + own +
+                                    ":' is then this node's namespace) or with ns=\"" + own + "\"");
+    values_ = section;
+    where_ += own + "/";
+    nested_ = true;
+  }
+}
+
+bool NodeParams::hasAny(const std::vector<std::string>& names) const
+{
+  for (const auto& n : names)
+    if (has(n)) return true;
+  return false;
+}
+
+const XmlRpc::XmlRpcValue* NodeParams::find(const std::string& name) const
+{
+  auto& v = const_cast<XmlRpc::XmlRpcValue&>(values_);
+  if (v.getType() != XmlRpc::XmlRpcValue::TypeStruct || !v.hasMember(name)) return nullptr;
+  return &v[name];
+}
+
+bool NodeParams::has(const std::string& name) const
+{
+  return find(name) != nullptr;
+}
+
+std::string NodeParams::show(const XmlRpc::XmlRpcValue& v)
+{
+  auto& value = const_cast<XmlRpc::XmlRpcValue&>(v);
+  std::ostringstream out;
+  switch (value.getType())
+  {
+    case XmlRpc::XmlRpcValue::TypeBoolean:
+      out << (static_cast<bool>(value) ? "true" : "false");
+      break;
+    case XmlRpc::XmlRpcValue::TypeInt:
+      out << static_cast<int>(value);
+      break;
+    case XmlRpc::XmlRpcValue::TypeDouble:
+      out << static_cast<double>(value);
+      break;
+    case XmlRpc::XmlRpcValue::TypeString:
+      out << '"' << static_cast<std::string>(value) << '"';
+      break;
+    case XmlRpc::XmlRpcValue::TypeArray:
+      out << "a list of " << value.size();
+      break;
+    case XmlRpc::XmlRpcValue::TypeStruct:
+      out << "a dictionary";
+      break;
+    default:
+      out << "an unsupported value";
+  }
+  return out.str();
+}
+
+void NodeParams::fail(const std::string& name, const std::string& what) const
+{
+  const XmlRpc::XmlRpcValue* v = find(name);
+  throw std::invalid_argument("parameter " + where_ + name + " " + what + (v ? " (got " + show(*v) + ")" : ""));
+}
+
+std::string NodeParams::getString(const std::string& name, const std::string& def) const
+{
+  const XmlRpc::XmlRpcValue* v = find(name);
+  if (!v) return def;
+  if (v->getType() != XmlRpc::XmlRpcValue::TypeString) fail(name, "must be a string");
+  return static_cast<std::string>(const_cast<XmlRpc::XmlRpcValue&>(*v));
+}
+
+int NodeParams::getInt(const std::string& name, int def) const
+{
+  const XmlRpc::XmlRpcValue* v = find(name);
+  if (!v) return def;
+  if (v->getType() != XmlRpc::XmlRpcValue::TypeInt) fail(name, "must be an integer");
+  return static_cast<int>(const_cast<XmlRpc::XmlRpcValue&>(*v));
+}
+
+double NodeParams::getDouble(const std::string& name, double def) const
+{
+  const XmlRpc::XmlRpcValue* v = find(name);
+  if (!v) return def;
+  auto& value = const_cast<XmlRpc::XmlRpcValue&>(*v);
+  double d;
+  if (value.getType() == XmlRpc::XmlRpcValue::TypeInt)
+    d = static_cast<int>(value);
+  else if (value.getType() == XmlRpc::XmlRpcValue::TypeDouble)
+    d = static_cast<double>(value);
+  else
+    fail(name, "must be a number");
+  if (!std::isfinite(d)) fail(name, "must be a finite number");
+  return d;
+}
+
+bool NodeParams::getBool(const std::string& name, bool def) const
+{
+  const XmlRpc::XmlRpcValue* v = find(name);
+  if (!v) return def;
+  if (v->getType() != XmlRpc::XmlRpcValue::TypeBoolean) fail(name, "must be true or false");
+  return static_cast<bool>(const_cast<XmlRpc::XmlRpcValue&>(*v));
+}
+
+std::vector<std::string> NodeParams::unknownKeys(const std::vector<std::string>& known) const
+{
+  std::vector<std::string> out;
+  if (values_.getType() != XmlRpc::XmlRpcValue::TypeStruct) return out;
+  auto& v = const_cast<XmlRpc::XmlRpcValue&>(values_);
+  for (auto it = v.begin(); it != v.end(); ++it)
+  {
+    if (it->second.getType() == XmlRpc::XmlRpcValue::TypeStruct || it->first == "use_sim_time") continue;
+    bool is_known = false;
+    for (const auto& k : known)
+      is_known = is_known || k == it->first;
+    if (!is_known) out.push_back(it->first);
+  }
+  return out;
+}
+
+void NodeParams::warnUseSimTime(const std::string& node, const std::string& key_owner) const
+{
+  const XmlRpc::XmlRpcValue* v = find("use_sim_time");
+  if (!v) return;
+  ROS_WARN(
+      "%s: parameter %suse_sim_time (%s) has no effect in ROS 1: it is a ROS 2 node parameter; here the global "
+      "/use_sim_time switches every node to simulated time (<param name=\"/use_sim_time\" value=\"true\"/>) "
+      "[%s/use_sim_time]",
+      node.c_str(), where_.c_str(), show(*v).c_str(), key_owner.c_str());
+}
+}  // namespace costmap_layers_ros
