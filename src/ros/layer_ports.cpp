@@ -95,8 +95,7 @@ LayerPorts::LayerPorts(ros::NodeHandle public_nh, ros::NodeHandle private_nh, co
         port_subscribers_[index] = subscribe(port);
         // Not throttled (a replacement is rare and each one matters); ends with the layer's stable key.
         const std::string& ns = private_nh_.getNamespace();
-        ROS_INFO("%s: now reading %s [%s/input]", ns.c_str(), resolveTopic(port.topic).c_str(),
-                 ns.substr(ns.rfind('/') + 1).c_str());
+        ROS_INFO("%s: now reading %s [%s/input]", ns.c_str(), resolveTopic(port.topic).c_str(), ns.c_str());
       });
   for (const costmap_layers::OutputPort& out : layer.outputs())
   {

@@ -77,8 +77,8 @@ class Nav2KeepoutTest(unittest.TestCase):
         self.assertEqual(value_at(self.grid, 2.0, 2.0), 0)  # the mask's 205 grey: free under Nav2's rule
 
     def test_2_waiting_for_filter_info_is_said(self):
-        m = self.wait_log("late_keepout/waiting", 20.0)
-        self.assertIsNotNone(m, "no [late_keepout/waiting] warning on /rosout")
+        m = self.wait_log("/costmap_node/late_keepout/waiting", 20.0)
+        self.assertIsNotNone(m, "no [/costmap_node/late_keepout/waiting] warning on /rosout")
         self.assertEqual(m.level, Log.WARN)
         self.assertIn("waiting for filter info on /late_filter_info", m.msg)
 
@@ -106,12 +106,12 @@ class Nav2KeepoutTest(unittest.TestCase):
         deadline = rospy.Time.now() + rospy.Duration(10.0)
 
         def moved():
-            return [m.msg for m in self.logs if m.msg.endswith("[late_keepout/input]") and "/late_mask_b" in m.msg]
+            return [m.msg for m in self.logs if m.msg.endswith("[/costmap_node/late_keepout/input]") and "/late_mask_b" in m.msg]
 
         with self.log_cond:
             while not moved() and rospy.Time.now() < deadline:
                 self.log_cond.wait(0.5)
-            self.assertTrue(moved(), "no [late_keepout/input] line naming /late_mask_b on /rosout")
+            self.assertTrue(moved(), "no [/costmap_node/late_keepout/input] line naming /late_mask_b on /rosout")
 
     def run_info_server(self, name, *args):
         exe = roslib.packages.find_node("costmap_layers", "costmap_filter_info_server")
