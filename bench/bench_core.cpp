@@ -98,7 +98,8 @@ void BM_KeepoutFilter(benchmark::State& state)
   lc.resizeMap(kSize, kSize, 0.05, 0.0, 0.0);
   auto ctx = std::make_shared<FakeContext>();
   auto filter = std::make_shared<KeepoutFilter>();
-  filter->initialize(&lc, "keepout", ctx); ctx->bind(*filter);
+  filter->initialize(&lc, "keepout", ctx);
+  ctx->bind(*filter);
   lc.addFilter(filter);
   filter->matchSize();
   auto mask = std::make_shared<OccupancyGridData>();

@@ -101,7 +101,8 @@ void BM_LanesFullUpdate(benchmark::State& state)
   lc.resizeMap(kSize, kSize, kRes, 0.0, 0.0);
   auto ctx = std::make_shared<FakeContext>(lanesParams(0.5));
   auto filter = std::make_shared<LanesFilter>();
-  filter->initialize(&lc, "lanes", ctx); ctx->bind(*filter);
+  filter->initialize(&lc, "lanes", ctx);
+  ctx->bind(*filter);
   lc.addFilter(filter);
   filter->setMask(laneGridMask());
   Costmap2D master(kSize, kSize, kRes, 0.0, 0.0, 0);

@@ -43,6 +43,7 @@ public:
   {
     std::fprintf(stderr, "report: %s\n", message.c_str());
   }
+
 private:
   ParamValue params_;
   std::string frame_ = "map";

@@ -69,7 +69,8 @@ void BM_RollingObstacleInflationCycle(benchmark::State& state)
   p.set("scan", paramMap({{"data_type", S("LaserScan")}, {"clearing", B(true)}, {"marking", B(true)}}));
   auto ctx = std::make_shared<FakeContext>(p);
   auto obstacles = std::make_shared<ObstacleLayer>();
-  obstacles->initialize(&lc, "obstacles", ctx); ctx->bind(*obstacles);
+  obstacles->initialize(&lc, "obstacles", ctx);
+  ctx->bind(*obstacles);
   lc.addPlugin(obstacles);
   auto inflation = std::make_shared<InflationLayer>();
   inflation->initialize(&lc, "inflation", std::make_shared<FakeContext>(paramMap({{"inflation_radius", D(0.55)}})));
@@ -129,7 +130,8 @@ void BM_VoxelLayerCameraCloud(benchmark::State& state)
                             {"min_obstacle_height", D(-1.0)}}));
   auto ctx = std::make_shared<FakeContext>(p);
   auto voxels = std::make_shared<VoxelLayer>();
-  voxels->initialize(&lc, "voxels", ctx); ctx->bind(*voxels);
+  voxels->initialize(&lc, "voxels", ctx);
+  ctx->bind(*voxels);
   lc.addPlugin(voxels);
   const PointCloud2Data cloud = cameraCloud();
   for (auto _ : state)

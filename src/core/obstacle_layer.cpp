@@ -136,12 +136,12 @@ void ObstacleLayer::onInitialize()
                                       if (scan) addLaserScan(i, *scan, pose);
                                     }));
     else
-      addInput(InputPort::pointCloud2(
-          s.topic, s.sensor_frame,
-          [this, i](const std::shared_ptr<const PointCloud2Data>& cloud, const SensorPose& pose)
-          {
-            if (cloud) addPointCloud2(i, *cloud, pose);
-          }));
+      addInput(
+          InputPort::pointCloud2(s.topic, s.sensor_frame,
+                                 [this, i](const std::shared_ptr<const PointCloud2Data>& cloud, const SensorPose& pose)
+                                 {
+                                   if (cloud) addPointCloud2(i, *cloud, pose);
+                                 }));
   }
   if (config_.sources.empty())
     context_->report(Severity::Warn, "no_sources",

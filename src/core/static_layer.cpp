@@ -96,7 +96,8 @@ std::string StaticLayer::setMap(std::shared_ptr<const OccupancyGridData> map)
     latest_rejected_ = true;
   }
   // Throttled per field, so that each distinct problem is still reported once.
-  const std::string text = name_ + ": map on " + config_.map_topic + " rejected, keeping the previous one: " + error.message;
+  const std::string text =
+      name_ + ": map on " + config_.map_topic + " rejected, keeping the previous one: " + error.message;
   if (context_) context_->report(Severity::Error, "map/" + error.field, text);
   return text;
 }
@@ -121,10 +122,11 @@ std::string StaticLayer::applyUpdate(int64_t x, int64_t y, uint32_t width, uint3
     else
     {
       const uint64_t cells = static_cast<uint64_t>(width) * height;
-      while (!pending_updates_.empty() && (pending_updates_.size() >= kMaxPendingUpdates ||
-                                           pending_update_cells_ + cells > kMaxPendingUpdateCells))
+      while (!pending_updates_.empty() &&
+             (pending_updates_.size() >= kMaxPendingUpdates || pending_update_cells_ + cells > kMaxPendingUpdateCells))
       {
-        pending_update_cells_ -= static_cast<uint64_t>(pending_updates_.front().width) * pending_updates_.front().height;
+        pending_update_cells_ -=
+            static_cast<uint64_t>(pending_updates_.front().width) * pending_updates_.front().height;
         pending_updates_.erase(pending_updates_.begin());
         dropped = ++dropped_updates_;
       }

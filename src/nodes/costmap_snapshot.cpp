@@ -37,32 +37,30 @@ int main(int argc, char** argv)
   nav_msgs::OccupancyGrid grid;
   bool have_grid = false;
   ros::Time first;
-  auto sub = nh.subscribe<nav_msgs::OccupancyGrid>(topic, 1,
-                                                   [&](const nav_msgs::OccupancyGrid::ConstPtr& msg)
-                                                   {
-                                                     // Sizes checked before any cell is touched.
-                                                     std::string error;
-                                                     try
-                                                     {
-                                                       error = costmap_layers::validateGrid(
-                                                                   costmap_layers_ros::fromMsg(*msg))
-                                                                   .message;
-                                                     }
-                                                     catch (const std::exception& e)
-                                                     {
-                                                       error = e.what();
-                                                     }
-                                                     if (!error.empty())
-                                                     {
-                                                       ROS_ERROR_THROTTLE(5.0, "costmap_snapshot: grid on %s dropped: %s",
-                                                                          topic.c_str(), error.c_str());
-                                                       return;
-                                                     }
-                                                     std::lock_guard<std::mutex> lock(mutex);
-                                                     grid = *msg;
-                                                     if (!have_grid) first = ros::Time::now();
-                                                     have_grid = true;
-                                                   });
+  auto sub = nh.subscribe<nav_msgs::OccupancyGrid>(
+      topic, 1,
+      [&](const nav_msgs::OccupancyGrid::ConstPtr& msg)
+      {
+        // Sizes checked before any cell is touched.
+        std::string error;
+        try
+        {
+          error = costmap_layers::validateGrid(costmap_layers_ros::fromMsg(*msg)).message;
+        }
+        catch (const std::exception& e)
+        {
+          error = e.what();
+        }
+        if (!error.empty())
+        {
+          ROS_ERROR_THROTTLE(5.0, "costmap_snapshot: grid on %s dropped: %s", topic.c_str(), error.c_str());
+          return;
+        }
+        std::lock_guard<std::mutex> lock(mutex);
+        grid = *msg;
+        if (!have_grid) first = ros::Time::now();
+        have_grid = true;
+      });
   auto updates = nh.subscribe<map_msgs::OccupancyGridUpdate>(
       topic + "_updates", 10,
       [&](const map_msgs::OccupancyGridUpdate::ConstPtr& u)

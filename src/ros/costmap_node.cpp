@@ -125,8 +125,8 @@ void CostmapNode::setUp()
       else
         ROS_INFO("costmap: using plugin \"%s\" (%s)", spec.name.c_str(), spec.type.c_str());
       ports_.push_back(std::make_unique<LayerPorts>(nh_, ros::NodeHandle(private_nh_, spec.name),
-                                                    *costmap_->findLayer(spec.name), config_.global_frame, tf_,
-                                                    log_, topic_ns_));
+                                                    *costmap_->findLayer(spec.name), config_.global_frame, tf_, log_,
+                                                    topic_ns_));
     }
 
   // One warning per key that no parse asked for, in the costmap's namespace and in each layer's.

@@ -166,7 +166,8 @@ struct Rig
 
   explicit Rig(ParamValue params = ParamValue::makeMap()) : ctx(std::make_shared<FakeContext>(std::move(params)))
   {
-    filter->initialize(&lc, "test_filter", ctx); ctx->bind(*filter);
+    filter->initialize(&lc, "test_filter", ctx);
+    ctx->bind(*filter);
   }
   /// Calls updateBounds with "nothing yet" bounds and returns what came back.
   std::array<double, 4> bounds(double x0 = std::numeric_limits<double>::max(),

@@ -98,7 +98,8 @@ struct Rig
     if (fill != FREE_SPACE) marks->fillAll(fill);
     lc.addPlugin(marks);
     inflation = std::make_shared<InflationLayer>();
-    inflation->initialize(&lc, "inflation", ctx); ctx->bind(*inflation);
+    inflation->initialize(&lc, "inflation", ctx);
+    ctx->bind(*inflation);
     lc.addPlugin(inflation);
     lc.setFootprint(square(inscribed));
   }

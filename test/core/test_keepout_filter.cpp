@@ -37,7 +37,11 @@ struct Rig
   std::shared_ptr<FakeContext> ctx = std::make_shared<FakeContext>();
   std::shared_ptr<KeepoutFilter> filter = std::make_shared<KeepoutFilter>();
 
-  Rig() { filter->initialize(&lc, "keepout", ctx); ctx->bind(*filter); }
+  Rig()
+  {
+    filter->initialize(&lc, "keepout", ctx);
+    ctx->bind(*filter);
+  }
   /// Puts the filter on a 10 x 10 master at 1 m and draws a lethal mask over cells 3..5 x 3..5 once.
   void drawLethalSquare()
   {

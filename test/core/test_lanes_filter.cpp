@@ -67,7 +67,8 @@ struct Rig
 
   explicit Rig(const Params& p = Params{}) : ctx(std::make_shared<FakeContext>(p.value()))
   {
-    filter->initialize(&lc, "lanes", ctx); ctx->bind(*filter);
+    filter->initialize(&lc, "lanes", ctx);
+    ctx->bind(*filter);
   }
   void cycle()
   {

@@ -13,8 +13,8 @@
 
 #include "beam_reference.hpp"
 #include "costmap_layers/core/cost_values.hpp"
-#include "costmap_layers/core/limits.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
+#include "costmap_layers/core/limits.hpp"
 #include "costmap_layers/core/obstacle_layer.hpp"
 #include "costmap_layers/core/param_reader.hpp"
 #include "costmap_layers/core/static_layer.hpp"
@@ -81,13 +81,15 @@ struct Rig
     {
       static_ctx = std::make_shared<FakeContext>(ParamValue::makeMap());
       static_layer = std::make_shared<StaticLayer>();
-      static_layer->initialize(&lc, "static_layer", static_ctx); static_ctx->bind(*static_layer);
+      static_layer->initialize(&lc, "static_layer", static_ctx);
+      static_ctx->bind(*static_layer);
       lc.addPlugin(static_layer);
       static_ctx->publishGrid(GridKind::Map, staticMap());
     }
     ctx = std::make_shared<FakeContext>(std::move(params));
     layer = std::make_shared<ObstacleLayer>();
-    layer->initialize(&lc, "obstacles", ctx); ctx->bind(*layer);
+    layer->initialize(&lc, "obstacles", ctx);
+    ctx->bind(*layer);
     lc.addPlugin(layer);
   }
   /// Publishes points given in the global frame, seen from a sensor at pose (translation only).
@@ -658,11 +660,11 @@ TEST(ObstacleLayer, ExtremeRaytraceRanges)
   for (unsigned x = 0; x < 9; ++x)  // the edge cell is the line's end cell, never cleared
     EXPECT_EQ(far.master().getCost(x, 5), FREE_SPACE) << x;
   EXPECT_EQ(count(far.master(), FREE_SPACE), 9);
-  Rig none(obstacleParams({{"footprint_clearing_enabled", B(false)}},
-                          {{"marking", B(false)},
-                           {"raytrace_min_range", D(limits::kMaxDistance)},
-                           {"raytrace_max_range", D(limits::kMaxDistance)}}),
-           false, true);
+  Rig none(
+      obstacleParams({{"footprint_clearing_enabled", B(false)}}, {{"marking", B(false)},
+                                                                  {"raytrace_min_range", D(limits::kMaxDistance)},
+                                                                  {"raytrace_max_range", D(limits::kMaxDistance)}}),
+      false, true);
   none.cloud({{25.5, 5.5, 0.5}}, poseAt(0.5, 5.5, 0.5));
   none.update();
   EXPECT_EQ(count(none.master(), FREE_SPACE), 0);

@@ -5,8 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <climits>
-#include <random>
 #include <cmath>
+#include <random>
 
 #include "costmap_layers/core/costmap_filter.hpp"
 
@@ -180,10 +180,10 @@ TEST(ValidateGridUpdate, OverflowFreeAtEveryEdge)
     const char* needle;
   };
   // x = -5 with a width that wraps int32 + uint32 back into range; sizes whose product overflows 32 bits.
-  for (const Bad& b : {Bad{-5, 0, 10, 1, 10, "x", "x=-5"}, Bad{0, INT32_MIN, 1, 1, 1, "x", "y=-2147483648"},
-                       Bad{1, 0, UINT32_MAX, 1, UINT32_MAX, "width", "leaves"},
-                       Bad{INT32_MAX, 0, UINT32_MAX, 0, 0, "width", "leaves"},
-                       Bad{0, 0, 65536, 65536, 0, "data", "data has 0"}, Bad{0, 0, 2, 2, 3, "data", "data has 3"}})
+  for (const Bad& b :
+       {Bad{-5, 0, 10, 1, 10, "x", "x=-5"}, Bad{0, INT32_MIN, 1, 1, 1, "x", "y=-2147483648"},
+        Bad{1, 0, UINT32_MAX, 1, UINT32_MAX, "width", "leaves"}, Bad{INT32_MAX, 0, UINT32_MAX, 0, 0, "width", "leaves"},
+        Bad{0, 0, 65536, 65536, 0, "data", "data has 0"}, Bad{0, 0, 2, 2, 3, "data", "data has 3"}})
   {
     const InputError e = validateGridUpdate(b.x, b.y, b.w, b.h, b.n, 10, 10);
     EXPECT_EQ(e.field, b.field) << e.message;
@@ -223,9 +223,9 @@ TEST(PublishSchedule, RandomSequencesNeverPublishAWindowOutsideItsGrid)
       geometry_changed = false;
       if (!d.full && !d.window.empty())
       {
-        ASSERT_TRUE(inside(d.window, grid)) << d.window.x0 << "," << d.window.y0 << " .. " << d.window.xn << ","
-                                            << d.window.yn << " on " << grid.getSizeInCellsX() << "x"
-                                            << grid.getSizeInCellsY();
+        ASSERT_TRUE(inside(d.window, grid))
+            << d.window.x0 << "," << d.window.y0 << " .. " << d.window.xn << "," << d.window.yn << " on "
+            << grid.getSizeInCellsX() << "x" << grid.getSizeInCellsY();
       }
     }
   }

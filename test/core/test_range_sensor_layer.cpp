@@ -36,7 +36,8 @@ struct Rig
     lc.resizeMap(10, 10, 1.0, 0.0, 0.0);
     ctx = std::make_shared<FakeContext>(std::move(params));
     layer = std::make_shared<RangeSensorLayer>();
-    layer->initialize(&lc, "range", ctx); ctx->bind(*layer);
+    layer->initialize(&lc, "range", ctx);
+    ctx->bind(*layer);
     lc.addPlugin(layer);
   }
   void range(const RangeData& r, double x, double y, double yaw = 0.0)
@@ -274,7 +275,8 @@ TEST(RangeSensorLayer, TheWorkOfOneUpdateIsBoundedByCells)
   lc.resizeMap(2000, 2000, 0.05, 0.0, 0.0);  // 100 m square, 4 M cells
   auto ctx = std::make_shared<FakeContext>(nav2Params());
   auto layer = std::make_shared<RangeSensorLayer>();
-  layer->initialize(&lc, "range", ctx); ctx->bind(*layer);
+  layer->initialize(&lc, "range", ctx);
+  ctx->bind(*layer);
   lc.addPlugin(layer);
   RangeData wide = sonar(6.0f, 0.1f, 7.0f);
   wide.field_of_view = 1.5f;

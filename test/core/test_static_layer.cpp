@@ -60,7 +60,8 @@ struct Rig
     lc.resizeMap(10, 10, 1.0, 0.0, 0.0);
     ctx = std::make_shared<FakeContext>(std::move(params), global);
     layer = std::make_shared<StaticLayer>();
-    layer->initialize(&lc, "static_layer", ctx); ctx->bind(*layer);
+    layer->initialize(&lc, "static_layer", ctx);
+    ctx->bind(*layer);
     lc.addPlugin(layer);
   }
   void publish(const OccupancyGridData& m) { ctx->publishGrid(GridKind::Map, m); }
@@ -223,7 +224,8 @@ TEST(StaticLayer, UseMaximum)
     lc.addPlugin(below);
     auto ctx = std::make_shared<FakeContext>(params({{"use_maximum", ParamValue::makeBool(use_max)}}));
     auto layer = std::make_shared<StaticLayer>();
-    layer->initialize(&lc, "static_layer", ctx); ctx->bind(*layer);
+    layer->initialize(&lc, "static_layer", ctx);
+    ctx->bind(*layer);
     lc.addPlugin(layer);
     OccupancyGridData m = makeMap(10, 10, 1.0, 0, 0);
     setCell(m, 5, 5, 100);

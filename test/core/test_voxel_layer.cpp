@@ -51,7 +51,8 @@ struct Rig
     lc.resizeMap(10, 10, 1.0, 0.0, 0.0);
     ctx = std::make_shared<FakeContext>(std::move(params));
     layer = std::make_shared<VoxelLayer>();
-    layer->initialize(&lc, "voxels", ctx); ctx->bind(*layer);
+    layer->initialize(&lc, "voxels", ctx);
+    ctx->bind(*layer);
     lc.addPlugin(layer);
   }
   /// Points in the global frame seen from a sensor at `o` (no rotation).
@@ -304,7 +305,8 @@ TEST(VoxelLayer, ClearingRaysFollowTheBeamPropertyTest)
     lc.resizeMap(80, 80, 0.1, -4.0, -4.0);
     auto ctx = std::make_shared<FakeContext>(p);
     auto layer = std::make_shared<VoxelLayer>();
-    layer->initialize(&lc, "voxels", ctx); ctx->bind(*layer);
+    layer->initialize(&lc, "voxels", ctx);
+    ctx->bind(*layer);
     lc.addPlugin(layer);
     for (int k = 0; k < 150; ++k)
     {

@@ -162,7 +162,8 @@ inline std::shared_ptr<ObstacleLayer> makeSensorLayer(LayeredCostmap& lc, const 
     layer = std::make_shared<ObstacleLayer>();
   try
   {
-    layer->initialize(&lc, "obstacles", ctx); ctx->bind(*layer);
+    layer->initialize(&lc, "obstacles", ctx);
+    ctx->bind(*layer);
   }
   catch (const std::invalid_argument&)
   {

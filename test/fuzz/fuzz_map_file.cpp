@@ -68,7 +68,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
   lc.resizeMap(1, 1, 1.0, 0.0, 0.0);
   auto ctx = std::make_shared<FuzzContext>();
   auto layer = std::make_shared<StaticLayer>();
-  layer->initialize(&lc, "static_layer", ctx); ctx->bind(*layer);
+  layer->initialize(&lc, "static_layer", ctx);
+  ctx->bind(*layer);
   lc.addPlugin(layer);
   FUZZ_CHECK(layer->setMap(std::make_shared<const OccupancyGridData>(map)).empty(), "a decoded map is accepted");
   lc.updateMap(0, 0, 0);

@@ -49,7 +49,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
   if (kind == 2) filter = std::make_shared<SpeedFilter>();
   try
   {
-    filter->initialize(&lc, "filter", ctx); ctx->bind(*filter);
+    filter->initialize(&lc, "filter", ctx);
+    ctx->bind(*filter);
   }
   catch (const std::invalid_argument&)
   {

@@ -54,7 +54,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
   auto layer = std::make_shared<RangeSensorLayer>();
   try
   {
-    layer->initialize(&lc, "range", ctx); ctx->bind(*layer);
+    layer->initialize(&lc, "range", ctx);
+    ctx->bind(*layer);
   }
   catch (const std::invalid_argument&)
   {

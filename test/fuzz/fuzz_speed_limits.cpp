@@ -55,7 +55,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
   auto filter = std::make_shared<SpeedFilter>();
   try
   {
-    filter->initialize(&lc, "speed_filter", ctx); ctx->bind(*filter);
+    filter->initialize(&lc, "speed_filter", ctx);
+    ctx->bind(*filter);
   }
   catch (const std::invalid_argument&)
   {

@@ -54,7 +54,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
   auto ctx = std::make_shared<FuzzContext>(params);
   ctx->transforms[{"odom", "map"}] = Transform2D{finiteReal(in), finiteReal(in), finiteReal(in)};
   auto layer = std::make_shared<StaticLayer>();
-  layer->initialize(&lc, "static_layer", ctx); ctx->bind(*layer);
+  layer->initialize(&lc, "static_layer", ctx);
+  ctx->bind(*layer);
   lc.addPlugin(layer);
   if (with_inflation)
   {

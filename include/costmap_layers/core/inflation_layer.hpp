@@ -27,7 +27,6 @@ struct InflationConfig
 /// inflate_around_unknown. Throws std::invalid_argument naming the parameter.
 InflationConfig parseInflationConfig(const ParamReader& params);
 
-
 class InflationLayer : public Layer
 {
 public:

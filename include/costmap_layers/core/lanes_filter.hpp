@@ -83,6 +83,7 @@ public:
   const LanesFilterConfig& config() const { return config_; }
   /// How many times the per-mask costs were computed (once per new mask). For tests and diagnostics.
   std::size_t costComputations() const { return cost_computations_; }
+
 protected:
   /// Changes lane_border_width, border_cost, cost_profile and decay at run time; the costs are
   /// recomputed at the next update.

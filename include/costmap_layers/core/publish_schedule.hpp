@@ -56,8 +56,8 @@ private:
   double next_s_ = 0.0;
   bool full_needed_ = true;  ///< nothing published yet, or the geometry changed
   bool have_geometry_ = false;
-  GridGeometry geometry_;     ///< of the grid at the last cycle
-  GridGeometry published_;    ///< of the grid at the last full publish
+  GridGeometry geometry_;   ///< of the grid at the last cycle
+  GridGeometry published_;  ///< of the grid at the last full publish
   CellWindow pending_;
 };
 }  // namespace costmap_layers

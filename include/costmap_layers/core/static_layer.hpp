@@ -103,7 +103,7 @@ private:
   std::vector<PendingUpdate> pending_updates_;
   uint64_t pending_update_cells_ = 0;
   uint64_t dropped_updates_ = 0;  ///< since the layer started, for the flood warning
-  bool accepted_any_ = false;  ///< a map was accepted (for first_map_only and updates)
+  bool accepted_any_ = false;     ///< a map was accepted (for first_map_only and updates)
   uint32_t latest_width_ = 0, latest_height_ = 0;
   uint64_t map_stamp_ns_ = 0;  ///< header.stamp of the latest accepted map
   // For status(): what arrived, and when (context clock).

@@ -81,7 +81,7 @@ private:
   ros::Publisher costmap_pub_;
   ros::Publisher update_pub_;
   ros::Publisher footprint_pub_;
-  std::vector<std::unique_ptr<LayerPorts>> ports_;  ///< every layer's subscriptions and publications
+  std::vector<std::unique_ptr<LayerPorts>> ports_;              ///< every layer's subscriptions and publications
   std::vector<std::unique_ptr<LayerReconfigure>> reconfigure_;  ///< one dynamic_reconfigure server per layer
   ros::ServiceServer clear_srv_;
   ros::ServiceServer clear_around_srv_;

@@ -24,6 +24,6 @@ enum class TfVerdict
 ///                   stamp between a frame and itself, so a reading from the future would pass.
 /// Uses only tf2's public, locked calls (canTransform, lookupTransform, getCacheLength; the last is not
 /// const in tf2, hence the non-const buffer).
-TfVerdict tfVerdict(tf2::BufferCore& tf, const std::string& target, const std::string& frame,
-                    const ros::Time& stamp, const ros::Time& now, double max_ahead);
+TfVerdict tfVerdict(tf2::BufferCore& tf, const std::string& target, const std::string& frame, const ros::Time& stamp,
+                    const ros::Time& now, double max_ahead);
 }  // namespace costmap_layers_ros
