@@ -98,6 +98,20 @@ class FloodTest(unittest.TestCase):
             target = self.cycles + n
         self.assertTrue(self.wait_for(lambda: self.cycles >= target, timeout), "the update loop stopped")
 
+    def test_a_new_subscriber_gets_the_current_grid_at_once(self):
+        # costmap_2d's rule: each new ~costmap subscriber gets the current grid from the connect
+        # callback, not a latched one from the last resize, and without waiting for a change. A new
+        # subscriber is a new connection: another process (a second rospy subscriber in this process
+        # would share this process's connection).
+        self.map_pub.publish(grid_msg(100))
+        self.assertTrue(self.wait_for(lambda: self.grid_size == (100, 100), 10 * PUBLISH_PERIOD))
+        self.wait_cycles(2)
+        for _ in range(2):
+            out = subprocess.run(["rostopic", "echo", "-n", "1", "/costmap_node/costmap/info/width"],
+                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True,
+                                 timeout=5 * PUBLISH_PERIOD + 10.0)
+            self.assertEqual(out.stdout.split()[:1], ["100"], out.stderr)
+
     def test_resizes_between_publishes(self):
         for _ in range(5):
             self.map_pub.publish(grid_msg(1000))
