@@ -24,6 +24,7 @@
 #include "costmap_layers/io/features_file.hpp"
 #include "costmap_layers/io/map_file.hpp"
 #include "costmap_layers/io/param_yaml.hpp"
+#include "png_bytes.hpp"
 #include "temp_dir_test.hpp"
 
 using costmap_layers::io::decodeMapImage;
@@ -208,28 +209,6 @@ TEST_F(FileEdges, OversizeSparseFilesAreRefusedFromTheirSize)
 
 // ---------------------------------------------------------------------------------------------
 // Image headers promising too many cells: 22000 x 22000 = 484 million > 400 million.
-
-uint32_t crc32(const std::string& bytes)
-{
-  uint32_t c = 0xFFFFFFFFu;
-  for (unsigned char b : bytes)
-  {
-    c ^= b;
-    for (int k = 0; k < 8; ++k)
-      c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
-  }
-  return c ^ 0xFFFFFFFFu;
-}
-
-std::string be32(uint32_t v)
-{
-  return {static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8), static_cast<char>(v)};
-}
-
-std::string pngChunk(const std::string& type, const std::string& data)
-{
-  return be32(static_cast<uint32_t>(data.size())) + type + data + be32(crc32(type + data));
-}
 
 /// A PNG of w x h 8-bit grey pixels whose IDAT holds only a few bytes, followed by `padding` bytes of
 /// an ancillary chunk: the file is large enough that a deflate-ratio test alone lets it through (the

@@ -2,6 +2,7 @@
 // negate, alpha, colour/palette/16-bit images, the flip, PNG == PGM, every error, and the real maps
 // copied into test/data/maps (sources and licences in test/data/README.md).
 #include "costmap_layers/io/map_file.hpp"
+#include "png_bytes.hpp"
 #include "temp_dir_test.hpp"
 
 #include <gtest/gtest.h>
@@ -609,28 +610,6 @@ TEST(RealMaps, TutorialsSpeedMaskRos1VersusNav2)
 
 namespace
 {
-uint32_t crc32Of(const std::string& bytes)
-{
-  uint32_t c = 0xFFFFFFFFu;
-  for (unsigned char b : bytes)
-  {
-    c ^= b;
-    for (int k = 0; k < 8; ++k)
-      c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
-  }
-  return c ^ 0xFFFFFFFFu;
-}
-
-std::string pngChunk(const std::string& type, const std::string& data)
-{
-  auto be32 = [](uint32_t v)
-  {
-    return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8),
-                       static_cast<char>(v)};
-  };
-  return be32(static_cast<uint32_t>(data.size())) + type + data + be32(crc32Of(type + data));
-}
-
 std::vector<uint8_t> bytesOf(const std::string& s)
 {
   return std::vector<uint8_t>(s.begin(), s.end());
