@@ -94,9 +94,6 @@ void CostmapNode::setUp()
   // nobody asked for can be reported.
   costmap_layers::ParamReadLog read_log;
   config_ = costmap_layers::parseCostmapConfig(params);
-  if (config_.update_frequency <= 0.0)
-    throw std::invalid_argument("costmap: parameter 'update_frequency' must be positive (got " +
-                                std::to_string(config_.update_frequency) + ")");
   const costmap_layers::PluginLists lists = costmap_layers::parsePluginLists(params);
 
   costmap_ = std::make_unique<costmap_layers::LayeredCostmap>(config_.global_frame, config_.rolling_window,
