@@ -14,7 +14,9 @@ PKGS=(
   python3-tf2-ros python3-yaml libsensor-msgs-dev ros-sensor-msgs python3-sensor-msgs
   libmessage-filters-dev libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
   libdiagnostic-updater-dev libdiagnostic-msgs-dev ros-diagnostic-msgs python3-diagnostic-msgs
-  libcli11-dev nlohmann-json3-dev
+  libcli11-dev nlohmann-json3-dev libhwy-dev
+  libinteractive-markers-dev python3-interactive-markers libvisualization-msgs-dev
+  ros-visualization-msgs python3-visualization-msgs
   clang libclang-rt-14-dev
 )
 missing=()
