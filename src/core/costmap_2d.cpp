@@ -14,6 +14,76 @@ Costmap2D::Costmap2D(unsigned int size_x, unsigned int size_y, double resolution
   resizeMap(size_x, size_y, resolution, origin_x, origin_y);
 }
 
+Costmap2D::Costmap2D(const Costmap2D& other)
+    : size_x_(other.size_x_),
+      size_y_(other.size_y_),
+      resolution_(other.resolution_),
+      origin_x_(other.origin_x_),
+      origin_y_(other.origin_y_),
+      default_value_(other.default_value_),
+      owned_(other.cells_, other.cells_ + other.count_),
+      cells_(owned_.data()),
+      count_(other.count_)
+{
+}
+
+Costmap2D& Costmap2D::operator=(const Costmap2D& other)
+{
+  if (this == &other) return *this;
+  size_x_ = other.size_x_;
+  size_y_ = other.size_y_;
+  resolution_ = other.resolution_;
+  origin_x_ = other.origin_x_;
+  origin_y_ = other.origin_y_;
+  default_value_ = other.default_value_;
+  owned_.assign(other.cells_, other.cells_ + other.count_);
+  cells_ = owned_.data();
+  count_ = other.count_;
+  view_ = false;
+  return *this;
+}
+
+Costmap2D::Costmap2D(Costmap2D&& other) noexcept
+{
+  *this = std::move(other);
+}
+
+Costmap2D& Costmap2D::operator=(Costmap2D&& other) noexcept
+{
+  if (this == &other) return *this;
+  size_x_ = other.size_x_;
+  size_y_ = other.size_y_;
+  resolution_ = other.resolution_;
+  origin_x_ = other.origin_x_;
+  origin_y_ = other.origin_y_;
+  default_value_ = other.default_value_;
+  view_ = other.view_;
+  count_ = other.count_;
+  owned_ = std::move(other.owned_);
+  cells_ = view_ ? other.cells_ : owned_.data();
+  other.owned_.clear();
+  other.cells_ = nullptr;
+  other.count_ = 0;
+  other.size_x_ = other.size_y_ = 0;
+  other.view_ = false;
+  return *this;
+}
+
+void Costmap2D::viewMemory(uint8_t* cells, unsigned int size_x, unsigned int size_y, double resolution,
+                           double origin_x, double origin_y)
+{
+  size_x_ = size_x;
+  size_y_ = size_y;
+  resolution_ = resolution;
+  origin_x_ = origin_x;
+  origin_y_ = origin_y;
+  owned_.clear();
+  owned_.shrink_to_fit();
+  cells_ = cells;
+  count_ = static_cast<std::size_t>(size_x) * size_y;
+  view_ = true;
+}
+
 bool Costmap2D::worldToMap(double wx, double wy, unsigned int& mx, unsigned int& my) const
 {
   if (!(wx >= origin_x_) || !(wy >= origin_y_)) return false;  // also false for NaN
@@ -64,12 +134,15 @@ void Costmap2D::resizeMap(unsigned int size_x, unsigned int size_y, double resol
   resolution_ = resolution;
   origin_x_ = origin_x;
   origin_y_ = origin_y;
-  cells_.assign(static_cast<std::size_t>(size_x) * size_y, default_value_);
+  count_ = static_cast<std::size_t>(size_x) * size_y;
+  owned_.assign(count_, default_value_);
+  cells_ = owned_.data();
+  view_ = false;
 }
 
 void Costmap2D::resetMaps()
 {
-  std::fill(cells_.begin(), cells_.end(), default_value_);
+  std::fill(cells_, cells_ + count_, default_value_);
 }
 
 void Costmap2D::resetMap(unsigned int x0, unsigned int y0, unsigned int xn, unsigned int yn)
@@ -84,7 +157,7 @@ void Costmap2D::fillWindow(unsigned int x0, unsigned int y0, unsigned int xn, un
   if (x0 >= xn || y0 >= yn) return;
   for (unsigned int y = y0; y < yn; ++y)
   {
-    uint8_t* row = cells_.data() + static_cast<std::size_t>(y) * size_x_;
+    uint8_t* row = cells_ + static_cast<std::size_t>(y) * size_x_;
     std::memset(row + x0, value, xn - x0);
   }
 }
@@ -99,8 +172,8 @@ bool Costmap2D::copyWindow(const Costmap2D& source, unsigned int sx0, unsigned i
   if (w == 0) return true;
   for (unsigned int k = 0; k < h; ++k)
   {
-    const uint8_t* from = source.cells_.data() + static_cast<std::size_t>(sy0 + k) * source.size_x_ + sx0;
-    uint8_t* to = cells_.data() + static_cast<std::size_t>(dy0 + k) * size_x_ + dx0;
+    const uint8_t* from = source.cells_ + static_cast<std::size_t>(sy0 + k) * source.size_x_ + sx0;
+    uint8_t* to = cells_ + static_cast<std::size_t>(dy0 + k) * size_x_ + dx0;
     std::memmove(to, from, w);
   }
   return true;
@@ -130,7 +203,7 @@ void Costmap2D::updateOrigin(double new_origin_x, double new_origin_y)
   const int overlap_x = upper_right_x - lower_left_x;
   const int overlap_y = upper_right_y - lower_left_y;
 
-  std::vector<uint8_t> next(cells_.size(), default_value_);
+  std::vector<uint8_t> next(count_, default_value_);
   if (overlap_x > 0 && overlap_y > 0)
   {
     const int start_x = lower_left_x - cell_ox;
@@ -138,11 +211,19 @@ void Costmap2D::updateOrigin(double new_origin_x, double new_origin_y)
     for (int k = 0; k < overlap_y; ++k)
     {
       std::memcpy(next.data() + static_cast<std::size_t>(start_y + k) * size_x_ + start_x,
-                  cells_.data() + static_cast<std::size_t>(lower_left_y + k) * size_x_ + lower_left_x,
+                  cells_ + static_cast<std::size_t>(lower_left_y + k) * size_x_ + lower_left_x,
                   static_cast<std::size_t>(overlap_x));
     }
   }
-  cells_.swap(next);
+  if (view_)
+  {
+    if (count_ > 0) std::memcpy(cells_, next.data(), count_);
+  }
+  else
+  {
+    owned_.swap(next);
+    cells_ = owned_.data();
+  }
   origin_x_ = new_grid_ox;
   origin_y_ = new_grid_oy;
 }

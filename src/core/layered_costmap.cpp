@@ -52,8 +52,28 @@ void LayeredCostmap::resizeMap(unsigned int size_x, unsigned int size_y, double 
                                double origin_y, bool size_locked)
 {
   size_locked_ = size_locked;
+  if (resize_handler_)
+  {
+    resize_handler_(size_x, size_y, resolution, origin_x, origin_y, size_locked);
+    return;
+  }
   primary_.resizeMap(size_x, size_y, resolution, origin_x, origin_y);
   if (!filters_.empty()) combined_.resizeMap(size_x, size_y, resolution, origin_x, origin_y);
+  for (const auto* list : {&plugins_, &filters_})
+  {
+    for (const auto& layer : *list)
+      layer->matchSize();
+  }
+}
+
+void LayeredCostmap::viewMaster(uint8_t* cells, unsigned int size_x, unsigned int size_y, double resolution,
+                                double origin_x, double origin_y)
+{
+  const bool changed = size_x != primary_.getSizeInCellsX() || size_y != primary_.getSizeInCellsY() ||
+                       resolution != primary_.getResolution() ||
+                       (!rolling_window_ && (origin_x != primary_.getOriginX() || origin_y != primary_.getOriginY()));
+  primary_.viewMemory(cells, size_x, size_y, resolution, origin_x, origin_y);
+  if (!changed) return;
   for (const auto* list : {&plugins_, &filters_})
   {
     for (const auto& layer : *list)

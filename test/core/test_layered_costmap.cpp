@@ -669,3 +669,112 @@ TEST(LayeredCostmapMisc, FindLayerAndEmptyCostmap)
   // Adding a filter after resizing keeps the result grid's geometry.
   EXPECT_EQ(h.lc.getCostmap().getSizeInCellsX(), 3u);
 }
+
+// ---------------------------------------------------------------- a master owned by another host
+// (move_base's costmap_2d master, viewed by LayerBridge)
+
+TEST(Costmap2DView, WritesGoToTheViewedMemoryAndCopiesOwnTheirs)
+{
+  std::vector<uint8_t> outside(6 * 4, 7);
+  Costmap2D view;
+  view.viewMemory(outside.data(), 6, 4, 0.5, -1.0, 2.0);
+  EXPECT_TRUE(view.isView());
+  EXPECT_EQ(view.data(), outside.data());
+  EXPECT_EQ(view.cellCount(), 24u);
+  EXPECT_EQ(view.getCost(5, 3), 7);
+  view.setCost(2, 1, 99);
+  EXPECT_EQ(outside[1 * 6 + 2], 99);  // row-major, row 0 = lowest y
+  view.fillWindow(0, 3, 6, 4, 5);
+  for (int x = 0; x < 6; ++x)
+    EXPECT_EQ(outside[3 * 6 + x], 5);
+
+  Costmap2D copy = view;  // a copy is independent of the viewed memory
+  EXPECT_FALSE(copy.isView());
+  EXPECT_NE(copy.data(), outside.data());
+  copy.setCost(0, 0, 1);
+  EXPECT_EQ(outside[0], 7);
+  EXPECT_EQ(copy.getCost(2, 1), 99);
+
+  Costmap2D moved = std::move(view);  // a move keeps viewing the same memory
+  EXPECT_TRUE(moved.isView());
+  EXPECT_EQ(moved.data(), outside.data());
+
+  moved.resizeMap(3, 3, 0.5, 0.0, 0.0);  // a resize owns its cells again, the viewed memory is left alone
+  EXPECT_FALSE(moved.isView());
+  EXPECT_NE(moved.data(), outside.data());
+  EXPECT_EQ(outside[1 * 6 + 2], 99);
+}
+
+TEST(Costmap2DView, UpdateOriginShiftsTheViewedCellsInPlace)
+{
+  std::vector<uint8_t> outside(4 * 3, 0);
+  for (std::size_t k = 0; k < outside.size(); ++k)
+    outside[k] = static_cast<uint8_t>(k + 1);
+  Costmap2D view;
+  view.setDefaultValue(255);
+  view.viewMemory(outside.data(), 4, 3, 1.0, 0.0, 0.0);
+  view.updateOrigin(1.0, 1.0);  // one cell right and up: old (1,1) becomes (0,0)
+  EXPECT_EQ(view.data(), outside.data());
+  EXPECT_EQ(outside[0], 1 * 4 + 1 + 1);
+  EXPECT_EQ(outside[1], 1 * 4 + 2 + 1);
+  EXPECT_EQ(outside[3], 255);          // column 3 is new
+  EXPECT_EQ(outside[2 * 4 + 0], 255);  // row 2 is new
+  EXPECT_DOUBLE_EQ(view.getOriginX(), 1.0);
+}
+
+TEST(LayeredCostmapView, LayersMatchSizeOnlyWhenTheGeometryChanges)
+{
+  Harness h;
+  auto a = h.plugin("a");
+  std::vector<uint8_t> first(10 * 8, 0), second(20 * 8, 0);
+  h.log->clear();
+  h.lc.viewMaster(first.data(), 10, 8, 0.1, 0.0, 0.0);
+  EXPECT_EQ(h.of("a"), std::vector<std::string>({"a:matchSize"}));
+  EXPECT_EQ(h.lc.getCostmap().data(), first.data());
+  h.lc.viewMaster(first.data(), 10, 8, 0.1, 0.0, 0.0);  // the same: nothing to match
+  EXPECT_EQ(h.of("a").size(), 1u);
+  h.lc.viewMaster(second.data(), 20, 8, 0.1, 0.0, 0.0);
+  EXPECT_EQ(h.of("a").size(), 2u);
+  EXPECT_EQ(h.lc.getCostmap().data(), second.data());
+  h.lc.viewMaster(second.data(), 20, 8, 0.1, 1.0, 0.0);  // not rolling: a new origin is a resize
+  EXPECT_EQ(h.of("a").size(), 3u);
+
+  Harness rolling(true);
+  auto b = rolling.plugin("b");
+  rolling.lc.viewMaster(first.data(), 10, 8, 0.1, 0.0, 0.0);
+  rolling.log->clear();
+  rolling.lc.viewMaster(first.data(), 10, 8, 0.1, 0.3, -0.2);  // a rolling window moving: no resize
+  EXPECT_TRUE(rolling.of("b").empty());
+  EXPECT_DOUBLE_EQ(rolling.lc.getCostmap().getOriginX(), 0.3);
+}
+
+TEST(LayeredCostmapView, ResizeGoesToTheHostWhenItOwnsTheMaster)
+{
+  Harness h;
+  auto a = h.plugin("a");
+  std::vector<uint8_t> cells(4 * 4, 0);
+  h.lc.viewMaster(cells.data(), 4, 4, 1.0, 0.0, 0.0);
+  std::vector<double> asked;
+  bool locked = false;
+  h.lc.setResizeHandler(
+      [&](unsigned int sx, unsigned int sy, double res, double ox, double oy, bool size_locked)
+      {
+        asked = {static_cast<double>(sx), static_cast<double>(sy), res, ox, oy};
+        locked = size_locked;
+      });
+  h.lc.resizeMap(30, 20, 0.05, -1.0, -2.0, true);
+  EXPECT_EQ(asked, std::vector<double>({30, 20, 0.05, -1.0, -2.0}));
+  EXPECT_TRUE(locked);
+  // The master is still the host's until the host views its resized grid.
+  EXPECT_EQ(h.lc.getCostmap().data(), cells.data());
+  EXPECT_EQ(h.lc.getCostmap().getSizeInCellsX(), 4u);
+}
+
+TEST(LayeredCostmapView, AFullUpdateRequestIsTakenOnce)
+{
+  Harness h;
+  EXPECT_FALSE(h.lc.takeFullUpdateRequest());
+  h.lc.requestFullUpdate();
+  EXPECT_TRUE(h.lc.takeFullUpdateRequest());
+  EXPECT_FALSE(h.lc.takeFullUpdateRequest());
+}

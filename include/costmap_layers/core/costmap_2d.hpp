@@ -26,10 +26,20 @@ public:
   /// @param size_x, size_y [cells]; resolution [m/cell]; origin [m]; every cell starts at default_value.
   Costmap2D(unsigned int size_x, unsigned int size_y, double resolution, double origin_x, double origin_y,
             uint8_t default_value = 0);
-  Costmap2D(const Costmap2D&) = default;
-  Costmap2D& operator=(const Costmap2D&) = default;
-  Costmap2D(Costmap2D&&) = default;
-  Costmap2D& operator=(Costmap2D&&) = default;
+  /// A copy owns its cells, also when the original is a view (see viewMemory).
+  Costmap2D(const Costmap2D& other);
+  Costmap2D& operator=(const Costmap2D& other);
+  Costmap2D(Costmap2D&& other) noexcept;
+  Costmap2D& operator=(Costmap2D&& other) noexcept;
+
+  /// Makes this grid a view of cells it does not own: size_x * size_y bytes, row-major, row 0 = lowest
+  /// y, e.g. move_base's costmap_2d master grid (getCharMap()), so that a layer hosted inside move_base
+  /// writes into it without a copy. The caller keeps the memory alive while the view is used and calls
+  /// this again after the memory moves or changes size. resizeMap makes the grid own its cells again;
+  /// updateOrigin shifts the viewed cells in place.
+  void viewMemory(uint8_t* cells, unsigned int size_x, unsigned int size_y, double resolution, double origin_x,
+                  double origin_y);
+  bool isView() const { return view_; }
 
   unsigned int getSizeInCellsX() const { return size_x_; }
   unsigned int getSizeInCellsY() const { return size_y_; }
@@ -53,10 +63,10 @@ public:
   void setCost(unsigned int mx, unsigned int my, uint8_t cost) { cells_[getIndex(mx, my)] = cost; }
 
   /// Read-only view of all cells (size_x * size_y, row-major).
-  const uint8_t* data() const { return cells_.data(); }
+  const uint8_t* data() const { return cells_; }
   /// Writable view for layers that fill whole rows; valid until the next resize.
-  uint8_t* data() { return cells_.data(); }
-  std::size_t cellCount() const { return cells_.size(); }
+  uint8_t* data() { return cells_; }
+  std::size_t cellCount() const { return count_; }
 
   /// World coordinates of the centre of cell (mx, my).
   void mapToWorld(unsigned int mx, unsigned int my, double& wx, double& wy) const
@@ -129,7 +139,10 @@ private:
   double origin_x_ = 0.0;
   double origin_y_ = 0.0;
   uint8_t default_value_ = 0;
-  std::vector<uint8_t> cells_;
+  std::vector<uint8_t> owned_;  ///< the cells when the grid owns them
+  uint8_t* cells_ = nullptr;    ///< owned_.data(), or the viewed memory
+  std::size_t count_ = 0;
+  bool view_ = false;
 };
 
 template <class ActionType>

@@ -4,6 +4,7 @@
 // grid on the next cycle.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -50,11 +51,29 @@ public:
 
   /// The result: the master grid after plugins and filters (as in Nav2, the combined copy when there
   /// are filters). Both grids always share size, resolution and origin.
+  /// A host that owns the master grid elsewhere (move_base's costmap_2d, see ros/move_base_bridge.hpp):
+  /// the master becomes a view of its cells (Costmap2D::viewMemory). Every layer's matchSize runs when
+  /// the size, the resolution or (not rolling) the origin differ from the previous geometry, as after
+  /// resizeMap. Only for a costmap without filters (a host runs filters as plugins).
+  void viewMaster(uint8_t* cells, unsigned int size_x, unsigned int size_y, double resolution, double origin_x,
+                  double origin_y);
+  /// Where resizeMap goes when the master is a view: the host resizes its own grid and calls viewMaster.
+  using ResizeHandler = std::function<void(unsigned int size_x, unsigned int size_y, double resolution,
+                                           double origin_x, double origin_y, bool size_locked)>;
+  void setResizeHandler(ResizeHandler handler) { resize_handler_ = std::move(handler); }
+
   const Costmap2D& getCostmap() const { return filters_.empty() ? primary_ : combined_; }
   Costmap2D& getCostmap() { return filters_.empty() ? primary_ : combined_; }
 
   /// Makes the next updateMap() cover the whole grid (after a run-time parameter change, say).
   void requestFullUpdate() { full_update_ = true; }
+  /// Whether a full update was asked for since the last call (for a host that runs the cycle itself).
+  bool takeFullUpdateRequest()
+  {
+    const bool asked = full_update_;
+    full_update_ = false;
+    return asked;
+  }
 
   /// The window the last updateMap() changed (empty before the first update).
   CellWindow getUpdatedBounds() const { return updated_; }
@@ -85,6 +104,7 @@ private:
   Costmap2D combined_;
   std::vector<std::shared_ptr<Layer>> plugins_;
   std::vector<std::shared_ptr<Layer>> filters_;
+  ResizeHandler resize_handler_;
   CellWindow updated_;
   Footprint footprint_;
   double inscribed_radius_ = 0.0;
