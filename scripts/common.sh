@@ -5,8 +5,16 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 export ROOT
 BUILD_TYPE="${BUILD_TYPE:-Release}"
 
+# shellcheck source=scripts/navigation_underlay.sh
+source "$ROOT/scripts/navigation_underlay.sh"
+
 build_package() {
   bash "$ROOT/scripts/install_deps.sh"
+  # costmap_2d and move_base for the move_base plugins and their tests: from the ROS distribution, or
+  # from the navigation underlay scripts/build_navigation.sh builds (sourced when it is there).
+  if source_navigation_underlay; then
+    echo "build: with the navigation underlay in $(navigation_underlay_dir)"
+  fi
   cd "$ROOT"
   colcon --log-base "$ROOT/log" build --base-paths "$ROOT" --build-base "$ROOT/build" --install-base "$ROOT/install" \
     --event-handlers console_cohesion+ \

@@ -46,9 +46,35 @@ for f in glob.glob(sys.argv[1] + "/**/*.xml", recursive=True):
             passed += 1
 print(f"tests: {passed} passed, {failed} failed, {skipped} skipped")
 PY
-if [ "$test_rc" -ne 0 ] || [ "$result_rc" -ne 0 ] || [ "$sanitize_rc" -ne 0 ] || [ "$fuzz_rc" -ne 0 ]; then
+# Say plainly whether the move_base integration ran.
+move_base_rc=0
+if costmap_2d_at="$(ros_package_prefix costmap_2d)"; then
+  if ros_package_prefix move_base > /dev/null; then
+    n=$(python3 - "$ROOT/build/costmap_layers/test_results" <<'PY'
+import glob, sys, xml.etree.ElementTree as ET
+n = 0
+for f in glob.glob(sys.argv[1] + "/**/rostest-test_move_base_*.xml", recursive=True):
+    n += sum(1 for _ in ET.parse(f).getroot().iter("testcase"))
+print(n)
+PY
+)
+    if [ "$n" -gt 0 ]; then
+      echo "move_base integration: $n test cases run (costmap_2d from $costmap_2d_at)"
+    else
+      echo "move_base integration: FAILED to run: costmap_2d and move_base are there but no move_base test result" >&2
+      move_base_rc=1
+    fi
+  else
+    echo "move_base integration: not run, move_base not found (costmap_2d is, in $costmap_2d_at); see README.md," \
+      "\"Use it inside move_base\""
+  fi
+else
+  echo "move_base integration: not run, costmap_2d not found; see README.md, \"Use it inside move_base\"" \
+    "(on Debian 12: scripts/build_navigation.sh SOURCES)"
+fi
+if [ "$test_rc" -ne 0 ] || [ "$move_base_rc" -ne 0 ] || [ "$result_rc" -ne 0 ] || [ "$sanitize_rc" -ne 0 ] || [ "$fuzz_rc" -ne 0 ]; then
   echo "test.sh: FAILED (colcon test rc=$test_rc, test-result rc=$result_rc, sanitizers rc=$sanitize_rc," \
-    "fuzzing rc=$fuzz_rc)" >&2
+    "fuzzing rc=$fuzz_rc, move_base integration rc=$move_base_rc)" >&2
   exit 1
 fi
 echo "test.sh: all tests passed"

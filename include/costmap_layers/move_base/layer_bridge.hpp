@@ -1,0 +1,75 @@
+#pragma once
+// Any costmap_layers layer or filter as a costmap_2d plugin, so that it runs inside move_base's global
+// and local costmaps and move_base's planners see what it draws. Built only when costmap_2d is found.
+
+#include <costmap_2d/layer.h>
+
+#include <atomic>
+#include <memory>
+#include <string>
+
+#include "costmap_layers/core/layer.hpp"
+
+namespace costmap_layers
+{
+class LayeredCostmap;
+}
+namespace costmap_layers_ros
+{
+class LayerPorts;
+class LayerReconfigure;
+class RosLayerContext;
+class ThrottledLog;
+}  // namespace costmap_layers_ros
+
+namespace costmap_layers
+{
+namespace move_base
+{
+/// Hosts one core layer inside costmap_2d: move_base's master grid is the core layer's master (a view of
+/// the same memory, no copy), its parameters come from the plugin's namespace (~/<costmap>/<name>, as
+/// costmap_2d's own layers read theirs), its transforms from move_base's tf2 buffer, and the layer's
+/// inputs, outputs, `toggle` service and dynamic_reconfigure server live in that namespace too.
+class LayerBridge : public costmap_2d::Layer
+{
+public:
+  /// @param class_name  the core class's name, e.g. "KeepoutFilter" (for messages and the table of the
+  ///                    parameters costmap_2d and Nav2 know for it)
+  LayerBridge(std::shared_ptr<costmap_layers::Layer> core, std::string class_name);
+  ~LayerBridge() override;
+  LayerBridge(const LayerBridge&) = delete;
+  LayerBridge& operator=(const LayerBridge&) = delete;
+
+  void updateBounds(double robot_x, double robot_y, double robot_yaw, double* min_x, double* min_y, double* max_x,
+                    double* max_y) override;
+  void updateCosts(costmap_2d::Costmap2D& master_grid, int min_i, int min_j, int max_i, int max_j) override;
+  void matchSize() override;
+  void onFootprintChanged() override;
+  void reset() override;
+  void activate() override;
+  void deactivate() override;
+
+  /// The hosted layer (for tests).
+  const costmap_layers::Layer& core() const { return *core_; }
+
+protected:
+  void onInitialize() override;
+
+private:
+  /// Points the core master at move_base's master grid (its memory moves on a resize).
+  void viewMaster();
+  void expandToWholeMap(double* min_x, double* min_y, double* max_x, double* max_y) const;
+
+  std::shared_ptr<costmap_layers::Layer> core_;
+  std::string class_name_;
+  std::unique_ptr<costmap_layers::LayeredCostmap> host_;
+  std::shared_ptr<costmap_layers_ros::ThrottledLog> log_;
+  std::shared_ptr<costmap_layers_ros::RosLayerContext> context_;
+  std::unique_ptr<costmap_layers_ros::LayerPorts> ports_;
+  std::unique_ptr<costmap_layers_ros::LayerReconfigure> reconfigure_;
+  std::atomic<bool> full_update_{true};  ///< redraw the whole map next cycle (start, reconfigure, reset)
+  bool drawn_enabled_ = true;            ///< the core layer's switch as of the last cycle
+};
+
+}  // namespace move_base
+}  // namespace costmap_layers

@@ -1,0 +1,83 @@
+#!/usr/bin/env bash
+# Builds the ROS 1 navigation stack (costmap_2d, move_base, navfn, DWA, ...) into an underlay workspace
+# outside this package's own build, for the move_base integration (the costmap_2d plugins of this
+# package and their tests). Debian 12 packages none of it; on Ubuntu with ROS Noetic install
+# ros-noetic-move-base etc. instead and skip this script.
+#
+#   scripts/build_navigation.sh SOURCE_TARBALL_OR_DIR [UNDERLAY_DIR]
+#
+# SOURCE: a .tar.gz of the navigation sources (e.g. navigation-noetic-<commit>.tar.gz) or a folder
+# holding the packages. UNDERLAY_DIR defaults to $NAV_UNDERLAY, else
+# ${XDG_CACHE_HOME:-~/.cache}/costmap_layers/navigation-underlay, which scripts/test.sh and
+# scripts/demo.sh also look in. A second run with the same sources does nothing. The sources are only
+# read: nothing is copied into this repository.
+set -euo pipefail
+export PATH=/usr/bin:/bin:$PATH
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+# shellcheck source=scripts/navigation_underlay.sh
+source "$ROOT/scripts/navigation_underlay.sh"
+
+if [ $# -lt 1 ] || [ $# -gt 2 ]; then
+  echo "usage: $0 SOURCE_TARBALL_OR_DIR [UNDERLAY_DIR]" >&2
+  exit 2
+fi
+src="$1"
+dest="${2:-$(navigation_underlay_dir)}"
+if [ ! -e "$src" ]; then
+  echo "build_navigation: no such file or folder: $src" >&2
+  exit 2
+fi
+
+# The Debian packages the navigation stack needs beyond this package's own set.
+NAV_PKGS=(
+  ros-cmake-modules libangles-dev libtf2-geometry-msgs-dev libtf2-sensor-msgs-dev
+  libvisualization-msgs-dev ros-visualization-msgs libactionlib-dev python3-actionlib
+  libmove-base-msgs-dev ros-move-base-msgs python3-move-base-msgs liblaser-geometry-dev librosbag-dev
+  libmap-msgs-dev ros-map-msgs python3-map-msgs
+)
+bash "$ROOT/scripts/install_deps.sh"
+missing=()
+for p in "${NAV_PKGS[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  SUDO=""
+  [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+# One stamp per source: the tarball's checksum, or the folder's listing with sizes and times.
+if [ -f "$src" ]; then
+  stamp="$(sha256sum "$src" | cut -d' ' -f1)"
+else
+  stamp="$(find "$src" -type f -printf '%P %s %T@\n' | sort | sha256sum | cut -d' ' -f1)"
+fi
+if [ -f "$dest/install/setup.bash" ] && [ "$(cat "$dest/source.sha256" 2>/dev/null)" = "$stamp" ]; then
+  echo "build_navigation: $dest is up to date with $src"
+  exit 0
+fi
+
+rm -rf "$dest"
+mkdir -p "$dest/src"
+if [ -f "$src" ]; then
+  tar -xzf "$src" -C "$dest/src"
+else
+  cp -a "$src/." "$dest/src/"
+fi
+for p in costmap_2d move_base navfn dwa_local_planner; do
+  if [ -z "$(find "$dest/src" -name package.xml -path "*/$p/package.xml" -print -quit)" ]; then
+    echo "build_navigation: $src has no $p package" >&2
+    exit 1
+  fi
+done
+start=$(date +%s)
+(
+  cd "$dest"
+  colcon --log-base "$dest/log" build --base-paths "$dest/src" --build-base "$dest/build" \
+    --install-base "$dest/install" --event-handlers console_cohesion- \
+    --cmake-args -DCMAKE_BUILD_TYPE=Release -DCATKIN_ENABLE_TESTING=OFF
+)
+echo "$stamp" > "$dest/source.sha256"
+echo "build_navigation: built $(find "$dest/install" -name package.xml -path '*/share/*' | wc -l)" \
+  "packages into $dest in $(($(date +%s) - start)) s"

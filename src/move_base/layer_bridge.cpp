@@ -1,0 +1,169 @@
+#include "costmap_layers/move_base/layer_bridge.hpp"
+
+#include <costmap_2d/layered_costmap.h>
+#include <ros/ros.h>
+
+#include <limits>
+#include <vector>
+
+#include "costmap_layers/core/config_compat.hpp"
+#include "costmap_layers/core/layered_costmap.hpp"
+#include "costmap_layers/ros/conversions.hpp"
+#include "costmap_layers/ros/costmap_node.hpp"
+#include "costmap_layers/ros/layer_ports.hpp"
+#include "costmap_layers/ros/layer_reconfigure.hpp"
+#include "costmap_layers/ros/ros_layer_context.hpp"
+
+namespace costmap_layers
+{
+namespace move_base
+{
+namespace
+{
+/// costmap_2d's Costmap2DROS default; its layers are not told the costmap's value.
+constexpr double kDefaultTransformTolerance = 0.3;
+
+/// The costmap's transform_tolerance: the parent namespace of the plugin's (~/<costmap>), as
+/// Costmap2DROS reads it.
+double transformTolerance(const ros::NodeHandle& plugin_nh)
+{
+  const std::string costmap_ns = ros::names::parentNamespace(plugin_nh.getNamespace());
+  double tolerance = kDefaultTransformTolerance;
+  ros::param::param(costmap_ns + "/transform_tolerance", tolerance, kDefaultTransformTolerance);
+  if (!(tolerance >= 0.0) || !std::isfinite(tolerance))
+  {
+    ROS_ERROR("%s/transform_tolerance is %f; it must be a finite number >= 0: using %.1f", costmap_ns.c_str(),
+              tolerance, kDefaultTransformTolerance);
+    tolerance = kDefaultTransformTolerance;
+  }
+  return tolerance;
+}
+}  // namespace
+
+LayerBridge::LayerBridge(std::shared_ptr<costmap_layers::Layer> core, std::string class_name)
+    : core_(std::move(core)), class_name_(std::move(class_name))
+{
+}
+
+// Ports and the reconfigure server go first: their callbacks reach into the core layer.
+LayerBridge::~LayerBridge()
+{
+  reconfigure_.reset();
+  ports_.reset();
+}
+
+void LayerBridge::onInitialize()
+{
+  ros::NodeHandle nh("~/" + name_);
+  const std::string global_frame = layered_costmap_->getGlobalFrameID();
+  costmap_layers::ParamValue params = costmap_layers_ros::readNamespace(nh);
+  log_ = std::make_shared<costmap_layers_ros::ThrottledLog>();
+  context_ = std::make_shared<costmap_layers_ros::RosLayerContext>(nh, params, global_frame, transformTolerance(nh),
+                                                                   *tf_, log_);
+  host_ = std::make_unique<costmap_layers::LayeredCostmap>(global_frame, layered_costmap_->isRolling(),
+                                                           layered_costmap_->isTrackingUnknown());
+  // A layer that resizes the master (the static layer, to its map) resizes move_base's; costmap_2d
+  // then calls matchSize on every plugin, this one included, which views the new memory.
+  host_->setResizeHandler(
+      [this](unsigned int size_x, unsigned int size_y, double resolution, double origin_x, double origin_y,
+             bool size_locked)
+      { layered_costmap_->resizeMap(size_x, size_y, resolution, origin_x, origin_y, size_locked); });
+  viewMaster();
+  host_->addPlugin(core_);
+  {
+    costmap_layers::ParamReadLog read_log;
+    core_->initialize(host_.get(), name_, context_);
+    for (const auto& u : costmap_layers::unknownKeys(context_->params(), read_log, class_name_, {"plugin"}))
+      ROS_WARN("%s", costmap_layers::describeUnknownKey(u, nh.getNamespace()).c_str());
+  }
+  onFootprintChanged();
+  ports_ = std::make_unique<costmap_layers_ros::LayerPorts>(ros::NodeHandle(), nh, *core_, global_frame, *tf_, log_);
+  reconfigure_ = std::make_unique<costmap_layers_ros::LayerReconfigure>(
+      nh, core_, params,
+      [this](const std::function<void()>& fn)
+      {
+        boost::unique_lock<costmap_2d::Costmap2D::mutex_t> lock(*layered_costmap_->getCostmap()->getMutex());
+        fn();
+        full_update_ = true;
+      });
+  enabled_ = true;  // costmap_2d skips disabled plugins; the core layer's own switch is honoured below
+  current_ = core_->isCurrent();
+  ROS_INFO("%s: costmap_layers %s hosted in costmap_2d", nh.getNamespace().c_str(), class_name_.c_str());
+}
+
+void LayerBridge::viewMaster()
+{
+  costmap_2d::Costmap2D& master = *layered_costmap_->getCostmap();
+  host_->viewMaster(master.getCharMap(), master.getSizeInCellsX(), master.getSizeInCellsY(), master.getResolution(),
+                    master.getOriginX(), master.getOriginY());
+}
+
+void LayerBridge::expandToWholeMap(double* min_x, double* min_y, double* max_x, double* max_y) const
+{
+  const costmap_2d::Costmap2D& master = *layered_costmap_->getCostmap();
+  *min_x = std::min(*min_x, master.getOriginX());
+  *min_y = std::min(*min_y, master.getOriginY());
+  *max_x = std::max(*max_x, master.getOriginX() + master.getSizeInCellsX() * master.getResolution());
+  *max_y = std::max(*max_y, master.getOriginY() + master.getSizeInCellsY() * master.getResolution());
+}
+
+void LayerBridge::updateBounds(double robot_x, double robot_y, double robot_yaw, double* min_x, double* min_y,
+                               double* max_x, double* max_y)
+{
+  viewMaster();  // a rolling master has moved its origin since the last cycle
+  const bool on = core_->enabled();
+  const bool switched = on != drawn_enabled_;
+  drawn_enabled_ = on;
+  if (on) core_->updateBounds(robot_x, robot_y, robot_yaw, min_x, min_y, max_x, max_y);
+  if (full_update_.exchange(false) || host_->takeFullUpdateRequest() || switched)
+    expandToWholeMap(min_x, min_y, max_x, max_y);
+  current_ = !on || core_->isCurrent();
+}
+
+void LayerBridge::updateCosts(costmap_2d::Costmap2D& master_grid, int min_i, int min_j, int max_i, int max_j)
+{
+  if (!core_->enabled()) return;
+  costmap_layers::Costmap2D& master = host_->getCostmap();
+  if (master.data() != master_grid.getCharMap() || master.getSizeInCellsX() != master_grid.getSizeInCellsX() ||
+      master.getSizeInCellsY() != master_grid.getSizeInCellsY())
+  {
+    // Not the grid this plugin belongs to (costmap_2d always passes its own): refuse rather than write
+    // through a view of other memory.
+    ROS_ERROR_THROTTLE(5.0, "%s: updateCosts on a grid that is not the costmap's own master, skipped", name_.c_str());
+    return;
+  }
+  core_->updateCosts(master, min_i, min_j, max_i, max_j);
+}
+
+void LayerBridge::matchSize()
+{
+  if (host_) viewMaster();  // the core layers' matchSize runs when the geometry changed
+}
+
+void LayerBridge::onFootprintChanged()
+{
+  if (!host_) return;
+  costmap_layers::Footprint footprint;
+  for (const auto& p : layered_costmap_->getFootprint())
+    footprint.emplace_back(p.x, p.y);
+  host_->setFootprint(footprint);
+}
+
+void LayerBridge::reset()
+{
+  core_->reset();
+  full_update_ = true;
+}
+
+void LayerBridge::activate()
+{
+  core_->activate();
+  full_update_ = true;
+}
+
+void LayerBridge::deactivate()
+{
+  core_->deactivate();
+}
+}  // namespace move_base
+}  // namespace costmap_layers

@@ -1,0 +1,146 @@
+#!/usr/bin/env python3
+"""costmap_layers' plugins inside a real move_base (see move_base.test):
+- navfn's plan (move_base's make_plan) goes around the keepout band, and straight through it once the
+  bridged KeepoutFilter is switched off with its toggle service;
+- the bridged SpeedFilter publishes the speed zone's limit on /max_speed from move_base's costmap;
+- the bridged GradientLayer's ramps appear in move_base's published local costmap;
+- move_base's global costmap equals costmap_node's with the same layers on the same inputs, cell by cell.
+Each case waits on arrivals with a deadline, never on a fixed sleep."""
+import math
+import os
+import sys
+import threading
+import unittest
+
+import rospy
+import rostest
+from costmap_layers.msg import MaxSpeed
+from geometry_msgs.msg import PoseStamped
+from nav_msgs.srv import GetPlan
+from std_srvs.srv import SetBool
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "rostest"))
+from grid_watch import GridWatcher, translate  # noqa: E402
+
+START = (1.0, 1.0)
+GOAL = (5.0, 1.0)
+# The keepout band of keepout.pgm (make_maps.py): x in [2.8, 3.2) m, y in [0, 3.0) m.
+BAND = (2.8, 3.2, 0.0, 3.0)
+LETHAL = 100  # cost 254 as published
+
+
+def pose(x, y):
+    p = PoseStamped()
+    p.header.frame_id = "map"
+    p.pose.position.x, p.pose.position.y = x, y
+    p.pose.orientation.w = 1.0
+    return p
+
+
+def in_band(x, y, margin=0.0):
+    return BAND[0] - margin <= x < BAND[1] + margin and BAND[2] <= y < BAND[3] + margin
+
+
+def length(poses):
+    return sum(
+        math.hypot(b.pose.position.x - a.pose.position.x, b.pose.position.y - a.pose.position.y)
+        for a, b in zip(poses, poses[1:])
+    )
+
+
+class MoveBaseTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node("test_move_base")
+        cls.global_grid = GridWatcher("/move_base/global_costmap")
+        cls.local_grid = GridWatcher("/move_base/local_costmap")
+        cls.twin = GridWatcher("/twin")
+        cls.speed_cond = threading.Condition()
+        cls.speeds = []
+        rospy.Subscriber("/max_speed", MaxSpeed, cls._on_speed)
+        rospy.wait_for_service("/move_base/make_plan", timeout=120.0)
+        rospy.wait_for_service("/move_base/global_costmap/keepout/toggle", timeout=60.0)
+        cls.make_plan = rospy.ServiceProxy("/move_base/make_plan", GetPlan)
+        cls.toggle = rospy.ServiceProxy("/move_base/global_costmap/keepout/toggle", SetBool)
+
+    @classmethod
+    def _on_speed(cls, msg):
+        with cls.speed_cond:
+            cls.speeds.append(msg.max_speed)
+            cls.speed_cond.notify_all()
+
+    def set_keepout(self, on):
+        self.assertTrue(self.toggle(on).success)
+        centre = (3.0, 1.0)
+        ok = self.global_grid.wait_until(
+            lambda g: g.width == 120 and (g.at(*centre) == LETHAL) == on, timeout=30.0)
+        self.assertTrue(ok, "the band centre never became %s in move_base's costmap" % ("lethal" if on else "free"))
+
+    def plan(self):
+        res = self.make_plan(start=pose(*START), goal=pose(*GOAL), tolerance=0.0)
+        self.assertGreater(len(res.plan.poses), 2, "navfn found no plan")
+        return res.plan.poses
+
+    def test_plan_goes_around_the_zone_and_straight_without_it(self):
+        try:
+            self.set_keepout(True)
+            around = self.plan()
+            inside = [(p.pose.position.x, p.pose.position.y) for p in around
+                      if in_band(p.pose.position.x, p.pose.position.y)]
+            self.assertEqual(inside, [], "the plan crosses the keepout band")
+            self.assertGreater(max(p.pose.position.y for p in around), BAND[3],
+                               "the plan does not pass above the band, where the gap is")
+            # It crosses x = 3.0 at y >= 3.0: by the triangle inequality no such path is shorter than this.
+            self.assertGreaterEqual(length(around), 2 * math.hypot(3.0 - START[0], BAND[3] - START[1]))
+
+            self.set_keepout(False)
+            straight = self.plan()
+            self.assertTrue(any(in_band(p.pose.position.x, p.pose.position.y) for p in straight),
+                            "without the filter the plan should cross the band")
+            self.assertLess(length(straight), 4.0 * 1.1)
+            self.assertLess(max(abs(p.pose.position.y - START[1]) for p in straight), 0.3)
+        finally:
+            self.set_keepout(True)
+
+    def test_speed_filter_publishes_the_zone_limit(self):
+        # speed.pgm: 30 around the start; nav2 mode limit = base + multiplier * v = 0.0 + 0.01 * 30.
+        with self.speed_cond:
+            ok = self.speed_cond.wait_for(lambda: any(abs(s - 0.3) < 1e-9 for s in self.speeds), timeout=60.0)
+        self.assertTrue(ok, "no /max_speed 0.3 from move_base's SpeedFilter; seen %s" % self.speeds)
+
+    def test_gradient_pattern_in_the_local_costmap(self):
+        # Along every row from the window's first column: cost (254 - k * 10) % 255, k = i mod 22.
+        def expected(i):
+            return translate((254 - (i % 22) * 10) % 255)
+
+        def matches(g):
+            # 2.0 m x 1.0 m at 0.05 m (costmap_2d truncates width / resolution)
+            return g.width == 40 and g.height in (19, 20) and all(
+                g.data[j * g.width + i] == expected(i) for j in range(g.height) for i in range(g.width))
+
+        ok = self.local_grid.wait_until(matches, timeout=60.0)
+        row = self.local_grid.snapshot()[:40] if self.local_grid.snapshot() else None
+        self.assertTrue(ok, "the local costmap's rows are not the gradient: first row %s" % row)
+
+    def test_same_grid_as_costmap_node(self):
+        self.set_keepout(True)
+
+        def ready(g):
+            return g.width == 120 and g.height == 80 and g.at(3.0, 1.0) == LETHAL and g.at(1.0, 1.0) == 0
+
+        self.assertTrue(self.twin.wait_until(ready, timeout=60.0), "costmap_node never drew the map and the zone")
+        mb = self.global_grid.snapshot()
+        tw = self.twin.snapshot()
+        self.assertEqual((self.global_grid.width, self.global_grid.height), (self.twin.width, self.twin.height))
+        self.assertEqual(self.global_grid.origin, self.twin.origin)
+        diff = [k for k in range(len(mb)) if mb[k] != tw[k]]
+        self.assertEqual(diff[:10], [], "%d cells differ, e.g. (index, move_base, costmap_node) %s" %
+                         (len(diff), [(k, mb[k], tw[k]) for k in diff[:10]]))
+        # Not a trivial grid: walls, the zone, inflation ramps and free space are all there.
+        self.assertIn(LETHAL, mb)
+        self.assertIn(0, mb)
+        self.assertTrue(any(0 < v < 99 for v in mb), "no inflation ramp in the grid")
+
+
+if __name__ == "__main__":
+    rostest.rosrun("costmap_layers", "test_move_base", MoveBaseTest)
