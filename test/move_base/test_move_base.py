@@ -16,8 +16,9 @@ import rospy
 import rostest
 from costmap_layers.msg import MaxSpeed
 from geometry_msgs.msg import PoseStamped
+from nav_msgs.msg import OccupancyGrid
 from nav_msgs.srv import GetPlan
-from std_srvs.srv import SetBool
+from std_srvs.srv import Empty, SetBool
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "rostest"))
 from grid_watch import GridWatcher, translate  # noqa: E402
@@ -41,6 +42,19 @@ def in_band(x, y, margin=0.0):
     return BAND[0] - margin <= x < BAND[1] + margin and BAND[2] <= y < BAND[3] + margin
 
 
+def room(width, height):
+    """A room as mask_server publishes room.pgm (make_maps.py): walls two cells thick = 100, free = 0."""
+    g = OccupancyGrid()
+    g.header.frame_id = "map"
+    g.header.stamp = rospy.Time.now()
+    g.info.resolution = 0.05
+    g.info.width, g.info.height = width, height
+    g.info.origin.orientation.w = 1.0
+    g.data = [100 if i < 2 or j < 2 or i >= width - 2 or j >= height - 2 else 0
+              for j in range(height) for i in range(width)]
+    return g
+
+
 def length(poses):
     return sum(
         math.hypot(b.pose.position.x - a.pose.position.x, b.pose.position.y - a.pose.position.y)
@@ -61,6 +75,8 @@ class MoveBaseTest(unittest.TestCase):
         rospy.wait_for_service("/move_base/make_plan", timeout=120.0)
         rospy.wait_for_service("/move_base/global_costmap/keepout/toggle", timeout=60.0)
         cls.make_plan = rospy.ServiceProxy("/move_base/make_plan", GetPlan)
+        cls.clear_costmaps = rospy.ServiceProxy("/move_base/clear_costmaps", Empty)
+        cls.map_pub = rospy.Publisher("/map", OccupancyGrid, queue_size=1, latch=True)
         cls.toggle = rospy.ServiceProxy("/move_base/global_costmap/keepout/toggle", SetBool)
 
     @classmethod
@@ -76,27 +92,35 @@ class MoveBaseTest(unittest.TestCase):
             lambda g: g.width == 120 and (g.at(*centre) == LETHAL) == on, timeout=30.0)
         self.assertTrue(ok, "the band centre never became %s in move_base's costmap" % ("lethal" if on else "free"))
 
-    def plan(self):
-        res = self.make_plan(start=pose(*START), goal=pose(*GOAL), tolerance=0.0)
-        self.assertGreater(len(res.plan.poses), 2, "navfn found no plan")
-        return res.plan.poses
+    def plan(self, goes_around, timeout=30.0):
+        """navfn's plan from START to GOAL once it goes around the band (or, goes_around False, through it):
+        the costmap the planner reads is redrawn by move_base's update thread, after the published one
+        said so or after a clear; asked again on each new costmap publication until the deadline."""
+        deadline = rospy.Time.now() + rospy.Duration(timeout)
+        while True:
+            seen = self.global_grid.count
+            res = self.make_plan(start=pose(*START), goal=pose(*GOAL), tolerance=0.0)
+            poses = res.plan.poses
+            crosses = any(in_band(p.pose.position.x, p.pose.position.y) for p in poses)
+            if len(poses) > 2 and crosses != goes_around:
+                return poses
+            if rospy.Time.now() > deadline:
+                self.fail("navfn's plan %s the band: %d poses, max y %s" % (
+                    "crosses" if crosses else "avoids", len(poses),
+                    max((p.pose.position.y for p in poses), default=None)))
+            self.global_grid.wait_until(lambda g: g.count > seen, timeout=1.0)
 
     def test_plan_goes_around_the_zone_and_straight_without_it(self):
         try:
             self.set_keepout(True)
-            around = self.plan()
-            inside = [(p.pose.position.x, p.pose.position.y) for p in around
-                      if in_band(p.pose.position.x, p.pose.position.y)]
-            self.assertEqual(inside, [], "the plan crosses the keepout band")
+            around = self.plan(goes_around=True)
             self.assertGreater(max(p.pose.position.y for p in around), BAND[3],
                                "the plan does not pass above the band, where the gap is")
             # It crosses x = 3.0 at y >= 3.0: by the triangle inequality no such path is shorter than this.
             self.assertGreaterEqual(length(around), 2 * math.hypot(3.0 - START[0], BAND[3] - START[1]))
 
             self.set_keepout(False)
-            straight = self.plan()
-            self.assertTrue(any(in_band(p.pose.position.x, p.pose.position.y) for p in straight),
-                            "without the filter the plan should cross the band")
+            straight = self.plan(goes_around=False)
             self.assertLess(length(straight), 4.0 * 1.1)
             self.assertLess(max(abs(p.pose.position.y - START[1]) for p in straight), 0.3)
         finally:
@@ -122,12 +146,11 @@ class MoveBaseTest(unittest.TestCase):
         row = self.local_grid.snapshot()[:40] if self.local_grid.snapshot() else None
         self.assertTrue(ok, "the local costmap's rows are not the gradient: first row %s" % row)
 
-    def test_same_grid_as_costmap_node(self):
-        self.set_keepout(True)
-
+    def assert_same_grids(self, width, height):
         def ready(g):
-            return g.width == 120 and g.height == 80 and g.at(3.0, 1.0) == LETHAL and g.at(1.0, 1.0) == 0
+            return g.width == width and g.height == height and g.at(3.0, 1.0) == LETHAL and g.at(1.0, 1.0) == 0
 
+        self.assertTrue(self.global_grid.wait_until(ready, timeout=60.0), "move_base never drew the map and the zone")
         self.assertTrue(self.twin.wait_until(ready, timeout=60.0), "costmap_node never drew the map and the zone")
         mb = self.global_grid.snapshot()
         tw = self.twin.snapshot()
@@ -136,6 +159,34 @@ class MoveBaseTest(unittest.TestCase):
         diff = [k for k in range(len(mb)) if mb[k] != tw[k]]
         self.assertEqual(diff[:10], [], "%d cells differ, e.g. (index, move_base, costmap_node) %s" %
                          (len(diff), [(k, mb[k], tw[k]) for k in diff[:10]]))
+        return mb
+
+    def test_clear_costmaps_keeps_the_map_and_the_zone(self):
+        self.set_keepout(True)
+        seen = self.global_grid.count
+        self.clear_costmaps()
+        # costmap_2d empties the master and resets every layer; the bridged layers draw everything again,
+        # and the redrawn costmap is published.
+        self.assertTrue(self.global_grid.wait_until(lambda g: g.count > seen, timeout=30.0),
+                        "no costmap published after clear_costmaps")
+        self.assert_same_grids(120, 80)
+        self.plan(goes_around=True)
+
+    def test_a_map_of_another_size_resizes_move_base_and_the_zone_follows(self):
+        self.set_keepout(True)
+        try:
+            self.map_pub.publish(room(140, 90))
+            mb = self.assert_same_grids(140, 90)
+            # The new walls are drawn where the new map has them, in the resized grid.
+            self.assertEqual(mb[89 * 140 + 139], LETHAL)
+            self.assertEqual(self.global_grid.at(6.5, 4.0), 0)
+        finally:
+            self.map_pub.publish(room(120, 80))
+            self.assertTrue(self.global_grid.wait_until(lambda g: g.width == 120 and g.height == 80, timeout=60.0))
+
+    def test_same_grid_as_costmap_node(self):
+        self.set_keepout(True)
+        mb = self.assert_same_grids(120, 80)
         # Not a trivial grid: walls, the zone, inflation ramps and free space are all there.
         self.assertIn(LETHAL, mb)
         self.assertIn(0, mb)

@@ -29,6 +29,7 @@ class GridWatcher:
         self.width = self.height = 0
         self.resolution = 0.0
         self.origin = (0.0, 0.0)
+        self.count = 0  # grids and updates received, to wait for one that came after an action
         rospy.Subscriber(ns + "/costmap", OccupancyGrid, self._on_grid)
         rospy.Subscriber(ns + "/costmap_updates", OccupancyGridUpdate, self._on_update)
 
@@ -40,6 +41,7 @@ class GridWatcher:
             # info.resolution is a float32: 0.1 arrives as 0.10000000149, which would put 5.0 m in cell 49.
             self.resolution = round(msg.info.resolution, 6)
             self.origin = (msg.info.origin.position.x, msg.info.origin.position.y)
+            self.count += 1
             self.cond.notify_all()
 
     def _on_update(self, msg):
@@ -49,6 +51,7 @@ class GridWatcher:
             for j in range(msg.height):
                 row = (msg.y + j) * self.width + msg.x
                 self.data[row:row + msg.width] = msg.data[j * msg.width:(j + 1) * msg.width]
+            self.count += 1
             self.cond.notify_all()
 
     def at(self, x, y):
