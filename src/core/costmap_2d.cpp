@@ -69,8 +69,8 @@ Costmap2D& Costmap2D::operator=(Costmap2D&& other) noexcept
   return *this;
 }
 
-void Costmap2D::viewMemory(uint8_t* cells, unsigned int size_x, unsigned int size_y, double resolution,
-                           double origin_x, double origin_y)
+void Costmap2D::viewMemory(uint8_t* cells, unsigned int size_x, unsigned int size_y, double resolution, double origin_x,
+                           double origin_y)
 {
   size_x_ = size_x;
   size_y_ = size_y;

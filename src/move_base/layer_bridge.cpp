@@ -54,6 +54,21 @@ LayerBridge::~LayerBridge()
 
 void LayerBridge::onInitialize()
 {
+  try
+  {
+    setUp();
+  }
+  catch (const std::exception& e)
+  {
+    // A parameter out of range or of the wrong type stops the start-up, naming it, as in costmap_node.
+    ROS_FATAL("%s (costmap_layers %s): %s", ros::NodeHandle("~/" + name_).getNamespace().c_str(), class_name_.c_str(),
+              e.what());
+    throw;
+  }
+}
+
+void LayerBridge::setUp()
+{
   ros::NodeHandle nh("~/" + name_);
   const std::string global_frame = layered_costmap_->getGlobalFrameID();
   costmap_layers::ParamValue params = costmap_layers_ros::readNamespace(nh);

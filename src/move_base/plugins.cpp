@@ -14,18 +14,18 @@
 #include "costmap_layers/move_base/layer_bridge.hpp"
 
 // One class per core type, named as the core class, in namespace costmap_layers::move_base.
-#define COSTMAP_LAYERS_MOVE_BASE_PLUGIN(Type)                                                        \
-  namespace costmap_layers                                                                           \
-  {                                                                                                  \
-  namespace move_base                                                                                \
-  {                                                                                                  \
-  class Type : public LayerBridge                                                                    \
-  {                                                                                                  \
-  public:                                                                                            \
-    Type() : LayerBridge(std::make_shared<costmap_layers::Type>(), #Type) {}                         \
-  };                                                                                                 \
-  }                                                                                                  \
-  }                                                                                                  \
+#define COSTMAP_LAYERS_MOVE_BASE_PLUGIN(Type)                                \
+  namespace costmap_layers                                                   \
+  {                                                                          \
+  namespace move_base                                                        \
+  {                                                                          \
+  class Type : public LayerBridge                                            \
+  {                                                                          \
+  public:                                                                    \
+    Type() : LayerBridge(std::make_shared<costmap_layers::Type>(), #Type) {} \
+  };                                                                         \
+  }                                                                          \
+  }                                                                          \
   PLUGINLIB_EXPORT_CLASS(costmap_layers::move_base::Type, costmap_2d::Layer)
 
 COSTMAP_LAYERS_MOVE_BASE_PLUGIN(StaticLayer)

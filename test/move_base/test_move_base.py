@@ -8,6 +8,7 @@
 Each case waits on arrivals with a deadline, never on a fixed sleep."""
 import math
 import os
+import subprocess
 import sys
 import threading
 import unittest
@@ -191,6 +192,30 @@ class MoveBaseTest(unittest.TestCase):
         self.assertIn(LETHAL, mb)
         self.assertIn(0, mb)
         self.assertTrue(any(0 < v < 99 for v in mb), "no inflation ramp in the grid")
+
+
+    def test_a_bad_parameter_stops_move_base_naming_it(self):
+        # A second move_base whose bridged inflation layer has a negative radius: like costmap_node, it
+        # stops at start-up with a fatal error naming the parameter and the value (rather than planning
+        # on a costmap without the layer).
+        ns = "/bad_move_base"
+        rospy.set_param(ns, {
+            "base_global_planner": "navfn/NavfnROS",
+            "base_local_planner": "dwa_local_planner/DWAPlannerROS",
+            "global_costmap": {
+                "global_frame": "map", "robot_base_frame": "base_link", "robot_radius": 0.1,
+                "plugins": [{"name": "inflation", "type": "costmap_layers::move_base::InflationLayer"}],
+                "inflation": {"inflation_radius": -1.0},
+            },
+            "local_costmap": {"global_frame": "map", "robot_base_frame": "base_link", "plugins": []},
+        })
+        proc = subprocess.run(["rosrun", "move_base", "move_base", "__name:=bad_move_base"],
+                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=120, text=True)
+        self.assertNotEqual(proc.returncode, 0, "move_base kept running with a negative inflation_radius")
+        fatal = [line for line in proc.stdout.splitlines()
+                 if "/bad_move_base/global_costmap/inflation" in line and "inflation_radius" in line]
+        self.assertTrue(fatal, "no error naming the parameter; move_base printed:\n" + proc.stdout[-3000:])
+        self.assertIn("-1", fatal[0])
 
 
 if __name__ == "__main__":

@@ -58,8 +58,8 @@ public:
   void viewMaster(uint8_t* cells, unsigned int size_x, unsigned int size_y, double resolution, double origin_x,
                   double origin_y);
   /// Where resizeMap goes when the master is a view: the host resizes its own grid and calls viewMaster.
-  using ResizeHandler = std::function<void(unsigned int size_x, unsigned int size_y, double resolution,
-                                           double origin_x, double origin_y, bool size_locked)>;
+  using ResizeHandler = std::function<void(unsigned int size_x, unsigned int size_y, double resolution, double origin_x,
+                                           double origin_y, bool size_locked)>;
   void setResizeHandler(ResizeHandler handler) { resize_handler_ = std::move(handler); }
 
   const Costmap2D& getCostmap() const { return filters_.empty() ? primary_ : combined_; }

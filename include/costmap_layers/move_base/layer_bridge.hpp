@@ -56,6 +56,7 @@ protected:
   void onInitialize() override;
 
 private:
+  void setUp();
   /// Points the core master at move_base's master grid (its memory moves on a resize).
   void viewMaster();
   void expandToWholeMap(double* min_x, double* min_y, double* max_x, double* max_y) const;
