@@ -13,6 +13,7 @@ import sys
 import threading
 import unittest
 
+import dynamic_reconfigure.client
 import rospy
 import rostest
 from costmap_layers.msg import MaxSpeed
@@ -193,6 +194,21 @@ class MoveBaseTest(unittest.TestCase):
         self.assertIn(0, mb)
         self.assertTrue(any(0 < v < 99 for v in mb), "no inflation ramp in the grid")
 
+
+    def test_dynamic_reconfigure_of_a_bridged_layer_redraws_move_base_costmap(self):
+        # The cell centred 0.375 m left of the band: outside a 0.3 m inflation, inside a 0.4 m one.
+        probe = (2.425, 1.025)
+        self.set_keepout(True)
+        client = dynamic_reconfigure.client.Client("/move_base/global_costmap/inflation", timeout=30.0)
+        try:
+            self.assertTrue(self.global_grid.wait_until(lambda g: g.width == 120 and g.at(*probe) == 0, 30.0))
+            client.update_configuration({"inflation_radius": 0.4})
+            self.assertTrue(self.global_grid.wait_until(lambda g: g.at(*probe) > 0, timeout=30.0),
+                            "inflation_radius 0.4 set through dynamic_reconfigure never reached the costmap")
+        finally:
+            client.update_configuration({"inflation_radius": 0.3})
+        self.assertTrue(self.global_grid.wait_until(lambda g: g.at(*probe) == 0, timeout=30.0))
+        self.assert_same_grids(120, 80)
 
     def test_a_bad_parameter_stops_move_base_naming_it(self):
         # A second move_base whose bridged inflation layer has a negative radius: like costmap_node, it
