@@ -426,7 +426,10 @@ void CostmapFilter::updateBounds(double robot_x, double robot_y, double robot_ya
                            ": the filter does nothing until one arrives");
   }
   if (!active_mask_ || !filter_enabled_) processInactive();
-  if (!changed) return;
+  // A rolling window moves onto cells nobody else may ask for: the mask's extent is asked for every
+  // cycle (the costmap clips it to the window), as costmap_2d's static layer does when rolling.
+  const bool rolling_redraw = layered_costmap_->isRolling() && active_mask_ && filter_enabled_;
+  if (!changed && !rolling_redraw) return;
   for (const auto* m : {&active_mask_, &old})
   {
     if (!*m) continue;

@@ -344,3 +344,38 @@ TEST(KeepoutFilter, WaitingForTheMaskIsReported)
   off.lc.updateMap(0, 0, 0);
   EXPECT_EQ(off.ctx->countReports("no mask yet"), 0);
 }
+
+TEST(KeepoutFilter, ARollingWindowDrawsTheZoneInCellsItMovesOnto)
+{
+  // A 10 m x 10 m window at 1 m following the robot; a mask lethal for x in [5, 8) m everywhere.
+  LayeredCostmap lc{"map", true, false};
+  auto ctx = std::make_shared<FakeContext>();
+  auto filter = std::make_shared<KeepoutFilter>();
+  filter->initialize(&lc, "keepout", ctx);
+  ctx->bind(*filter);
+  lc.resizeMap(10, 10, 1.0, -5.0, -5.0);
+  lc.addFilter(filter);
+  OccupancyGridData mask = makeMask(40, 40, 1.0, -20.0, -20.0, 0);
+  for (uint32_t j = 0; j < 40; ++j)
+    for (uint32_t i = 25; i < 28; ++i)
+      mask.data[j * 40 + i] = 100;
+  ctx->publishGrid(GridKind::Mask, mask);
+  lc.updateMap(0.0, 0.0, 0.0);  // window [-5, 5): the zone is outside
+  for (unsigned j = 0; j < 10; ++j)
+    for (unsigned i = 0; i < 10; ++i)
+      ASSERT_EQ(lc.getCostmap().getCost(i, j), FREE_SPACE) << i << "," << j;
+  // Two moves without a new mask: the window's cells over x in [5, 8) m must be lethal each time.
+  for (const double rx : {2.0, 4.0})
+  {
+    lc.updateMap(rx, 0.0, 0.0);
+    const Costmap2D& m = lc.getCostmap();
+    ASSERT_DOUBLE_EQ(m.getOriginX(), rx - 5.0);
+    for (unsigned j = 0; j < 10; ++j)
+      for (unsigned i = 0; i < 10; ++i)
+      {
+        const double x = m.getOriginX() + i + 0.5;
+        EXPECT_EQ(m.getCost(i, j), x >= 5.0 && x < 8.0 ? LETHAL_OBSTACLE : FREE_SPACE)
+            << "robot x " << rx << ", cell " << i << "," << j;
+      }
+  }
+}
