@@ -101,25 +101,30 @@ ZoneParameterConfig parseZoneParameterConfig(const ParamReader& params)
   if (const ParamValue* nominal = params.raw("nominal_defaults"))
   {
     if (!nominal->isMap())
-      params.fail("nominal_defaults", "must be a map of <name>: {node, parameter, value} (got " +
-                                          nominal->toString() +
+      params.fail("nominal_defaults", "must be a map of <name>: {node, parameter, value} (got " + nominal->toString() +
                                           "; Nav2's list of names plus a namespace of the same name cannot be "
                                           "written in ROS 1)");
     for (const auto& [name, entry] : nominal->entries())
     {
       Setpoint s = parseSetpoint(params, "nominal_defaults/" + name, &entry);
       for (const auto& other : c.nominal_defaults)
-        if (sameTarget(other, s))
-          params.fail("nominal_defaults/" + name, "sets " + target(s) + " a second time");
+        if (sameTarget(other, s)) params.fail("nominal_defaults/" + name, "sets " + target(s) + " a second time");
       c.nominal_defaults.push_back(std::move(s));
     }
   }
 
   for (const std::string& name : nameList(params, "states"))
   {
-    static const std::vector<std::string> reserved = {
-        "enabled",      "mask_topic", "filter_info_topic", "state_event_topic", "setpoint_timeout",
-        "states",       "nominal_defaults", "plugin",       "type",             "name"};
+    static const std::vector<std::string> reserved = {"enabled",
+                                                      "mask_topic",
+                                                      "filter_info_topic",
+                                                      "state_event_topic",
+                                                      "setpoint_timeout",
+                                                      "states",
+                                                      "nominal_defaults",
+                                                      "plugin",
+                                                      "type",
+                                                      "name"};
     if (std::find(reserved.begin(), reserved.end(), name) != reserved.end())
       params.fail("states", "names a state '" + name + "', which is a parameter of the filter: choose another name");
     const ParamValue* ns = params.raw(name);

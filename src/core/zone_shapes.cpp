@@ -355,8 +355,8 @@ bool pointInZonePolygon(const std::vector<ZonePoint>& p, double x, double y)
 InputError validateShape(const ZoneShape& s)
 {
   if (s.name.empty() || s.name.size() > 64)
-    return InputError::of(where(s) + "/name", where(s) + ": a shape name has 1..64 characters (got " +
-                                                  std::to_string(s.name.size()) + ")");
+    return InputError::of(where(s) + "/name",
+                          where(s) + ": a shape name has 1..64 characters (got " + std::to_string(s.name.size()) + ")");
   for (const char c : s.name)
     if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.'))
       return InputError::of("shapes/(bad name)/name", "shape name '" + s.name.substr(0, 64) +
@@ -408,11 +408,11 @@ InputError validateLayout(const ZoneLayout& layout)
   if (!std::isfinite(layout.resolution) || layout.resolution < limits::kMinResolution ||
       layout.resolution > limits::kMaxResolution)
     return InputError::of("resolution", "resolution must be in [" + num(limits::kMinResolution) + ", " +
-                                            num(limits::kMaxResolution) + "] m/cell (got " +
-                                            num(layout.resolution) + ")");
+                                            num(limits::kMaxResolution) + "] m/cell (got " + num(layout.resolution) +
+                                            ")");
   if (layout.default_value < -1 || layout.default_value > 100)
-    return InputError::of("default_value", "default_value must be in -1..100 (got " +
-                                               std::to_string(layout.default_value) + ")");
+    return InputError::of("default_value",
+                          "default_value must be in -1..100 (got " + std::to_string(layout.default_value) + ")");
   if (layout.frame_id.empty()) return InputError::of("frame_id", "frame_id is empty");
   if (layout.shapes.size() > limits::kMaxZoneShapes)
     return InputError::of("shapes", "at most " + std::to_string(limits::kMaxZoneShapes) + " shapes (got " +
@@ -525,7 +525,8 @@ ZoneShape parseZoneShape(const ParamValue& v, const std::string& what)
 
 ZoneLayout parseZoneLayout(const ParamValue& tree, const std::string& what)
 {
-  if (!tree.isMap()) throw std::invalid_argument(what + ": a zone file is a map with 'shapes' (got " + tree.toString() + ")");
+  if (!tree.isMap())
+    throw std::invalid_argument(what + ": a zone file is a map with 'shapes' (got " + tree.toString() + ")");
   checkKeys(tree, {"frame_id", "resolution", "default_value", "overlay", "shapes"}, what);
   ZoneLayout l;
   if (const ParamValue* f = tree.find("frame_id"))
@@ -641,8 +642,8 @@ InputError ZoneSet::upsert(const ZoneShape& shape)
   const InputError e = validateShape(shape);
   if (!e.ok()) return e;
   ZoneLayout next = layout_;
-  auto it = std::find_if(next.shapes.begin(), next.shapes.end(),
-                         [&](const ZoneShape& s) { return s.name == shape.name; });
+  auto it =
+      std::find_if(next.shapes.begin(), next.shapes.end(), [&](const ZoneShape& s) { return s.name == shape.name; });
   if (it != next.shapes.end())
     *it = shape;
   else
@@ -664,13 +665,12 @@ InputError ZoneSet::remove(const std::string& name)
 InputError ZoneSet::moveHandle(const std::string& name, std::size_t index, double x, double y)
 {
   const ZoneShape* found = find(name);
-  if (!found)
-    return InputError::of("shapes/(unknown)/name", "there is no shape named '" + name.substr(0, 64) + "'");
+  if (!found) return InputError::of("shapes/(unknown)/name", "there is no shape named '" + name.substr(0, 64) + "'");
   ZoneShape s = *found;
   const std::size_t handles = zoneHandles(s).size();
   if (index >= handles)
-    return InputError::of(where(s) + "/handle", where(s) + " has handles 0.." + std::to_string(handles - 1) +
-                                                    " (got " + std::to_string(index) + ")");
+    return InputError::of(where(s) + "/handle", where(s) + " has handles 0.." + std::to_string(handles - 1) + " (got " +
+                                                    std::to_string(index) + ")");
   if (s.type == ZoneShapeType::Polygon)
     s.points[index] = {x, y};
   else if (index == 0)

@@ -113,7 +113,8 @@ int main(int argc, char** argv)
     const int type = params.getInt("type", 0);
     if (!costmap_layers::isKnownFilterInfoType(type))
       throw std::invalid_argument("parameter " + params.where() + "type must be 0 (keepout/lanes), 1 (speed limit in " +
-                                  "percent), 2 (speed limit in m/s), 3 (binary) or 4 (zone parameters) (got " + std::to_string(type) + ")");
+                                  "percent), 2 (speed limit in m/s), 3 (binary) or 4 (zone parameters) (got " +
+                                  std::to_string(type) + ")");
     info.type = static_cast<uint8_t>(type);
     info_topic = checkTopic(params, "filter_info_topic", "costmap_filter_info");
     info.filter_mask_topic = checkTopic(params, "mask_topic", "filter_mask");

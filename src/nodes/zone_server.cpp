@@ -13,7 +13,8 @@ int main(int argc, char** argv)
   try
   {
     ros::NodeHandle nh, pnh("~");
-    server = std::make_unique<costmap_layers_ros::ZoneServer>(nh, pnh, costmap_layers_ros::ZoneServer::readOptions(pnh));
+    server =
+        std::make_unique<costmap_layers_ros::ZoneServer>(nh, pnh, costmap_layers_ros::ZoneServer::readOptions(pnh));
   }
   catch (const std::exception& e)
   {

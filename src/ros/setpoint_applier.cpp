@@ -221,9 +221,8 @@ void SetpointApplier::applyNode(const std::string& node, const std::vector<Setpo
   const ros::Duration timeout(timeout_);
   // 1. The description: what the server declares.
   std::vector<Setpoint> to_send;
-  const auto description =
-      ros::topic::waitForMessage<dynamic_reconfigure::ConfigDescription>(resolved + "/parameter_descriptions", nh_,
-                                                                        timeout);
+  const auto description = ros::topic::waitForMessage<dynamic_reconfigure::ConfigDescription>(
+      resolved + "/parameter_descriptions", nh_, timeout);
   if (!description)
   {
     for (const auto& s : setpoints)

@@ -111,8 +111,8 @@ costmap_layers::ZoneShape fromMsg(const costmap_layers::ZoneShapeDescription& ms
   else if (msg.type == "circle")
     s.type = ZoneShapeType::Circle;
   else
-    throw std::invalid_argument("shape '" + msg.name.substr(0, 64) + "': type must be \"polygon\" or \"circle\" (got \"" +
-                                msg.type.substr(0, 64) + "\")");
+    throw std::invalid_argument("shape '" + msg.name.substr(0, 64) +
+                                "': type must be \"polygon\" or \"circle\" (got \"" + msg.type.substr(0, 64) + "\")");
   s.value = msg.value;
   s.fill = msg.fill;
   if (s.type == ZoneShapeType::Polygon)
@@ -205,11 +205,12 @@ void ZoneServer::publish()
   std::size_t claimed = 0;
   for (const int8_t v : grid.data)
     claimed += v != zones_.layout().default_value;
-  ROS_INFO("%s: publishing %zu shape(s) on %s: %ux%u cells at %g m/cell, origin (%g, %g), frame %s, %zu cell(s) "
-           "not at default_value %d [%s/published]",
-           node_.c_str(), zones_.layout().shapes.size(), mask_pub_.getTopic().c_str(), grid.width, grid.height,
-           grid.resolution, grid.origin_x, grid.origin_y, grid.frame_id.c_str(), claimed,
-           zones_.layout().default_value, node_.c_str());
+  ROS_INFO(
+      "%s: publishing %zu shape(s) on %s: %ux%u cells at %g m/cell, origin (%g, %g), frame %s, %zu cell(s) "
+      "not at default_value %d [%s/published]",
+      node_.c_str(), zones_.layout().shapes.size(), mask_pub_.getTopic().c_str(), grid.width, grid.height,
+      grid.resolution, grid.origin_x, grid.origin_y, grid.frame_id.c_str(), claimed, zones_.layout().default_value,
+      node_.c_str());
 }
 
 void ZoneServer::rebuildMarkers()
@@ -230,7 +231,8 @@ void ZoneServer::rebuildMarkers()
 
 void ZoneServer::refuse(const std::string& what, const InputError& error)
 {
-  log_->log(costmap_layers::Severity::Error, node_ + "/" + error.field, what + " refused, keeping the shapes in force: " + error.message);
+  log_->log(costmap_layers::Severity::Error, node_ + "/" + error.field,
+            what + " refused, keeping the shapes in force: " + error.message);
 }
 
 void ZoneServer::onFeedback(const visualization_msgs::InteractiveMarkerFeedbackConstPtr& f)
@@ -247,8 +249,8 @@ void ZoneServer::onFeedback(const visualization_msgs::InteractiveMarkerFeedbackC
   InputError error;
   if (!f->header.frame_id.empty() && f->header.frame_id != frame)
     error = InputError::of("feedback/header.frame_id", "marker feedback for " + f->marker_name + " is in frame '" +
-                                                           f->header.frame_id.substr(0, 64) +
-                                                           "', the zones are in '" + frame + "'");
+                                                           f->header.frame_id.substr(0, 64) + "', the zones are in '" +
+                                                           frame + "'");
   else
     error = zones_.moveHandle(shape, index, f->pose.position.x, f->pose.position.y);
   if (!error.ok())
@@ -308,8 +310,7 @@ bool ZoneServer::onSet(costmap_layers::SetZoneShape::Request& req, costmap_layer
   return true;
 }
 
-bool ZoneServer::onRemove(costmap_layers::RemoveZoneShape::Request& req,
-                          costmap_layers::RemoveZoneShape::Response& res)
+bool ZoneServer::onRemove(costmap_layers::RemoveZoneShape::Request& req, costmap_layers::RemoveZoneShape::Response& res)
 {
   std::lock_guard<std::mutex> lock(mutex_);
   const InputError error = zones_.remove(req.name);

@@ -168,7 +168,7 @@ TEST(ZoneParameterFilter, UndeclaredAndInvalidValuesAreNominalWithOneErrorEach)
 {
   Rig r;
   r.ctx->publishGrid(GridKind::Mask, mask());
-  r.at(2.5);  // crowded
+  r.at(2.5);                                        // crowded
   expectChange(r.at(4.5), 0, kNominal, "nominal");  // 9: no state
   r.at(2.5);
   r.at(4.5);

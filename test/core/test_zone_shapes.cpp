@@ -175,7 +175,8 @@ TEST(ZoneShapes, CircleOutlineIsTheCellsTheCurveCrosses)
       const long ya = 2 * (b0 + static_cast<long>(j)) - 20, yb = ya + 2;
       const long nx = xa > 0 ? xa : (xb < 0 ? xb : 0), ny = ya > 0 ? ya : (yb < 0 ? yb : 0);
       const long fx = std::max(std::labs(xa), std::labs(xb)), fy = std::max(std::labs(ya), std::labs(yb));
-      if (nx * nx + ny * ny <= 49 && fx * fx + fy * fy >= 49) expected.insert({static_cast<int>(i), static_cast<int>(j)});
+      if (nx * nx + ny * ny <= 49 && fx * fx + fy * fy >= 49)
+        expected.insert({static_cast<int>(i), static_cast<int>(j)});
     }
   EXPECT_FALSE(expected.empty());
   EXPECT_EQ(cellsWith(g, 33), expected);
@@ -230,8 +231,10 @@ TEST(ZoneShapes, PolygonsSharingAnEdgeThroughCentresNeverBothClaimACentre)
   // x = 0.5625 runs through the centres of column k = 4. Left x 0.03125..0.5625 holds centres
   // 0.0625..0.4375 (k = 0..3) and, by the half-open rule, not those on its right edge; right
   // x 0.5625..1.21875 holds 0.5625..1.1875 (k = 4..9). Rows y 0.03125..0.59375: k = 0..4.
-  const ZoneShape left = polygon("l", {{0.03125, 0.03125}, {0.5625, 0.03125}, {0.5625, 0.59375}, {0.03125, 0.59375}}, 10);
-  const ZoneShape right = polygon("r", {{0.5625, 0.03125}, {1.21875, 0.03125}, {1.21875, 0.59375}, {0.5625, 0.59375}}, 20);
+  const ZoneShape left =
+      polygon("l", {{0.03125, 0.03125}, {0.5625, 0.03125}, {0.5625, 0.59375}, {0.03125, 0.59375}}, 10);
+  const ZoneShape right =
+      polygon("r", {{0.5625, 0.03125}, {1.21875, 0.03125}, {1.21875, 0.59375}, {0.5625, 0.59375}}, 20);
   EXPECT_EQ(cellsWith(rasterizeZones(layout({left}, 0.125)), 10).size(), 4u * 5u);
   EXPECT_EQ(cellsWith(rasterizeZones(layout({right}, 0.125)), 20).size(), 6u * 5u);
   // Together (min overlay: a double claim would show as 10 in column k = 4): 20 + 30 cells, disjoint.
@@ -334,7 +337,7 @@ TEST(ZoneSet, EditsAreCheckedAndABadOneKeepsTheLastGoodLayout)
   // Dragging vertex 2 across the opposite edge makes a bow tie: refused, nothing changes.
   EXPECT_EQ(set.moveHandle("r", 2, 0.5, 0.2).field, "shapes/r/points");
   EXPECT_EQ(rasterizeZones(set.layout()).data, before.data);
-  EXPECT_FALSE(set.moveHandle("r", 9, 0.0, 0.0).ok());   // no handle 9
+  EXPECT_FALSE(set.moveHandle("r", 9, 0.0, 0.0).ok());     // no handle 9
   EXPECT_FALSE(set.moveHandle("nope", 0, 0.0, 0.0).ok());  // no such shape
   EXPECT_FALSE(set.upsert(polygon("bad", {{0, 0}, {1, 1}})).ok());
   EXPECT_FALSE(set.remove("nope").ok());

@@ -48,11 +48,11 @@ bool isKnownFilterInfoType(int type);
 InputError validateFilterInfo(const FilterInfoData& info);
 
 /// validateFilterInfo() plus what a filter of the given kind accepts: keepout/lanes filters take
-/// type 0 only, the speed filter types 1 and 2, the zone parameter filter type 4 (other types are an error naming the type and the
-/// filter the info is meant for).
+/// type 0 only, the speed filter types 1 and 2, the zone parameter filter type 4 (other types are an error naming the
+/// type and the filter the info is meant for).
 enum class FilterFamily
 {
-  Keepout,  ///< KeepoutFilter, LanesFilter
+  Keepout,       ///< KeepoutFilter, LanesFilter
   Speed,         ///< SpeedFilter
   ZoneParameter  ///< ZoneParameterFilter (type 4)
 };

@@ -77,7 +77,7 @@ using InputListener = std::function<void(std::size_t index, const InputPort& por
 /// What an output carries.
 enum class OutputKind
 {
-  MaxSpeed,   ///< costmap_layers/MaxSpeed, latched: the speed limit in force [m/s] (0 = none)
+  MaxSpeed,    ///< costmap_layers/MaxSpeed, latched: the speed limit in force [m/s] (0 = none)
   SpeedLimit,  ///< costmap_layers/Nav2SpeedLimit (Nav2's SpeedLimit fields): percentage + speed_limit
   ZoneState,   ///< std_msgs/UInt8, latched: the id of the zone state in force (Nav2's state event)
   Setpoints    ///< parameters of other nodes to set through their dynamic_reconfigure servers (no topic)
@@ -106,7 +106,7 @@ struct OutputEvent
 {
   OutputKind kind = OutputKind::MaxSpeed;
   std::string topic;
-  double value = 0.0;       ///< MaxSpeed: [m/s]; SpeedLimit: [%] or [m/s] as `percentage` says (0 = none); ZoneState: the id
+  double value = 0.0;  ///< MaxSpeed: [m/s]; SpeedLimit: [%] or [m/s] as `percentage` says (0 = none); ZoneState: the id
   bool percentage = false;  ///< SpeedLimit only
   /// Setpoints only: every parameter that must hold its value from now on (a complete set, so that a
   /// later event replaces an earlier one that was not applied yet), and what the set is for (a state

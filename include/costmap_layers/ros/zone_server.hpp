@@ -52,9 +52,9 @@ class ZoneServer
 public:
   struct Options
   {
-    std::string yaml_filename;      ///< the zone file (required)
+    std::string yaml_filename;  ///< the zone file (required)
     std::string topic = "/map_filter";
-    bool markers = true;            ///< offer the interactive markers
+    bool markers = true;  ///< offer the interactive markers
   };
   /// Reads the options from the private parameters; throws std::invalid_argument naming one.
   static Options readOptions(const ros::NodeHandle& pnh);
