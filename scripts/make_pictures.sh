@@ -43,6 +43,8 @@ picture speed_mask "$EX/speed_mask.yaml" "$PARAMS/speed_mask_as_map.yaml"
 picture all_filters "$EX/warehouse.yaml" "$ROOT/params/costmap_example.yaml" \
   --mask keepout_filter="$EX/keepout_mask.yaml" --mask speed_filter="$EX/speed_mask.yaml" \
   --mask lanes_filter="$EX/lanes_mask.yaml" --features speed_filter="$EX/speed_limits.yaml" \
-  --pose 5.0,1.5,0.0
+  --mask zone_keepout="$EX/zones.yaml" --pose 5.0,1.5,0.0
+# zone_server's mask (example/zones.yaml, rasterised as zone_server publishes it) in a KeepoutFilter.
+picture zones "$EX/warehouse.yaml" "$PARAMS/zones.yaml" --mask zone_keepout="$EX/zones.yaml"
 picture gradient "$EX/warehouse.yaml" "$PARAMS/gradient.yaml"
 echo "make_pictures: done, pictures in $OUT"

@@ -25,6 +25,7 @@ const std::vector<PluginTypeAlias>& pluginTypeAliases()
       {"nav2_costmap_2d::RangeSensorLayer", "costmap_layers/RangeSensorLayer", TypeDialect::Nav2},
       {"nav2_costmap_2d::KeepoutFilter", "costmap_layers/KeepoutFilter", TypeDialect::Nav2},
       {"nav2_costmap_2d::SpeedFilter", "costmap_layers/SpeedFilter", TypeDialect::Nav2},
+      {"nav2_costmap_2d::ZoneParameterFilter", "costmap_layers/ZoneParameterFilter", TypeDialect::Nav2},
   };
   return table;
 }

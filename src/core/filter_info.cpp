@@ -18,6 +18,8 @@ const char* filterInfoTypeName(int type)
       return "speed limit in m/s";
     case filter_info::kBinary:
       return "binary";
+    case filter_info::kZoneParameter:
+      return "zone parameters";
     default:
       return "unknown";
   }
@@ -25,7 +27,7 @@ const char* filterInfoTypeName(int type)
 
 bool isKnownFilterInfoType(int type)
 {
-  return type >= filter_info::kKeepout && type <= filter_info::kBinary;
+  return type >= filter_info::kKeepout && type <= filter_info::kZoneParameter;
 }
 
 InputError validateFilterInfo(const FilterInfoData& info)
@@ -33,7 +35,8 @@ InputError validateFilterInfo(const FilterInfoData& info)
   std::ostringstream err;
   if (!isKnownFilterInfoType(info.type))
   {
-    err << "type must be 0 (keepout/lanes), 1 (speed limit in percent), 2 (speed limit in m/s) or 3 (binary) (got "
+    err << "type must be 0 (keepout/lanes), 1 (speed limit in percent), 2 (speed limit in m/s), 3 (binary) or 4 "
+           "(zone parameters) (got "
         << static_cast<int>(info.type) << ")";
     return InputError::of("type", err.str());
   }
@@ -82,6 +85,12 @@ InputError checkFilterInfoFor(FilterFamily family, const FilterInfoData& info)
     err << "type " << type << " (" << filterInfoTypeName(type) << ") is not for this filter: a speed filter takes "
         << "type 1 (percent) or 2 (m/s)"
         << (type == filter_info::kBinary ? " (this package has no binary filter)" : "");
+    return InputError::of("type", err.str());
+  }
+  if (family == FilterFamily::ZoneParameter && type != filter_info::kZoneParameter)
+  {
+    err << "type " << type << " (" << filterInfoTypeName(type) << ") is not for this filter: a zone parameter "
+        << "filter takes type 4";
     return InputError::of("type", err.str());
   }
   return InputError::none();

@@ -53,11 +53,11 @@ float checkFloat32(const costmap_layers_ros::NodeParams& params, const std::stri
 void warnAboutMeaning(const costmap_layers::FilterInfoData& info, const std::string& where)
 {
   namespace fi = costmap_layers::filter_info;
-  if ((info.type == fi::kKeepout || info.type == fi::kBinary) &&
+  if ((info.type == fi::kKeepout || info.type == fi::kBinary || info.type == fi::kZoneParameter) &&
       (info.base != fi::kBaseDefault || info.multiplier != fi::kMultiplierDefault))
     ROS_WARN(
-        "%s: type %d (%s) with %sbase %g and multiplier %g: keepout and lanes filters read mask values as they "
-        "are and ignore both (Nav2 expects 0 and 1) [%s/base]",
+        "%s: type %d (%s) with %sbase %g and multiplier %g: keepout, lanes and zone parameter filters read mask "
+        "values as they are and ignore both (Nav2 expects 0 and 1) [%s/base]",
         kNode, info.type, costmap_layers::filterInfoTypeName(info.type), where.c_str(), info.base, info.multiplier,
         kNode);
   if (info.type == fi::kSpeedPercent || info.type == fi::kSpeedAbsolute)
@@ -113,7 +113,8 @@ int main(int argc, char** argv)
     const int type = params.getInt("type", 0);
     if (!costmap_layers::isKnownFilterInfoType(type))
       throw std::invalid_argument("parameter " + params.where() + "type must be 0 (keepout/lanes), 1 (speed limit in " +
-                                  "percent), 2 (speed limit in m/s) or 3 (binary) (got " + std::to_string(type) + ")");
+                                  "percent), 2 (speed limit in m/s), 3 (binary) or 4 (zone parameters) (got " +
+                                  std::to_string(type) + ")");
     info.type = static_cast<uint8_t>(type);
     info_topic = checkTopic(params, "filter_info_topic", "costmap_filter_info");
     info.filter_mask_topic = checkTopic(params, "mask_topic", "filter_mask");

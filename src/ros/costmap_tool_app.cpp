@@ -22,6 +22,7 @@
 #include "costmap_layers/io/map_file.hpp"
 #include "costmap_layers/io/param_yaml.hpp"
 #include "costmap_layers/io/png_writer.hpp"
+#include "costmap_layers/io/zone_file.hpp"
 #include "costmap_layers/ros/plugin_factory.hpp"
 
 namespace costmap_layers_ros
@@ -131,7 +132,7 @@ public:
         ->type_name("NS");
     app_.add_option("--mask", masks_, "a filter mask for the named filter (repeatable)")
         ->allow_extra_args(false)
-        ->type_name("PLUGIN_NAME=MASK.yaml");
+        ->type_name("PLUGIN_NAME=MASK.yaml");  // a map file, or a zone file (zone_server's shapes)
     app_.add_option("--features", features_, "speed limits for the named SpeedFilter (repeatable)")
         ->allow_extra_args(false)
         ->type_name("PLUGIN_NAME=FEATURES.yaml");
@@ -348,7 +349,9 @@ int run(const ToolArgs& a, std::ostream& out, std::ostream& err)
       handlers.push_back(r != replaced[name].end() ? r->second.on_grid : layer->inputs()[i].on_grid);
     }
     if (handlers.empty()) throw std::runtime_error("--mask names plugin '" + name + "', which takes no mask");
-    auto mask = std::make_shared<OccupancyGridData>(io::loadMapFile(file));
+    // A zone file (zone_server's shapes) is rasterised as zone_server would publish it.
+    const auto zones = io::loadIfZoneFile(file);
+    auto mask = std::make_shared<OccupancyGridData>(zones ? rasterizeZones(*zones) : io::loadMapFile(file));
     mask->frame_id = config.global_frame;
     for (const GridCallback& handler : handlers)
       masks.emplace_back(handler, mask);

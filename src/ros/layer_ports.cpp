@@ -6,6 +6,7 @@
 #include <sensor_msgs/LaserScan.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <sensor_msgs/Range.h>
+#include <std_msgs/UInt8.h>
 #include <std_srvs/SetBool.h>
 #include <tf2/exceptions.h>
 
@@ -104,8 +105,13 @@ LayerPorts::LayerPorts(ros::NodeHandle public_nh, ros::NodeHandle private_nh, co
       publishers_[{out.kind, out.topic}] = public_nh_.advertise<costmap_layers::MaxSpeed>(topic, 1, true);
     else if (out.kind == costmap_layers::OutputKind::SpeedLimit)
       publishers_[{out.kind, out.topic}] = public_nh_.advertise<costmap_layers::Nav2SpeedLimit>(topic, 1, true);
+    else if (out.kind == costmap_layers::OutputKind::ZoneState)
+      publishers_[{out.kind, out.topic}] = public_nh_.advertise<std_msgs::UInt8>(topic, 1, true);
+    else if (out.kind == costmap_layers::OutputKind::Setpoints && !setpoints_)
+      setpoints_ = std::make_unique<SetpointApplier>(public_nh_, private_nh_.getNamespace(), out.timeout, log_);
   }
-  if (!publishers_.empty()) layer.setOutputListener([this](const costmap_layers::OutputEvent& e) { publish(e); });
+  if (!publishers_.empty() || setpoints_)
+    layer.setOutputListener([this](const costmap_layers::OutputEvent& e) { publish(e); });
   // A filter's one switch, as a service: the same flag as its `enabled` parameter.
   if (auto* filter = dynamic_cast<costmap_layers::CostmapFilter*>(&layer))
     toggle_ = private_nh_.advertiseService<std_srvs::SetBool::Request, std_srvs::SetBool::Response>(
@@ -163,13 +169,26 @@ std::vector<std::pair<std::string, std::string>> LayerPorts::receipts() const
 LayerPorts::~LayerPorts()
 {
   layer_.setInputListener({});
-  if (!publishers_.empty()) layer_.setOutputListener({});
+  if (!publishers_.empty() || setpoints_) layer_.setOutputListener({});
 }
 
 void LayerPorts::publish(const costmap_layers::OutputEvent& e)
 {
+  if (e.kind == costmap_layers::OutputKind::Setpoints)
+  {
+    // Handed to the worker: the update thread never waits for another node.
+    if (setpoints_) setpoints_->submit(e.setpoints, e.label);
+    return;
+  }
   const auto it = publishers_.find({e.kind, e.topic});
   if (it == publishers_.end()) return;
+  if (e.kind == costmap_layers::OutputKind::ZoneState)
+  {
+    std_msgs::UInt8 msg;
+    msg.data = static_cast<uint8_t>(e.value);
+    it->second.publish(msg);
+    return;
+  }
   if (e.kind == costmap_layers::OutputKind::SpeedLimit)
   {
     costmap_layers::Nav2SpeedLimit msg;

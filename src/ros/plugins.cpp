@@ -10,6 +10,7 @@
 #include "costmap_layers/core/speed_filter.hpp"
 #include "costmap_layers/core/static_layer.hpp"
 #include "costmap_layers/core/voxel_layer.hpp"
+#include "costmap_layers/core/zone_parameter_filter.hpp"
 
 PLUGINLIB_EXPORT_CLASS(costmap_layers::GradientLayer, costmap_layers::Layer)
 PLUGINLIB_EXPORT_CLASS(costmap_layers::KeepoutFilter, costmap_layers::Layer)
@@ -20,3 +21,4 @@ PLUGINLIB_EXPORT_CLASS(costmap_layers::LanesFilter, costmap_layers::Layer)
 PLUGINLIB_EXPORT_CLASS(costmap_layers::ObstacleLayer, costmap_layers::Layer)
 PLUGINLIB_EXPORT_CLASS(costmap_layers::VoxelLayer, costmap_layers::Layer)
 PLUGINLIB_EXPORT_CLASS(costmap_layers::RangeSensorLayer, costmap_layers::Layer)
+PLUGINLIB_EXPORT_CLASS(costmap_layers::ZoneParameterFilter, costmap_layers::Layer)

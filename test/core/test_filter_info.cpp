@@ -87,9 +87,9 @@ struct Rig
 TEST(FilterInfoRules, TypesAndFields)
 {
   EXPECT_TRUE(validateFilterInfo(info(0, "/m")).ok());
-  for (int t : {0, 1, 2, 3})
+  for (int t : {0, 1, 2, 3, 4})
     EXPECT_TRUE(isKnownFilterInfoType(t)) << t;
-  EXPECT_FALSE(isKnownFilterInfoType(4));
+  EXPECT_FALSE(isKnownFilterInfoType(5));
 
   InputError e = validateFilterInfo(info(7, "/m"));
   EXPECT_EQ(e.field, "type");

@@ -6,6 +6,7 @@
 //  1    speed limit in percent of the robot's maximum    SpeedFilter
 //  2    speed limit in m/s                               SpeedFilter
 //  3    binary filter                                    none (no BinaryFilter in this package)
+//  4    zone parameters (Nav2's ZONE_PARAMETER_FILTER)   ZoneParameterFilter
 // Every other value is invalid.
 //
 // A mask value v maps to the filter's quantity as base + multiplier * v (Nav2's rule). The keepout
@@ -27,14 +28,16 @@ constexpr uint8_t kKeepout = 0;
 constexpr uint8_t kSpeedPercent = 1;
 constexpr uint8_t kSpeedAbsolute = 2;
 constexpr uint8_t kBinary = 3;
+constexpr uint8_t kZoneParameter = 4;
 constexpr double kBaseDefault = 0.0;
 constexpr double kMultiplierDefault = 1.0;
 }  // namespace filter_info
 
-/// "keepout/lanes", "speed limit in percent", "speed limit in m/s", "binary", or "unknown".
+/// "keepout/lanes", "speed limit in percent", "speed limit in m/s", "binary", "zone parameters", or
+/// "unknown".
 const char* filterInfoTypeName(int type);
 
-/// Whether `type` is one of the four types above.
+/// Whether `type` is one of the five types above.
 bool isKnownFilterInfoType(int type);
 
 /// The checks every filter makes of an info, whatever its type: filter_mask_topic not empty, at most
@@ -45,12 +48,13 @@ bool isKnownFilterInfoType(int type);
 InputError validateFilterInfo(const FilterInfoData& info);
 
 /// validateFilterInfo() plus what a filter of the given kind accepts: keepout/lanes filters take
-/// type 0 only, the speed filter types 1 and 2 (other types are an error naming the type and the
-/// filter the info is meant for).
+/// type 0 only, the speed filter types 1 and 2, the zone parameter filter type 4 (other types are an error naming the
+/// type and the filter the info is meant for).
 enum class FilterFamily
 {
-  Keepout,  ///< KeepoutFilter, LanesFilter
-  Speed     ///< SpeedFilter
+  Keepout,       ///< KeepoutFilter, LanesFilter
+  Speed,         ///< SpeedFilter
+  ZoneParameter  ///< ZoneParameterFilter (type 4)
 };
 InputError checkFilterInfoFor(FilterFamily family, const FilterInfoData& info);
 }  // namespace costmap_layers

@@ -8,8 +8,10 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "costmap_layers/core/grid_data.hpp"
+#include "costmap_layers/core/param_value.hpp"
 #include "costmap_layers/core/sensor_data.hpp"
 
 namespace costmap_layers
@@ -75,15 +77,28 @@ using InputListener = std::function<void(std::size_t index, const InputPort& por
 /// What an output carries.
 enum class OutputKind
 {
-  MaxSpeed,   ///< costmap_layers/MaxSpeed, latched: the speed limit in force [m/s] (0 = none)
-  SpeedLimit  ///< costmap_layers/Nav2SpeedLimit (Nav2's SpeedLimit fields): percentage + speed_limit
+  MaxSpeed,    ///< costmap_layers/MaxSpeed, latched: the speed limit in force [m/s] (0 = none)
+  SpeedLimit,  ///< costmap_layers/Nav2SpeedLimit (Nav2's SpeedLimit fields): percentage + speed_limit
+  ZoneState,   ///< std_msgs/UInt8, latched: the id of the zone state in force (Nav2's state event)
+  Setpoints    ///< parameters of other nodes to set through their dynamic_reconfigure servers (no topic)
+};
+
+/// One parameter of another node, set through that node's dynamic_reconfigure server
+/// (<node>/set_parameters). The value's type (Bool, Int, Double, String) says which list of the
+/// request it goes in, as dynamic_reconfigure's own clients do.
+struct Setpoint
+{
+  std::string node;       ///< e.g. "/move_base/DWAPlannerROS"
+  std::string parameter;  ///< e.g. "max_vel_x"
+  ParamValue value;
 };
 
 /// One output of a layer: the host advertises it when the layer is loaded.
 struct OutputPort
 {
   OutputKind kind = OutputKind::MaxSpeed;
-  std::string topic;
+  std::string topic;     ///< Setpoints: a name for the port (the host sets parameters, it publishes nothing)
+  double timeout = 0.0;  ///< Setpoints: how long the host waits for each server [s]
 };
 
 /// An event on an output port, emitted by the layer (on the update thread) for the host to publish.
@@ -91,8 +106,13 @@ struct OutputEvent
 {
   OutputKind kind = OutputKind::MaxSpeed;
   std::string topic;
-  double value = 0.0;       ///< MaxSpeed: [m/s]; SpeedLimit: [%] or [m/s] as `percentage` says (0 = none)
+  double value = 0.0;  ///< MaxSpeed: [m/s]; SpeedLimit: [%] or [m/s] as `percentage` says (0 = none); ZoneState: the id
   bool percentage = false;  ///< SpeedLimit only
+  /// Setpoints only: every parameter that must hold its value from now on (a complete set, so that a
+  /// later event replaces an earlier one that was not applied yet), and what the set is for (a state
+  /// name, for messages).
+  std::vector<Setpoint> setpoints;
+  std::string label;
 };
 using OutputListener = std::function<void(const OutputEvent&)>;
 }  // namespace costmap_layers

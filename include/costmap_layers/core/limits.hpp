@@ -5,6 +5,7 @@
 // where it is read, with an error naming the field and the value; nothing is clamped silently.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 namespace costmap_layers
@@ -46,5 +47,12 @@ constexpr double kMaxDuration = 3600.0;
 /// kMaxFrequency (a period of 1 ms).
 constexpr double kMinFrequency = 1e-3;
 constexpr double kMaxFrequency = 1e3;
+
+/// Zones drawn as shapes (zone_server): at most this many shapes in one layout and vertices in one
+/// polygon. The self-intersection check is quadratic in the vertices (1e6 segment pairs at most) and
+/// a service or marker edit re-rasterises the whole layout, so both stay well below what a person draws
+/// by hand (a few shapes of a few dozen vertices) times a thousand.
+constexpr std::size_t kMaxZoneShapes = 1000;
+constexpr std::size_t kMaxZoneVertices = 1000;
 }  // namespace limits
 }  // namespace costmap_layers

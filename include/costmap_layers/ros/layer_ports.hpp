@@ -1,6 +1,7 @@
 // The ROS side of one layer's ports: every subscription and publication of the layer lives here, not
 // in the core. Each input port becomes a subscription (sensors through a tf gate: a reading reaches
-// the layer once tf can place it), each output port a latched publisher of the layer's events, and a
+// the layer once tf can place it), each output port a latched publisher of the layer's events (a
+// Setpoints port: a SetpointApplier, which sets them through dynamic_reconfigure on its own thread), and a
 // filter's switch a ~<name>/toggle service.
 #pragma once
 
@@ -17,6 +18,7 @@
 
 #include "costmap_layers/core/layer.hpp"
 #include "costmap_layers/ros/ros_layer_context.hpp"
+#include "costmap_layers/ros/setpoint_applier.hpp"
 
 namespace costmap_layers_ros
 {
@@ -77,6 +79,7 @@ private:
   std::vector<std::shared_ptr<void>> sensor_inputs_;  ///< tf gates with their subscribers
   std::map<std::pair<costmap_layers::OutputKind, std::string>, ros::Publisher> publishers_;  ///< by kind, topic
   ros::ServiceServer toggle_;
+  std::unique_ptr<SetpointApplier> setpoints_;  ///< the Setpoints output's worker (ZoneParameterFilter)
   /// By resolved topic, in order. Guarded by receipts_mutex_: a port replaced at run time adds a topic
   /// on a callback thread while the diagnostics read them on another.
   mutable std::mutex receipts_mutex_;

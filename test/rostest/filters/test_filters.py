@@ -76,6 +76,7 @@ class FiltersTest(unittest.TestCase):
                    "--mask", "keepout_filter=" + os.path.join(example, "keepout_mask.yaml"),
                    "--mask", "speed_filter=" + os.path.join(example, "speed_mask.yaml"),
                    "--mask", "lanes_filter=" + os.path.join(example, "lanes_mask.yaml"),
+                   "--mask", "zone_keepout=" + os.path.join(example, "zones.yaml"),
                    "--features", "speed_filter=" + os.path.join(example, "speed_limits.yaml"),
                    "--pose", "9.0,5.1,0.0", "--out-raw", raw]
             proc = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=60)

@@ -1,0 +1,87 @@
+// zone_server: zones drawn as shapes, served as a mask. Loads a zone file (io/zone_file.hpp), rasterises
+// it with the core (core/zone_shapes.hpp) and publishes the mask latched, as mask_server publishes a
+// mask file; shapes change at run time through services and through interactive markers in RViz (one
+// handle per polygon vertex, a centre and a radius handle per circle), and are saved back to a file.
+//
+// Topics and services (the node's private namespace is ~):
+//   <topic> (~topic, default /map_filter)  nav_msgs/OccupancyGrid, latched: the mask, republished on
+//                                          every accepted change
+//   ~update, ~update_full, ~feedback       the interactive marker server's topics (RViz: add an
+//                                          "InteractiveMarkers" display on ~update)
+//   ~set_shape     costmap_layers/SetZoneShape     add a shape or replace the one of the same name
+//   ~remove_shape  costmap_layers/RemoveZoneShape
+//   ~save          costmap_layers/SaveZones        write the shapes to a zone file
+//   ~load          costmap_layers/LoadZones        replace every shape by a zone file's
+// Every refused change (a service request, a marker drag that would make a self-intersecting polygon,
+// a file that does not load) keeps the shapes in force, is answered with the reason (services) or
+// logged with a stable key "[<node>/<field>]" (markers), and a refused drag puts the handle back.
+#pragma once
+
+#include <interactive_markers/interactive_marker_server.h>
+#include <nav_msgs/OccupancyGrid.h>
+#include <ros/ros.h>
+#include <visualization_msgs/InteractiveMarkerFeedback.h>
+
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include "costmap_layers/LoadZones.h"
+#include "costmap_layers/RemoveZoneShape.h"
+#include "costmap_layers/SaveZones.h"
+#include "costmap_layers/SetZoneShape.h"
+#include "costmap_layers/ZoneShapeDescription.h"
+#include "costmap_layers/core/zone_shapes.hpp"
+#include "costmap_layers/ros/ros_layer_context.hpp"
+
+namespace costmap_layers_ros
+{
+/// The shape a message describes (not yet validated: ZoneSet does that).
+/// Throws std::invalid_argument for a type other than "polygon" or "circle".
+costmap_layers::ZoneShape fromMsg(const costmap_layers::ZoneShapeDescription& msg);
+
+/// The mask as a message: frame, resolution, origin, cells; stamped now.
+nav_msgs::OccupancyGrid toMaskMsg(const costmap_layers::OccupancyGridData& grid, const ros::Time& stamp);
+
+/// How a marker name maps to a shape handle: "<shape>/<k>" for polygon vertex k, "<shape>/center" and
+/// "<shape>/radius" for a circle's handles 0 and 1. @return false for any other name.
+bool parseHandleName(const std::string& marker, std::string* shape, std::size_t* index);
+
+class ZoneServer
+{
+public:
+  struct Options
+  {
+    std::string yaml_filename;  ///< the zone file (required)
+    std::string topic = "/map_filter";
+    bool markers = true;  ///< offer the interactive markers
+  };
+  /// Reads the options from the private parameters; throws std::invalid_argument naming one.
+  static Options readOptions(const ros::NodeHandle& pnh);
+
+  /// Loads the file and starts publishing; throws (naming the file and the field) when it does not load.
+  ZoneServer(ros::NodeHandle nh, ros::NodeHandle pnh, Options options);
+
+private:
+  /// Publishes the mask of the shapes in force and (with markers) redraws the handles. Lock held.
+  void publish();
+  void rebuildMarkers();
+  void onFeedback(const visualization_msgs::InteractiveMarkerFeedbackConstPtr& feedback);
+  bool onSet(costmap_layers::SetZoneShape::Request& req, costmap_layers::SetZoneShape::Response& res);
+  bool onRemove(costmap_layers::RemoveZoneShape::Request& req, costmap_layers::RemoveZoneShape::Response& res);
+  bool onSave(costmap_layers::SaveZones::Request& req, costmap_layers::SaveZones::Response& res);
+  bool onLoad(costmap_layers::LoadZones::Request& req, costmap_layers::LoadZones::Response& res);
+  /// Logs a refusal with the key <node>/<field>.
+  void refuse(const std::string& what, const costmap_layers::InputError& error);
+
+  ros::NodeHandle nh_, pnh_;
+  Options options_;
+  std::string node_;
+  std::shared_ptr<ThrottledLog> log_;
+  std::mutex mutex_;
+  costmap_layers::ZoneSet zones_;  ///< guarded by mutex_
+  ros::Publisher mask_pub_;
+  std::unique_ptr<interactive_markers::InteractiveMarkerServer> markers_;
+  ros::ServiceServer set_srv_, remove_srv_, save_srv_, load_srv_;
+};
+}  // namespace costmap_layers_ros

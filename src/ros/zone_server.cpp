@@ -1,0 +1,374 @@
+#include "costmap_layers/ros/zone_server.hpp"
+
+#include <visualization_msgs/InteractiveMarker.h>
+#include <visualization_msgs/InteractiveMarkerControl.h>
+#include <visualization_msgs/Marker.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "costmap_layers/io/zone_file.hpp"
+#include "costmap_layers/ros/node_params.hpp"
+
+namespace costmap_layers_ros
+{
+using costmap_layers::InputError;
+using costmap_layers::ZoneLayout;
+using costmap_layers::ZonePoint;
+using costmap_layers::ZoneShapeType;
+
+namespace
+{
+constexpr double kHandleSize = 0.25;  ///< [m] diameter of a handle's sphere in RViz
+constexpr int kCircleSegments = 72;   ///< of a circle's drawn outline
+
+geometry_msgs::Point toPoint(const ZonePoint& p)
+{
+  geometry_msgs::Point q;
+  q.x = p.x;
+  q.y = p.y;
+  return q;
+}
+
+std::string handleName(const costmap_layers::ZoneShape& s, std::size_t k)
+{
+  if (s.type == ZoneShapeType::Circle) return s.name + (k == 0 ? "/center" : "/radius");
+  return s.name + "/" + std::to_string(k);
+}
+
+/// A handle: a sphere that moves in the ground plane.
+visualization_msgs::InteractiveMarker handleMarker(const std::string& frame, const std::string& name,
+                                                   const ZonePoint& at)
+{
+  visualization_msgs::InteractiveMarker im;
+  im.header.frame_id = frame;
+  im.name = name;
+  im.description = name;
+  im.scale = static_cast<float>(2.0 * kHandleSize);
+  im.pose.position = toPoint(at);
+  im.pose.orientation.w = 1.0;
+  visualization_msgs::InteractiveMarkerControl control;
+  // MOVE_PLANE moves in the plane normal to the control's x axis: turn x onto z (90 degrees about y).
+  control.orientation.w = std::sqrt(0.5);
+  control.orientation.y = std::sqrt(0.5);
+  control.interaction_mode = visualization_msgs::InteractiveMarkerControl::MOVE_PLANE;
+  control.always_visible = true;
+  visualization_msgs::Marker sphere;
+  sphere.type = visualization_msgs::Marker::SPHERE;
+  sphere.scale.x = sphere.scale.y = sphere.scale.z = kHandleSize;
+  sphere.color.r = 1.0f;
+  sphere.color.g = 0.55f;
+  sphere.color.a = 0.9f;
+  control.markers.push_back(sphere);
+  im.controls.push_back(control);
+  return im;
+}
+
+/// A shape's outline, drawn only (named like the shape: no handle has that name).
+visualization_msgs::InteractiveMarker outlineMarker(const std::string& frame, const costmap_layers::ZoneShape& s)
+{
+  visualization_msgs::InteractiveMarker im;
+  im.header.frame_id = frame;
+  im.name = s.name;
+  im.description = s.name + " (" + std::to_string(s.value) + ")";
+  im.pose.orientation.w = 1.0;
+  visualization_msgs::InteractiveMarkerControl control;
+  control.interaction_mode = visualization_msgs::InteractiveMarkerControl::NONE;
+  control.always_visible = true;
+  control.orientation.w = 1.0;
+  visualization_msgs::Marker line;
+  line.type = visualization_msgs::Marker::LINE_STRIP;
+  line.scale.x = 0.05;
+  line.color.r = s.value >= 100 ? 0.9f : 0.2f;
+  line.color.g = 0.3f;
+  line.color.b = s.value >= 100 ? 0.2f : 0.9f;
+  line.color.a = 1.0f;
+  line.pose.orientation.w = 1.0;
+  if (s.type == ZoneShapeType::Circle)
+    for (int k = 0; k <= kCircleSegments; ++k)
+    {
+      const double a = 2.0 * M_PI * k / kCircleSegments;
+      line.points.push_back(toPoint({s.center.x + s.radius * std::cos(a), s.center.y + s.radius * std::sin(a)}));
+    }
+  else
+  {
+    for (const auto& p : s.points)
+      line.points.push_back(toPoint(p));
+    line.points.push_back(toPoint(s.points.front()));
+  }
+  control.markers.push_back(line);
+  im.controls.push_back(control);
+  return im;
+}
+}  // namespace
+
+costmap_layers::ZoneShape fromMsg(const costmap_layers::ZoneShapeDescription& msg)
+{
+  costmap_layers::ZoneShape s;
+  s.name = msg.name;
+  if (msg.type == "polygon")
+    s.type = ZoneShapeType::Polygon;
+  else if (msg.type == "circle")
+    s.type = ZoneShapeType::Circle;
+  else
+    throw std::invalid_argument("shape '" + msg.name.substr(0, 64) +
+                                "': type must be \"polygon\" or \"circle\" (got \"" + msg.type.substr(0, 64) + "\")");
+  s.value = msg.value;
+  s.fill = msg.fill;
+  if (s.type == ZoneShapeType::Polygon)
+    for (const auto& p : msg.points)
+      s.points.push_back({p.x, p.y});
+  s.center = {msg.center.x, msg.center.y};
+  s.radius = msg.radius;
+  return s;
+}
+
+nav_msgs::OccupancyGrid toMaskMsg(const costmap_layers::OccupancyGridData& grid, const ros::Time& stamp)
+{
+  nav_msgs::OccupancyGrid msg;
+  msg.header.frame_id = grid.frame_id;
+  msg.header.stamp = stamp;
+  msg.info.map_load_time = stamp;
+  // The core keeps resolution in [kMinResolution, kMaxResolution]: normal float32 numbers.
+  msg.info.resolution = static_cast<float>(grid.resolution);
+  msg.info.width = grid.width;
+  msg.info.height = grid.height;
+  msg.info.origin.position.x = grid.origin_x;
+  msg.info.origin.position.y = grid.origin_y;
+  msg.info.origin.orientation.w = 1.0;
+  msg.data.assign(grid.data.begin(), grid.data.end());
+  return msg;
+}
+
+bool parseHandleName(const std::string& marker, std::string* shape, std::size_t* index)
+{
+  const auto slash = marker.rfind('/');
+  if (slash == std::string::npos || slash == 0 || slash + 1 >= marker.size()) return false;
+  *shape = marker.substr(0, slash);
+  const std::string tail = marker.substr(slash + 1);
+  if (tail == "center")
+  {
+    *index = 0;
+    return true;
+  }
+  if (tail == "radius")
+  {
+    *index = 1;
+    return true;
+  }
+  if (tail.size() > 6) return false;  // no polygon has a million vertices
+  for (const char c : tail)
+    if (c < '0' || c > '9') return false;
+  *index = static_cast<std::size_t>(std::stoul(tail));
+  return true;
+}
+
+ZoneServer::Options ZoneServer::readOptions(const ros::NodeHandle& pnh)
+{
+  const NodeParams params(pnh);
+  const std::string node = ros::this_node::getName();
+  for (const auto& key : params.unknownKeys({"yaml_filename", "topic", "markers"}))
+    ROS_WARN("%s: parameter %s%s is not one of yaml_filename, topic, markers: ignored [%s/unknown]", node.c_str(),
+             params.where().c_str(), key.c_str(), node.c_str());
+  Options o;
+  o.yaml_filename = params.getString("yaml_filename", "");
+  if (o.yaml_filename.empty()) throw std::invalid_argument("parameter " + params.where() + "yaml_filename is not set");
+  o.topic = params.getString("topic", o.topic);
+  if (o.topic.empty()) throw std::invalid_argument("parameter " + params.where() + "topic is empty");
+  o.markers = params.getBool("markers", o.markers);
+  return o;
+}
+
+ZoneServer::ZoneServer(ros::NodeHandle nh, ros::NodeHandle pnh, Options options)
+    : nh_(std::move(nh)),
+      pnh_(std::move(pnh)),
+      options_(std::move(options)),
+      node_(ros::this_node::getName()),
+      log_(std::make_shared<ThrottledLog>()),
+      zones_(costmap_layers::io::loadZoneFile(options_.yaml_filename))
+{
+  mask_pub_ = nh_.advertise<nav_msgs::OccupancyGrid>(options_.topic, 1, true);
+  if (options_.markers) markers_ = std::make_unique<interactive_markers::InteractiveMarkerServer>(node_);
+  set_srv_ = pnh_.advertiseService("set_shape", &ZoneServer::onSet, this);
+  remove_srv_ = pnh_.advertiseService("remove_shape", &ZoneServer::onRemove, this);
+  save_srv_ = pnh_.advertiseService("save", &ZoneServer::onSave, this);
+  load_srv_ = pnh_.advertiseService("load", &ZoneServer::onLoad, this);
+  std::lock_guard<std::mutex> lock(mutex_);
+  publish();
+  rebuildMarkers();
+}
+
+void ZoneServer::publish()
+{
+  const costmap_layers::OccupancyGridData grid = costmap_layers::rasterizeZones(zones_.layout());
+  mask_pub_.publish(toMaskMsg(grid, ros::Time::now()));
+  std::size_t claimed = 0;
+  for (const int8_t v : grid.data)
+    claimed += v != zones_.layout().default_value;
+  ROS_INFO(
+      "%s: publishing %zu shape(s) on %s: %ux%u cells at %g m/cell, origin (%g, %g), frame %s, %zu cell(s) "
+      "not at default_value %d [%s/published]",
+      node_.c_str(), zones_.layout().shapes.size(), mask_pub_.getTopic().c_str(), grid.width, grid.height,
+      grid.resolution, grid.origin_x, grid.origin_y, grid.frame_id.c_str(), claimed, zones_.layout().default_value,
+      node_.c_str());
+}
+
+void ZoneServer::rebuildMarkers()
+{
+  if (!markers_) return;
+  markers_->clear();
+  const ZoneLayout& l = zones_.layout();
+  for (const auto& s : l.shapes)
+  {
+    markers_->insert(outlineMarker(l.frame_id, s));
+    const auto handles = costmap_layers::zoneHandles(s);
+    for (std::size_t k = 0; k < handles.size(); ++k)
+      markers_->insert(handleMarker(l.frame_id, handleName(s, k), handles[k]),
+                       [this](const visualization_msgs::InteractiveMarkerFeedbackConstPtr& f) { onFeedback(f); });
+  }
+  markers_->applyChanges();
+}
+
+void ZoneServer::refuse(const std::string& what, const InputError& error)
+{
+  log_->log(costmap_layers::Severity::Error, node_ + "/" + error.field,
+            what + " refused, keeping the shapes in force: " + error.message);
+}
+
+void ZoneServer::onFeedback(const visualization_msgs::InteractiveMarkerFeedbackConstPtr& f)
+{
+  if (f->event_type != visualization_msgs::InteractiveMarkerFeedback::POSE_UPDATE) return;
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::string shape;
+  std::size_t index = 0;
+  if (!parseHandleName(f->marker_name, &shape, &index)) return;
+  const costmap_layers::ZoneShape* before = zones_.find(shape);
+  if (!before) return;
+  const std::vector<ZonePoint> old_handles = costmap_layers::zoneHandles(*before);
+  const std::string& frame = zones_.layout().frame_id;
+  InputError error;
+  if (!f->header.frame_id.empty() && f->header.frame_id != frame)
+    error = InputError::of("feedback/header.frame_id", "marker feedback for " + f->marker_name + " is in frame '" +
+                                                           f->header.frame_id.substr(0, 64) + "', the zones are in '" +
+                                                           frame + "'");
+  else
+    error = zones_.moveHandle(shape, index, f->pose.position.x, f->pose.position.y);
+  if (!error.ok())
+  {
+    refuse("moving " + f->marker_name + " to (" + std::to_string(f->pose.position.x) + ", " +
+               std::to_string(f->pose.position.y) + ")",
+           error);
+    if (markers_ && index < old_handles.size())
+    {
+      geometry_msgs::Pose back;
+      back.position = toPoint(old_handles[index]);
+      back.orientation.w = 1.0;
+      markers_->setPose(f->marker_name, back);
+      markers_->applyChanges();
+    }
+    return;
+  }
+  publish();
+  if (!markers_) return;
+  // Redraw the outline and the other handles of this shape (a circle's radius handle follows its centre);
+  // the dragged handle itself is where the user holds it.
+  const costmap_layers::ZoneShape* now = zones_.find(shape);
+  markers_->insert(outlineMarker(frame, *now));
+  const auto handles = costmap_layers::zoneHandles(*now);
+  for (std::size_t k = 0; k < handles.size(); ++k)
+    if (k != index)
+    {
+      geometry_msgs::Pose p;
+      p.position = toPoint(handles[k]);
+      p.orientation.w = 1.0;
+      markers_->setPose(handleName(*now, k), p);
+    }
+  markers_->applyChanges();
+}
+
+bool ZoneServer::onSet(costmap_layers::SetZoneShape::Request& req, costmap_layers::SetZoneShape::Response& res)
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  InputError error;
+  try
+  {
+    error = zones_.upsert(fromMsg(req.shape));
+  }
+  catch (const std::invalid_argument& e)
+  {
+    error = InputError::of("shapes/type", e.what());
+  }
+  res.success = error.ok();
+  res.message = error.ok() ? "shape '" + req.shape.name + "' in force" : error.message;
+  if (!error.ok())
+  {
+    refuse("set_shape", error);
+    return true;
+  }
+  publish();
+  rebuildMarkers();
+  return true;
+}
+
+bool ZoneServer::onRemove(costmap_layers::RemoveZoneShape::Request& req, costmap_layers::RemoveZoneShape::Response& res)
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  const InputError error = zones_.remove(req.name);
+  res.success = error.ok();
+  res.message = error.ok() ? "shape '" + req.name + "' removed" : error.message;
+  if (!error.ok())
+  {
+    refuse("remove_shape", error);
+    return true;
+  }
+  publish();
+  rebuildMarkers();
+  return true;
+}
+
+bool ZoneServer::onSave(costmap_layers::SaveZones::Request& req, costmap_layers::SaveZones::Response& res)
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  const std::string path = req.filename.empty() ? options_.yaml_filename : req.filename;
+  try
+  {
+    costmap_layers::io::saveZoneFile(path, zones_.layout());
+    res.success = true;
+    res.message = path;
+    ROS_INFO("%s: saved %zu shape(s) to %s [%s/saved]", node_.c_str(), zones_.layout().shapes.size(), path.c_str(),
+             node_.c_str());
+  }
+  catch (const std::exception& e)
+  {
+    res.success = false;
+    res.message = e.what();
+    refuse("save", InputError::of("save", e.what()));
+  }
+  return true;
+}
+
+bool ZoneServer::onLoad(costmap_layers::LoadZones::Request& req, costmap_layers::LoadZones::Response& res)
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  const std::string path = req.filename.empty() ? options_.yaml_filename : req.filename;
+  InputError error;
+  try
+  {
+    error = zones_.replace(costmap_layers::io::loadZoneFile(path));
+  }
+  catch (const std::exception& e)
+  {
+    error = InputError::of("load", e.what());
+  }
+  res.success = error.ok();
+  res.message = error.ok() ? "loaded " + path : error.message;
+  if (!error.ok())
+  {
+    refuse("load", error);
+    return true;
+  }
+  publish();
+  rebuildMarkers();
+  return true;
+}
+}  // namespace costmap_layers_ros

@@ -1,0 +1,107 @@
+// Zone files: written by hand, read, saved and read back; the saved file rasterises to the same mask.
+#include <fstream>
+#include <stdexcept>
+#include <string>
+
+#include "costmap_layers/io/zone_file.hpp"
+#include "temp_dir_test.hpp"
+
+using namespace costmap_layers;
+
+namespace
+{
+void write(const std::string& path, const std::string& text)
+{
+  std::ofstream(path) << text;
+}
+
+const char* kFile = R"(# a keepout wall and a slow circle
+frame_id: map
+resolution: 0.05
+default_value: 0
+overlay: max
+shapes:
+  - name: dock
+    type: polygon
+    value: 100
+    points: [[1.0, 1.0], [3.0, 1.0], [3.0, 2.5], [1.0, 2.5]]
+  - {name: slow, type: circle, value: 40, fill: false, center: [5, 2], radius: 1.2}
+)";
+}  // namespace
+
+class ZoneFile : public TempDirTest
+{
+};
+
+TEST_F(ZoneFile, ReadsWhatAPersonWrites)
+{
+  write(tmp("z.yaml"), kFile);
+  const ZoneLayout l = io::loadZoneFile(tmp("z.yaml"));
+  ASSERT_EQ(l.shapes.size(), 2u);
+  EXPECT_EQ(l.overlay, ZoneOverlay::Max);
+  EXPECT_EQ(l.shapes[0].name, "dock");
+  EXPECT_EQ(l.shapes[0].points.size(), 4u);
+  EXPECT_TRUE(l.shapes[0].fill);
+  EXPECT_EQ(l.shapes[1].type, ZoneShapeType::Circle);
+  EXPECT_FALSE(l.shapes[1].fill);
+  EXPECT_DOUBLE_EQ(l.shapes[1].radius, 1.2);
+  EXPECT_DOUBLE_EQ(l.shapes[1].center.x, 5.0);  // an integer in the file is a number of metres too
+}
+
+TEST_F(ZoneFile, SavedFileReloadsToTheSameLayoutAndMask)
+{
+  write(tmp("z.yaml"), kFile);
+  ZoneSet set(io::loadZoneFile(tmp("z.yaml")));
+  // An edit with a number that has no short decimal form, so that a lossy writer would show.
+  ASSERT_TRUE(set.moveHandle("dock", 2, 3.0 + 1.0 / 3.0, 2.5 + 1e-9).ok());
+  io::saveZoneFile(tmp("saved.yaml"), set.layout());
+  const ZoneLayout back = io::loadZoneFile(tmp("saved.yaml"));
+  ASSERT_EQ(back.shapes.size(), 2u);
+  EXPECT_EQ(back.shapes[0].points[2].x, 3.0 + 1.0 / 3.0);  // bit for bit
+  EXPECT_EQ(back.shapes[0].points[2].y, 2.5 + 1e-9);
+  const OccupancyGridData a = rasterizeZones(set.layout()), b = rasterizeZones(back);
+  EXPECT_EQ(a.width, b.width);
+  EXPECT_EQ(a.height, b.height);
+  EXPECT_EQ(a.origin_x, b.origin_x);
+  EXPECT_EQ(a.origin_y, b.origin_y);
+  EXPECT_EQ(a.data, b.data);
+  // Saving over an existing file replaces it.
+  io::saveZoneFile(tmp("z.yaml"), back);
+  EXPECT_EQ(io::loadZoneFile(tmp("z.yaml")).shapes[0].points[2].x, 3.0 + 1.0 / 3.0);
+}
+
+TEST_F(ZoneFile, BadFilesNameThePathAndTheField)
+{
+  auto refused = [&](const std::string& text, const std::string& needle)
+  {
+    write(tmp("bad.yaml"), text);
+    try
+    {
+      io::loadZoneFile(tmp("bad.yaml"));
+      ADD_FAILURE() << "accepted; expected " << needle;
+    }
+    catch (const std::exception& e)
+    {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("bad.yaml"), std::string::npos) << e.what();
+    }
+  };
+  refused("shapes:\n  - {name: a, type: polygon, value: 100, points: [[0, 0], [1, 1]]}\n", "at least 3 points");
+  refused("shapes:\n  - {name: a, type: polygon, value: 100, points: [[0, 0], [1, .nan], [1, 0]]}\n", "finite");
+  refused("shapes:\n  - {name: a, type: polygon, value: 100, points: [[0, 0], [1, 1], [1, 0], [0, 1]]}\n",
+          "self-intersecting");
+  refused("shapes:\n  - {name: a, type: circle, value: 100, center: [0, 0], radius: 1, colour: red}\n",
+          "unknown field 'colour'");
+  refused("resolution: 0.0001\nshapes:\n  - {name: a, type: circle, value: 100, center: [0, 0], radius: 9000}\n",
+          "cells a mask may have");
+  refused("shapes: [\n", "bad.yaml");
+  EXPECT_THROW(io::loadZoneFile(tmp("missing.yaml")), std::exception);
+}
+
+TEST_F(ZoneFile, SaveRefusesAnInvalidLayoutAndAnUnwritablePath)
+{
+  ZoneLayout l;
+  l.resolution = 0.0;
+  EXPECT_THROW(io::saveZoneFile(tmp("x.yaml"), l), std::runtime_error);
+  EXPECT_THROW(io::saveZoneFile(tmp("no/such/dir/x.yaml"), ZoneLayout{}), std::runtime_error);
+}

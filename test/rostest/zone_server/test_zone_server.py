@@ -1,0 +1,205 @@
+#!/usr/bin/env python3
+"""zone_server through real topics and services. The expected masks are computed here from the
+documented rules with another method than the server's (a same-side test for convex polygons, the
+distance to the centre for circles, the extent from the shapes' bounding boxes): the initial mask; a
+marker feedback message (as RViz sends it when a vertex is dragged) that moves a vertex changes the
+mask to the one of the moved polygon; the save service writes a file that another zone_server
+loads to the very same mask; bad shapes and a self-intersecting drag are refused and change nothing."""
+import math
+import os
+import shutil
+import sys
+import tempfile
+import threading
+import unittest
+
+import rospy
+import rostest
+from costmap_layers.msg import ZoneShapeDescription as ZoneShape
+from costmap_layers.srv import LoadZones, RemoveZoneShape, SaveZones, SetZoneShape
+from geometry_msgs.msg import Point
+from nav_msgs.msg import OccupancyGrid
+from rosgraph_msgs.msg import Log
+from visualization_msgs.msg import InteractiveMarkerFeedback
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from grid_watch import logged_with_key  # noqa: E402
+
+RES = 0.1
+DOCK = [(1.02, 1.03), (2.97, 1.03), (2.97, 2.04), (1.02, 2.04)]
+SLOW = ((4.0, 1.5), 0.72)
+
+
+def expected_mask(polygons, circles, res=RES):
+    """(origin_x, origin_y, width, height, data) for filled convex counter-clockwise polygons and
+    filled circles applied in order, later ones winning (overlay last), default 0."""
+    xs, ys = [], []
+    for pts, _ in polygons:
+        xs += [p[0] for p in pts]
+        ys += [p[1] for p in pts]
+    for (c, r), _ in circles:
+        xs += [c[0] - r, c[0] + r]
+        ys += [c[1] - r, c[1] + r]
+    i0, i1 = math.floor(min(xs) / res) - 1, math.floor(max(xs) / res) + 1
+    j0, j1 = math.floor(min(ys) / res) - 1, math.floor(max(ys) / res) + 1
+    w, h = i1 - i0 + 1, j1 - j0 + 1
+    data = [0] * (w * h)
+    for j in range(h):
+        y = (j0 + j + 0.5) * res
+        for i in range(w):
+            x = (i0 + i + 0.5) * res
+            for pts, value in polygons:
+                n = len(pts)
+                if all((pts[(k + 1) % n][0] - pts[k][0]) * (y - pts[k][1]) -
+                       (pts[(k + 1) % n][1] - pts[k][1]) * (x - pts[k][0]) > 0 for k in range(n)):
+                    data[j * w + i] = value
+            for (c, r), value in circles:
+                if (x - c[0]) ** 2 + (y - c[1]) ** 2 <= r * r:
+                    data[j * w + i] = value
+    return i0 * res, j0 * res, w, h, data
+
+
+class Latest:
+    def __init__(self, topic):
+        self.cond = threading.Condition()
+        self.msg = None
+        self.count = 0
+        rospy.Subscriber(topic, OccupancyGrid, self.on_msg)
+
+    def on_msg(self, m):
+        with self.cond:
+            self.msg = m
+            self.count += 1
+            self.cond.notify_all()
+
+    def wait(self, predicate, timeout):
+        deadline = rospy.Time.now() + rospy.Duration(timeout)
+        with self.cond:
+            while not (self.msg is not None and predicate(self.msg)) and not rospy.is_shutdown() \
+                    and rospy.Time.now() < deadline:
+                self.cond.wait(0.2)
+            return self.msg is not None and predicate(self.msg)
+
+
+def matches(expected):
+    ox, oy, w, h, data = expected
+
+    def check(m):
+        return (m.info.width == w and m.info.height == h and abs(m.info.origin.position.x - ox) < 1e-9
+                and abs(m.info.origin.position.y - oy) < 1e-9 and list(m.data) == data
+                and m.header.frame_id == "map")
+    return check
+
+
+class ZoneServerTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node("test_zone_server")
+        cls.logs = []
+        cls.log_cond = threading.Condition()
+
+        def on_log(m):
+            if m.name == "/zone_server" and m.level >= Log.ERROR:
+                with cls.log_cond:
+                    cls.logs.append(m.msg)
+                    cls.log_cond.notify_all()
+        rospy.Subscriber("/rosout", Log, on_log)
+        cls.mask = Latest("/zone_mask")
+        cls.reloaded = Latest("/zone_mask_reloaded")
+        cls.feedback = rospy.Publisher("/zone_server/feedback", InteractiveMarkerFeedback, queue_size=10)
+        for name in ["set_shape", "remove_shape", "save", "load"]:
+            rospy.wait_for_service("/zone_server/" + name, 30.0)
+        rospy.wait_for_service("/zone_reloaded/load", 30.0)
+        cls.set_shape = rospy.ServiceProxy("/zone_server/set_shape", SetZoneShape)
+        cls.remove_shape = rospy.ServiceProxy("/zone_server/remove_shape", RemoveZoneShape)
+        cls.save = rospy.ServiceProxy("/zone_server/save", SaveZones)
+        cls.load_reloaded = rospy.ServiceProxy("/zone_reloaded/load", LoadZones)
+        deadline = rospy.Time.now() + rospy.Duration(30.0)
+        while cls.feedback.get_num_connections() == 0 and rospy.Time.now() < deadline:
+            rospy.sleep(0.05)  # polling a condition (the subscriber's connection), with a deadline
+        cls.tmp = tempfile.mkdtemp(prefix="zone_server_test_")
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+
+    def drag(self, marker, x, y):
+        f = InteractiveMarkerFeedback()
+        f.header.frame_id = "map"
+        f.header.stamp = rospy.Time.now()
+        f.client_id = "/test_zone_server"
+        f.marker_name = marker
+        f.event_type = InteractiveMarkerFeedback.POSE_UPDATE
+        f.pose.position.x = x
+        f.pose.position.y = y
+        f.pose.orientation.w = 1.0
+        self.feedback.publish(f)
+
+    def wait_logged(self, key, timeout):
+        deadline = rospy.Time.now() + rospy.Duration(timeout)
+        with self.log_cond:
+            while not logged_with_key(self.logs, key) and not rospy.is_shutdown() and rospy.Time.now() < deadline:
+                self.log_cond.wait(0.2)
+            return logged_with_key(self.logs, key)
+
+    def test_drag_a_vertex_then_save_and_reload(self):
+        initial = expected_mask([(DOCK, 100)], [(SLOW, 40)])
+        self.assertTrue(self.mask.wait(matches(initial), 30.0), "the initial mask is not the expected one")
+        self.assertGreater(initial[4].count(100), 150)  # 19 x 10 cells
+        # Drag dock's vertex 2 from (2.97, 2.04) to (3.46, 2.57), as RViz would.
+        moved = [DOCK[0], DOCK[1], (3.46, 2.57), DOCK[3]]
+        expected = expected_mask([(moved, 100)], [(SLOW, 40)])
+        self.assertNotEqual(expected[4], initial[4])
+        self.drag("dock/2", 3.46, 2.57)
+        self.assertTrue(self.mask.wait(matches(expected), 20.0), "the dragged vertex did not move the zone")
+        # Save, and make the other server load the file: the same mask, cell for cell.
+        path = os.path.join(self.tmp, "saved.yaml")
+        res = self.save(path)
+        self.assertTrue(res.success, res.message)
+        self.assertTrue(os.path.isfile(path))
+        res = self.load_reloaded(path)
+        self.assertTrue(res.success, res.message)
+        self.assertTrue(self.reloaded.wait(matches(expected), 20.0), "the saved file did not reload to the same mask")
+        a, b = self.mask.msg, self.reloaded.msg
+        self.assertEqual(a.info.resolution, b.info.resolution)
+        self.assertEqual(list(a.data), list(b.data))
+
+    def test_bad_input_changes_nothing(self):
+        self.assertTrue(self.mask.wait(lambda m: True, 30.0))
+        before = self.mask.msg  # whatever the other case left: this one only checks that nothing changes
+        bad = ZoneShape(name="tri", type="polygon", value=100, fill=True,
+                        points=[Point(0.0, 0.0, 0.0), Point(1.0, 0.0, 0.0)])
+        res = self.set_shape(bad)
+        self.assertFalse(res.success)
+        self.assertIn("at least 3 points", res.message)
+        bow = ZoneShape(name="bow", type="polygon", value=100, fill=True,
+                        points=[Point(0, 0, 0), Point(1, 1, 0), Point(1, 0, 0), Point(0, 1, 0)])
+        res = self.set_shape(bow)
+        self.assertFalse(res.success)
+        self.assertIn("self-intersecting", res.message)
+        nan = ZoneShape(name="nan", type="circle", value=100, fill=True, center=Point(float("nan"), 0, 0),
+                        radius=1.0)
+        self.assertFalse(self.set_shape(nan).success)
+        huge = ZoneShape(name="huge", type="circle", value=100, fill=True, center=Point(0, 0, 0), radius=5e6)
+        res = self.set_shape(huge)
+        self.assertFalse(res.success)
+        self.assertIn("cells a mask may have", res.message)
+        self.assertFalse(self.set_shape(ZoneShape(name="x", type="ellipse", value=1)).success)
+        self.assertFalse(self.remove_shape("no_such_shape").success)
+        # A drag that makes dock self-intersecting (vertex 0 above the top edge, with or without the
+        # other case's drag): refused, reported, the handle put back, the mask unchanged.
+        self.drag("dock/0", 2.0, 3.0)
+        self.assertTrue(self.wait_logged("/zone_server/shapes/dock/points", 20.0),
+                        "the self-intersecting drag was not reported")
+        self.assertEqual(list(self.mask.msg.data), list(before.data))
+        # A good shape appears, and goes again when removed.
+        extra = ZoneShape(name="extra", type="circle", value=55, fill=True, center=Point(-3.0, -3.0, 0), radius=0.5)
+        res = self.set_shape(extra)
+        self.assertTrue(res.success, res.message)
+        self.assertTrue(self.mask.wait(lambda m: 55 in m.data, 20.0))
+        self.assertTrue(self.remove_shape("extra").success)
+        self.assertTrue(self.mask.wait(lambda m: 55 not in m.data and list(m.data) == list(before.data), 20.0))
+
+
+if __name__ == "__main__":
+    rostest.rosrun("costmap_layers", "zone_server", ZoneServerTest)
