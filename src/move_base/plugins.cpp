@@ -11,6 +11,7 @@
 #include "costmap_layers/core/speed_filter.hpp"
 #include "costmap_layers/core/static_layer.hpp"
 #include "costmap_layers/core/voxel_layer.hpp"
+#include "costmap_layers/core/zone_parameter_filter.hpp"
 #include "costmap_layers/move_base/layer_bridge.hpp"
 
 // One class per core type, named as the core class, in namespace costmap_layers::move_base.
@@ -37,3 +38,4 @@ COSTMAP_LAYERS_MOVE_BASE_PLUGIN(GradientLayer)
 COSTMAP_LAYERS_MOVE_BASE_PLUGIN(KeepoutFilter)
 COSTMAP_LAYERS_MOVE_BASE_PLUGIN(SpeedFilter)
 COSTMAP_LAYERS_MOVE_BASE_PLUGIN(LanesFilter)
+COSTMAP_LAYERS_MOVE_BASE_PLUGIN(ZoneParameterFilter)

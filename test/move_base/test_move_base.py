@@ -134,6 +134,24 @@ class MoveBaseTest(unittest.TestCase):
             ok = self.speed_cond.wait_for(lambda: any(abs(s - 0.3) < 1e-9 for s in self.speeds), timeout=60.0)
         self.assertTrue(ok, "no /max_speed 0.3 from move_base's SpeedFilter; seen %s" % self.speeds)
 
+    def test_zone_parameter_filter_slows_move_base_own_planner(self):
+        # The robot starts in the zone of state 30: the bridged ZoneParameterFilter sets
+        # /move_base/DWAPlannerROS max_vel_x to 0.3 through dynamic_reconfigure, from inside move_base.
+        from std_msgs.msg import UInt8
+        state = rospy.wait_for_message("/zone_state", UInt8, timeout=60.0)
+        deadline = rospy.Time.now() + rospy.Duration(30.0)
+        while state.data != 30 and rospy.Time.now() < deadline:
+            state = rospy.wait_for_message("/zone_state", UInt8, timeout=30.0)
+        self.assertEqual(state.data, 30)
+        client = dynamic_reconfigure.client.Client("/move_base/DWAPlannerROS", timeout=30.0)
+        value = None
+        while rospy.Time.now() < deadline:
+            value = client.get_configuration(timeout=5.0)["max_vel_x"]
+            if abs(value - 0.3) < 1e-9:
+                break
+            rospy.wait_for_message("/move_base/DWAPlannerROS/parameter_updates", rospy.AnyMsg, timeout=5.0)
+        self.assertAlmostEqual(value, 0.3, places=9)
+
     def test_gradient_pattern_in_the_local_costmap(self):
         # Along every row from the window's first column: cost (254 - k * 10) % 255, k = i mod 22.
         def expected(i):
