@@ -36,6 +36,9 @@ picture static "$EX/warehouse.yaml" "$PARAMS/static.yaml"
 picture inflation "$EX/warehouse.yaml" "$PARAMS/inflation.yaml"
 picture keepout "$EX/warehouse.yaml" "$PARAMS/keepout.yaml" \
   --mask keepout_filter="$EX/keepout_mask.yaml"
+# The robot half inside the loading dock: escape mode writes the dock as a ramp toward the way out.
+picture keepout_escape "$EX/warehouse.yaml" "$PARAMS/keepout_escape.yaml" \
+  --mask keepout_filter="$EX/keepout_mask.yaml" --pose 14.0,6.95,1.5708
 picture lanes "$EX/warehouse.yaml" "$PARAMS/lanes.yaml" \
   --mask lanes_filter="$EX/lanes_mask.yaml"
 picture speed_mask "$EX/speed_mask.yaml" "$PARAMS/speed_mask_as_map.yaml"

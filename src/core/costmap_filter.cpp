@@ -426,6 +426,8 @@ void CostmapFilter::updateBounds(double robot_x, double robot_y, double robot_ya
                            ": the filter does nothing until one arrives");
   }
   if (!active_mask_ || !filter_enabled_) processInactive();
+  changed = changed || redraw_requested_;
+  redraw_requested_ = false;
   if (!changed) return;
   for (const auto* m : {&active_mask_, &old})
   {

@@ -6,6 +6,7 @@
 #include <sensor_msgs/LaserScan.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <sensor_msgs/Range.h>
+#include <std_msgs/Bool.h>
 #include <std_srvs/SetBool.h>
 #include <tf2/exceptions.h>
 
@@ -14,6 +15,7 @@
 #include <cstdio>
 #include <deque>
 #include <mutex>
+#include <type_traits>
 
 #include "costmap_layers/CostmapFilterInfo.h"
 #include "costmap_layers/MaxSpeed.h"
@@ -70,6 +72,8 @@ LayerPorts::LayerPorts(ros::NodeHandle public_nh, ros::NodeHandle private_nh, co
       case InputKind::MapUpdates:
       case InputKind::SpeedLimits:
       case InputKind::FilterInfo:
+      case InputKind::Path:
+      case InputKind::Odometry:
         port_subscribers_[i] = subscribe(in);
         break;
       case InputKind::LaserScan:
@@ -104,6 +108,8 @@ LayerPorts::LayerPorts(ros::NodeHandle public_nh, ros::NodeHandle private_nh, co
       publishers_[{out.kind, out.topic}] = public_nh_.advertise<costmap_layers::MaxSpeed>(topic, 1, true);
     else if (out.kind == costmap_layers::OutputKind::SpeedLimit)
       publishers_[{out.kind, out.topic}] = public_nh_.advertise<costmap_layers::Nav2SpeedLimit>(topic, 1, true);
+    else if (out.kind == costmap_layers::OutputKind::BinaryState)
+      publishers_[{out.kind, out.topic}] = public_nh_.advertise<std_msgs::Bool>(topic, 1, true);
   }
   if (!publishers_.empty()) layer.setOutputListener([this](const costmap_layers::OutputEvent& e) { publish(e); });
   // A filter's one switch, as a service: the same flag as its `enabled` parameter.
@@ -170,6 +176,13 @@ void LayerPorts::publish(const costmap_layers::OutputEvent& e)
 {
   const auto it = publishers_.find({e.kind, e.topic});
   if (it == publishers_.end()) return;
+  if (e.kind == costmap_layers::OutputKind::BinaryState)
+  {
+    std_msgs::Bool msg;
+    msg.data = e.state;
+    it->second.publish(msg);
+    return;
+  }
   if (e.kind == costmap_layers::OutputKind::SpeedLimit)
   {
     costmap_layers::Nav2SpeedLimit msg;
@@ -201,6 +214,10 @@ ros::Subscriber LayerPorts::subscribe(const costmap_layers::InputPort& in)
       return subscribeSpeedLimits(in.topic, in.on_limits);
     case InputKind::FilterInfo:
       return subscribeFilterInfo(in.topic, in.on_info);
+    case InputKind::Path:
+      return subscribeTyped<nav_msgs::Path>(in.topic, "a path", in.on_path, 1);
+    case InputKind::Odometry:
+      return subscribeTyped<nav_msgs::Odometry>(in.topic, "odometry", in.on_odom, 10);
     default:
       return {};  // sensors go through subscribeSensor()
   }
@@ -290,6 +307,29 @@ ros::Subscriber LayerPorts::subscribeSpeedLimits(const std::string& topic, costm
           log->log(Severity::Error, owner + topic, owner + ": dropped speed limits on " + topic + ": " + e.what());
         }
       }));
+}
+
+template <class Msg, class Callback>
+ros::Subscriber LayerPorts::subscribeTyped(const std::string& topic, const std::string& what, Callback cb,
+                                           uint32_t queue)
+{
+  const std::string owner = private_nh_.getNamespace();
+  auto receipts = receiptsFor(topic);
+  return public_nh_.subscribe<Msg>(
+      resolveTopic(topic), queue,
+      [cb, owner, topic, what, receipts, log = log_](const typename Msg::ConstPtr& msg)
+      {
+        receipts->note();
+        try
+        {
+          using Data = typename std::decay_t<decltype(fromMsg(*msg))>;
+          cb(std::make_shared<const Data>(fromMsg(*msg)));
+        }
+        catch (const std::exception& e)
+        {
+          log->log(Severity::Error, owner + topic, owner + ": dropped " + what + " on " + topic + ": " + e.what());
+        }
+      });
 }
 
 namespace

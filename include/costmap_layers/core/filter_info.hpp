@@ -5,7 +5,7 @@
 //  0    keepout / preferred lanes                        KeepoutFilter, LanesFilter
 //  1    speed limit in percent of the robot's maximum    SpeedFilter
 //  2    speed limit in m/s                               SpeedFilter
-//  3    binary filter                                    none (no BinaryFilter in this package)
+//  3    binary filter                                    BinaryFilter
 // Every other value is invalid.
 //
 // A mask value v maps to the filter's quantity as base + multiplier * v (Nav2's rule). The keepout
@@ -45,12 +45,13 @@ bool isKnownFilterInfoType(int type);
 InputError validateFilterInfo(const FilterInfoData& info);
 
 /// validateFilterInfo() plus what a filter of the given kind accepts: keepout/lanes filters take
-/// type 0 only, the speed filter types 1 and 2 (other types are an error naming the type and the
-/// filter the info is meant for).
+/// type 0 only, the speed filter types 1 and 2, the binary filter type 3 (other types are an error
+/// naming the type and the filter the info is meant for).
 enum class FilterFamily
 {
   Keepout,  ///< KeepoutFilter, LanesFilter
-  Speed     ///< SpeedFilter
+  Speed,    ///< SpeedFilter
+  Binary    ///< BinaryFilter
 };
 InputError checkFilterInfoFor(FilterFamily family, const FilterInfoData& info);
 }  // namespace costmap_layers

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "costmap_layers/core/grid_data.hpp"
+#include "costmap_layers/core/path_data.hpp"
 #include "costmap_layers/core/sensor_data.hpp"
 
 namespace costmap_layers
@@ -24,7 +25,9 @@ enum class InputKind
   LaserScan,    ///< sensor_msgs/LaserScan, delivered with the sensor pose
   PointCloud2,  ///< sensor_msgs/PointCloud2, delivered with the sensor pose
   Range,        ///< sensor_msgs/Range, delivered with the sensor pose
-  FilterInfo    ///< costmap_layers/CostmapFilterInfo (Nav2's CostmapFilterInfo fields)
+  FilterInfo,   ///< costmap_layers/CostmapFilterInfo (Nav2's CostmapFilterInfo fields)
+  Path,         ///< nav_msgs/Path: a planned path (positions only)
+  Odometry      ///< nav_msgs/Odometry: the robot's velocity
 };
 
 /// A short name of what an input carries ("map", "laser scans", ...), for messages.
@@ -34,6 +37,8 @@ using GridCallback = std::function<void(const std::shared_ptr<const OccupancyGri
 using GridUpdateCallback = std::function<void(const std::shared_ptr<const OccupancyGridUpdateData>&)>;
 using SpeedLimitsCallback = std::function<void(const std::shared_ptr<const SpeedLimitsData>&)>;
 using FilterInfoCallback = std::function<void(const std::shared_ptr<const FilterInfoData>&)>;
+using PathCallback = std::function<void(const std::shared_ptr<const PathData>&)>;
+using OdometryCallback = std::function<void(const std::shared_ptr<const OdometryData>&)>;
 template <class Reading>
 using SensorCallback = std::function<void(const std::shared_ptr<const Reading>&, const SensorPose&)>;
 
@@ -55,6 +60,8 @@ struct InputPort
   GridUpdateCallback on_update;   ///< MapUpdates
   SpeedLimitsCallback on_limits;  ///< SpeedLimits
   FilterInfoCallback on_info;     ///< FilterInfo
+  PathCallback on_path;           ///< Path
+  OdometryCallback on_odom;       ///< Odometry
   SensorCallback<LaserScanData> on_scan;
   SensorCallback<PointCloud2Data> on_cloud;
   SensorCallback<RangeData> on_range;
@@ -63,6 +70,8 @@ struct InputPort
   static InputPort mapUpdates(std::string topic, GridUpdateCallback cb);
   static InputPort speedLimits(std::string topic, SpeedLimitsCallback cb);
   static InputPort filterInfo(std::string topic, FilterInfoCallback cb);
+  static InputPort path(std::string topic, PathCallback cb);
+  static InputPort odometry(std::string topic, OdometryCallback cb);
   static InputPort laserScan(std::string topic, std::string sensor_frame, SensorCallback<LaserScanData> cb);
   static InputPort pointCloud2(std::string topic, std::string sensor_frame, SensorCallback<PointCloud2Data> cb);
   static InputPort range(std::string topic, SensorCallback<RangeData> cb);
@@ -75,8 +84,9 @@ using InputListener = std::function<void(std::size_t index, const InputPort& por
 /// What an output carries.
 enum class OutputKind
 {
-  MaxSpeed,   ///< costmap_layers/MaxSpeed, latched: the speed limit in force [m/s] (0 = none)
-  SpeedLimit  ///< costmap_layers/Nav2SpeedLimit (Nav2's SpeedLimit fields): percentage + speed_limit
+  MaxSpeed,    ///< costmap_layers/MaxSpeed, latched: the speed limit in force [m/s] (0 = none)
+  SpeedLimit,  ///< costmap_layers/Nav2SpeedLimit (Nav2's SpeedLimit fields): percentage + speed_limit
+  BinaryState  ///< std_msgs/Bool, latched: a BinaryFilter's state (OutputEvent::state)
 };
 
 /// One output of a layer: the host advertises it when the layer is loaded.
@@ -93,6 +103,7 @@ struct OutputEvent
   std::string topic;
   double value = 0.0;       ///< MaxSpeed: [m/s]; SpeedLimit: [%] or [m/s] as `percentage` says (0 = none)
   bool percentage = false;  ///< SpeedLimit only
+  bool state = false;       ///< BinaryState only
 };
 using OutputListener = std::function<void(const OutputEvent&)>;
 }  // namespace costmap_layers

@@ -5,6 +5,7 @@
 // where it is read, with an error naming the field and the value; nothing is clamped silently.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 namespace costmap_layers
@@ -46,5 +47,12 @@ constexpr double kMaxDuration = 3600.0;
 /// kMaxFrequency (a period of 1 ms).
 constexpr double kMinFrequency = 1e-3;
 constexpr double kMaxFrequency = 1e3;
+
+/// Poses of one path: 200 000 poses is a 5 km plan at navfn's 2.5 cm spacing. Bigger paths are
+/// refused (each cycle may walk the whole path to find the robot on it).
+constexpr std::size_t kMaxPathPoses = 200'000;
+/// [m/s] |speed| an odometry message may report: no ground robot is faster; beyond it the braking
+/// distance v^2 / (2 a) loses meaning.
+constexpr double kMaxSpeed = 100.0;
 }  // namespace limits
 }  // namespace costmap_layers
