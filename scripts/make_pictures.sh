@@ -46,6 +46,7 @@ picture speed_mask "$EX/speed_mask.yaml" "$PARAMS/speed_mask_as_map.yaml"
 picture all_filters "$EX/warehouse.yaml" "$ROOT/params/costmap_example.yaml" \
   --mask keepout_filter="$EX/keepout_mask.yaml" --mask speed_filter="$EX/speed_mask.yaml" \
   --mask lanes_filter="$EX/lanes_mask.yaml" --features speed_filter="$EX/speed_limits.yaml" \
+  --mask binary_filter="$EX/binary_mask.yaml" \
   --pose 5.0,1.5,0.0
 picture gradient "$EX/warehouse.yaml" "$PARAMS/gradient.yaml"
 echo "make_pictures: done, pictures in $OUT"

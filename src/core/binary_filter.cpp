@@ -96,8 +96,8 @@ void BinaryFilter::processPose(const OccupancyGridData& mask, const Transform2D&
   const bool next = binaryState(*v, base, multiplier, config_.flip_threshold, config_.default_state);
   if (next == state_) return;
   std::ostringstream why;
-  why << "mask value " << static_cast<int>(*v) << ": " << base << " + " << multiplier << " * "
-      << static_cast<int>(*v) << " = " << base + multiplier * *v << ", flip_threshold " << config_.flip_threshold;
+  why << "mask value " << static_cast<int>(*v) << ": " << base << " + " << multiplier << " * " << static_cast<int>(*v)
+      << " = " << base + multiplier * *v << ", flip_threshold " << config_.flip_threshold;
   setState(next, why.str());
 }
 
@@ -110,8 +110,8 @@ void BinaryFilter::setState(bool state, const std::string& why)
   e.topic = config_.binary_state_topic;
   e.state = state;
   emit(e);
-  context_->report(Severity::Info, "binary_state",
-                   name_ + ": state " + (state ? "true" : "false") + " on " + config_.binary_state_topic + " (" +
-                       why + ")");
+  context_->report(
+      Severity::Info, "binary_state",
+      name_ + ": state " + (state ? "true" : "false") + " on " + config_.binary_state_topic + " (" + why + ")");
 }
 }  // namespace costmap_layers

@@ -56,8 +56,7 @@ bool insidePolygon(const std::vector<Eigen::Vector2d>& polygon, double px, doubl
   {
     const Eigen::Vector2d& a = polygon[i];
     const Eigen::Vector2d& b = polygon[j];
-    if ((a.y() > py) != (b.y() > py) && px < (b.x() - a.x()) * (py - a.y()) / (b.y() - a.y()) + a.x())
-      inside = !inside;
+    if ((a.y() > py) != (b.y() > py) && px < (b.x() - a.x()) * (py - a.y()) / (b.y() - a.y()) + a.x()) inside = !inside;
   }
   return inside;
 }

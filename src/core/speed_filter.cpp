@@ -167,8 +167,9 @@ std::string SpeedFilter::setPath(const std::shared_ptr<const PathData>& path)
     error = InputError::of("header.stamp", outOfOrderError(path->stamp_ns, path_->stamp_ns, "path"));
   }
   if (context_)
-    context_->report(Severity::Error, "path/" + error.field,
-                     name_ + ": path on " + config_.path_topic + " refused, keeping the previous one: " + error.message);
+    context_->report(
+        Severity::Error, "path/" + error.field,
+        name_ + ": path on " + config_.path_topic + " refused, keeping the previous one: " + error.message);
   return error.message;
 }
 
@@ -194,9 +195,9 @@ std::string SpeedFilter::setOdometry(const OdometryData& odom)
     error = InputError::of("header.stamp", outOfOrderError(odom.stamp_ns, speeds_.back().stamp_ns, "odometry"));
   }
   if (context_)
-    context_->report(Severity::Error, "odom/" + error.field,
-                     name_ + ": odometry on " + config_.odom_topic + " refused, keeping the previous speed: " +
-                         error.message);
+    context_->report(
+        Severity::Error, "odom/" + error.field,
+        name_ + ": odometry on " + config_.odom_topic + " refused, keeping the previous speed: " + error.message);
   return error.message;
 }
 
@@ -228,8 +229,8 @@ std::optional<double> SpeedFilter::currentSpeed()
   {
     context_->report(Severity::Error, "odom/stale",
                      name_ + ": the newest odometry on " + config_.odom_topic + " is " + num(age) +
-                         " s old, more than odom_timeout (" + num(config_.odom_timeout) + " s): looking max_lookahead (" +
-                         num(config_.max_lookahead) + " m) ahead");
+                         " s old, more than odom_timeout (" + num(config_.odom_timeout) +
+                         " s): looking max_lookahead (" + num(config_.max_lookahead) + " m) ahead");
     return std::nullopt;
   }
   return std::fabs(sum / static_cast<double>(n));
@@ -507,8 +508,10 @@ std::optional<SpeedFilter::Publication> SpeedFilter::lookahead(const OccupancyGr
   if (!path || path->poses.empty())
   {
     active_path_ = path;
-    if (path) context_->report(Severity::Debug, "path/empty", name_ + ": the path on " + config_.path_topic +
-                                                                 " is empty (no plan): the robot's own cell only");
+    if (path)
+      context_->report(
+          Severity::Debug, "path/empty",
+          name_ + ": the path on " + config_.path_topic + " is empty (no plan): the robot's own cell only");
     return std::nullopt;
   }
   // The path in the global frame, every cycle (the frames may move against each other).
@@ -539,8 +542,8 @@ std::optional<SpeedFilter::Publication> SpeedFilter::lookahead(const OccupancyGr
   const std::optional<double> speed = currentSpeed();
   double distance = config_.max_lookahead;
   if (speed && config_.max_decel < 0.0)
-    distance = std::max(
-        lookaheadDistance(*speed, config_.max_decel, config_.min_lookahead, config_.max_lookahead), held_lookahead_);
+    distance = std::max(lookaheadDistance(*speed, config_.max_decel, config_.min_lookahead, config_.max_lookahead),
+                        held_lookahead_);
   last_lookahead_ = distance;
 
   segment_ = closestSegment(path_global_, robot_x, robot_y, segment_);

@@ -315,21 +315,21 @@ ros::Subscriber LayerPorts::subscribeTyped(const std::string& topic, const std::
 {
   const std::string owner = private_nh_.getNamespace();
   auto receipts = receiptsFor(topic);
-  return public_nh_.subscribe<Msg>(
-      resolveTopic(topic), queue,
-      [cb, owner, topic, what, receipts, log = log_](const typename Msg::ConstPtr& msg)
-      {
-        receipts->note();
-        try
-        {
-          using Data = typename std::decay_t<decltype(fromMsg(*msg))>;
-          cb(std::make_shared<const Data>(fromMsg(*msg)));
-        }
-        catch (const std::exception& e)
-        {
-          log->log(Severity::Error, owner + topic, owner + ": dropped " + what + " on " + topic + ": " + e.what());
-        }
-      });
+  return public_nh_.subscribe<Msg>(resolveTopic(topic), queue,
+                                   [cb, owner, topic, what, receipts, log = log_](const typename Msg::ConstPtr& msg)
+                                   {
+                                     receipts->note();
+                                     try
+                                     {
+                                       using Data = typename std::decay_t<decltype(fromMsg(*msg))>;
+                                       cb(std::make_shared<const Data>(fromMsg(*msg)));
+                                     }
+                                     catch (const std::exception& e)
+                                     {
+                                       log->log(Severity::Error, owner + topic,
+                                                owner + ": dropped " + what + " on " + topic + ": " + e.what());
+                                     }
+                                   });
 }
 
 namespace

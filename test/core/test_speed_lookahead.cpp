@@ -120,6 +120,10 @@ TEST(PathLookahead, NearestSegmentAndWalkByHand)
   // A path that doubles back: distance is measured along it, not straight.
   const std::vector<PathData::Point> hairpin{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   EXPECT_EQ(lookaheadEnd(hairpin, 0, 2.0), 3u);
+  // A path of zero length (every pose at one point): every pose is 0 m along, the first segment nearest.
+  const std::vector<PathData::Point> point(5, PathData::Point{2.0, 3.0});
+  EXPECT_EQ(closestSegment(point, 9.0, 9.0, 0), 0u);
+  EXPECT_EQ(lookaheadEnd(point, 0, 0.0), 5u);
 }
 
 TEST(PathLookahead, BadPathsAndOdometryNameTheField)
@@ -240,7 +244,7 @@ TEST(PathLookahead, OdometryMissingOrStaleLooksTheWholeMaxLookahead)
   Rig stale;
   stale.ctx->publishPath(straightPath());
   stale.ctx->publishOdometry(moving(0.0));
-  EXPECT_EQ(stale.at(5.2), 1.0);  // standing: 0.3 m
+  EXPECT_EQ(stale.at(5.2), 1.0);     // standing: 0.3 m
   stale.ctx->now_ns += 600'000'000;  // 0.6 s later, odom_timeout 0.5 s
   EXPECT_EQ(stale.at(5.2), 0.3);
   EXPECT_GE(stale.ctx->countKey("odom/stale"), 1);

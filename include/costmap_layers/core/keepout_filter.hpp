@@ -16,9 +16,9 @@
 //    just outside the zone.
 //  - While in the zone, each lethal keepout cell costs escapeRampCost() (cost_rules.hpp) of its depth:
 //    the exact Euclidean distance from its centre to the centre of the nearest mask cell that is not
-//    lethal keepout (the mask's edge is no way out: masks end where maps end), rising from 1 at the edge to lethal_override_cost at the padded
-//    footprint's circumscribed radius and beyond. So the costs fall toward the nearest way out.
-//    Other mask values keep their costs. The ramp stays below 253, so an InflationLayer does not
+//    lethal keepout (the mask's edge is no way out: masks end where maps end), rising from 1 at the edge to
+//    lethal_override_cost at the padded footprint's circumscribed radius and beyond. So the costs fall toward the
+//    nearest way out. Other mask values keep their costs. The ramp stays below 253, so an InflationLayer does not
 //    inflate the zone while the robot escapes.
 //  - Escape mode is decided once per cycle at the robot's pose; a change redraws the mask's extent.
 //

@@ -17,8 +17,8 @@
 #include "costmap_layers/core/costmap_2d.hpp"
 #include "costmap_layers/core/grid_data.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
-#include "costmap_layers/core/path_data.hpp"
 #include "costmap_layers/core/param_value.hpp"
+#include "costmap_layers/core/path_data.hpp"
 #include "costmap_layers/core/sensor_data.hpp"
 
 namespace costmap_layers_ros
