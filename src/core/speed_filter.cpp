@@ -141,6 +141,8 @@ void SpeedFilter::onInitializeFilter(const ParamReader& params)
                                     {
                                       if (m) setSpeedLimits(*m);
                                     }));
+  path_topic_ = config_.path_topic;
+  odom_topic_ = config_.odom_topic;
   if (config_.enable_path_lookahead)
   {
     addInput(InputPort::path(config_.path_topic, [this](const std::shared_ptr<const PathData>& m) { setPath(m); }));
@@ -167,9 +169,8 @@ std::string SpeedFilter::setPath(const std::shared_ptr<const PathData>& path)
     error = InputError::of("header.stamp", outOfOrderError(path->stamp_ns, path_->stamp_ns, "path"));
   }
   if (context_)
-    context_->report(
-        Severity::Error, "path/" + error.field,
-        name_ + ": path on " + config_.path_topic + " refused, keeping the previous one: " + error.message);
+    context_->report(Severity::Error, "path/" + error.field,
+                     name_ + ": path on " + path_topic_ + " refused, keeping the previous one: " + error.message);
   return error.message;
 }
 
@@ -195,9 +196,8 @@ std::string SpeedFilter::setOdometry(const OdometryData& odom)
     error = InputError::of("header.stamp", outOfOrderError(odom.stamp_ns, speeds_.back().stamp_ns, "odometry"));
   }
   if (context_)
-    context_->report(
-        Severity::Error, "odom/" + error.field,
-        name_ + ": odometry on " + config_.odom_topic + " refused, keeping the previous speed: " + error.message);
+    context_->report(Severity::Error, "odom/" + error.field,
+                     name_ + ": odometry on " + odom_topic_ + " refused, keeping the previous speed: " + error.message);
   return error.message;
 }
 

@@ -241,7 +241,9 @@ private:
   std::bitset<256> warned_values_;  ///< invalid / out-of-range mask values, warned once per info
   std::shared_ptr<const FilterInfoData> warned_for_info_;
 
-  // Path lookahead: inputs (guarded by motion_mutex_) ...
+  // Path lookahead: the topics, set once at start (input threads name them in reports) ...
+  std::string path_topic_, odom_topic_;
+  // ... inputs (guarded by motion_mutex_) ...
   mutable std::mutex motion_mutex_;
   std::shared_ptr<const PathData> path_;
   struct SpeedSample
