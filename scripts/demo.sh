@@ -17,6 +17,7 @@ test -s "$OUT/demo_costmap.png" || { echo "demo: FAILED, no picture was written"
 rosrun costmap_layers costmap_tool --map "$ROOT/example/warehouse.yaml" --params "$ROOT/params/costmap_example.yaml" \
   --mask keepout_filter="$ROOT/example/keepout_mask.yaml" --mask lanes_filter="$ROOT/example/lanes_mask.yaml" \
   --mask speed_filter="$ROOT/example/speed_mask.yaml" --features speed_filter="$ROOT/example/speed_limits.yaml" \
-  --mask zone_keepout="$ROOT/example/zones.yaml" --pose 5.0,1.5,0.0 --out-png "$OUT/tool_costmap.png" > "$OUT/tool.json"
+  --mask zone_keepout="$ROOT/example/zones.yaml" --mask binary_filter="$ROOT/example/binary_mask.yaml" \
+  --pose 5.0,1.5,0.0 --out-png "$OUT/tool_costmap.png" > "$OUT/tool.json"
 echo "demo: costmap_tool on the same inputs, robot at (5.0, 1.5) in area 1: $(tail -n 1 "$OUT/tool.json")"
 echo "demo: pictures: $OUT/demo_costmap.png (published by the node), $OUT/tool_costmap.png (costmap_tool)"

@@ -1,11 +1,13 @@
 #!/usr/bin/env python3
-"""Watches the demo: prints every /max_speed change with the robot's position, and when the robot has
-finished its route prints a summary and exits (which ends the demo launch)."""
+"""Watches the demo: prints every /max_speed change and every binary state change (/camera_off) with
+the robot's position, and when the robot has finished its route prints a summary and exits (which
+ends the demo launch)."""
 import math
 
 import rospy
 import tf2_ros
 from costmap_layers.msg import MaxSpeed
+from std_msgs.msg import Bool
 
 
 def main():
@@ -33,6 +35,14 @@ def main():
         print("demo: max_speed -> %-9s at robot position (%.2f, %.2f)" % (limit, x, y), flush=True)
 
     rospy.Subscriber(rospy.get_param("~max_speed_topic", "/max_speed"), MaxSpeed, on_speed)
+    states = []
+
+    def on_state(msg):
+        x, y = pose()
+        states.append(msg.data)
+        print("demo: camera_off -> %-5s at robot position (%.2f, %.2f)" % (msg.data, x, y), flush=True)
+
+    rospy.Subscriber(rospy.get_param("~binary_state_topic", "/camera_off"), Bool, on_state)
     start = rospy.Time.now()
     at_goal_since = None
     goal = route[-1]
@@ -48,6 +58,8 @@ def main():
         rospy.sleep(0.1)
     print("demo: summary: the robot drove %d waypoints; /max_speed changed %d times: %s" % (
         len(route), len(changes), " -> ".join("%.2f" % c[0] for c in changes)), flush=True)
+    print("demo: summary: /camera_off changed %d times: %s" % (
+        len(states), " -> ".join(str(s) for s in states)), flush=True)
     if pictures:
         print("demo: pictures of the published costmap: %s" % pictures, flush=True)
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Draws the bundled example: a small warehouse (16 m x 10 m at 0.05 m) with its keepout, speed and
+"""Draws the bundled example: a small warehouse (16 m x 10 m at 0.05 m) with its keepout, speed, binary and
 lanes masks, as map_server PGM + YAML files in example/. Deterministic: re-running it gives the same
 bytes. The masks use mode raw, so a pixel value is the occupancy value itself (255 reads as -1)."""
 import os
@@ -82,6 +82,13 @@ def main(out):
     write_pgm(os.path.join(out, "lanes_mask.pgm"), lanes)
     write_yaml(os.path.join(out, "lanes_mask.yaml"), "lanes_mask.pgm", "raw",
                "lanes mask: 0 lane, 100 forbidden, -1 no opinion")
+
+    # Binary mask (raw): 100 = a private office along the main lane (the cameras must be off there).
+    b = [[0] * W for _ in range(H)]
+    fill(b, (3.0, 4.4, 8.0, 5.8), 100)
+    write_pgm(os.path.join(out, "binary_mask.pgm"), b)
+    write_yaml(os.path.join(out, "binary_mask.yaml"), "binary_mask.pgm", "raw",
+               "binary mask: 100 flips the state (above flip_threshold 50), 0 default_state")
 
 
 if __name__ == "__main__":

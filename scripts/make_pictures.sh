@@ -36,6 +36,9 @@ picture static "$EX/warehouse.yaml" "$PARAMS/static.yaml"
 picture inflation "$EX/warehouse.yaml" "$PARAMS/inflation.yaml"
 picture keepout "$EX/warehouse.yaml" "$PARAMS/keepout.yaml" \
   --mask keepout_filter="$EX/keepout_mask.yaml"
+# The robot half inside the loading dock: escape mode writes the dock as a ramp toward the way out.
+picture keepout_escape "$EX/warehouse.yaml" "$PARAMS/keepout_escape.yaml" \
+  --mask keepout_filter="$EX/keepout_mask.yaml" --pose 14.0,6.95,1.5708
 picture lanes "$EX/warehouse.yaml" "$PARAMS/lanes.yaml" \
   --mask lanes_filter="$EX/lanes_mask.yaml"
 picture speed_mask "$EX/speed_mask.yaml" "$PARAMS/speed_mask_as_map.yaml"
@@ -43,7 +46,8 @@ picture speed_mask "$EX/speed_mask.yaml" "$PARAMS/speed_mask_as_map.yaml"
 picture all_filters "$EX/warehouse.yaml" "$ROOT/params/costmap_example.yaml" \
   --mask keepout_filter="$EX/keepout_mask.yaml" --mask speed_filter="$EX/speed_mask.yaml" \
   --mask lanes_filter="$EX/lanes_mask.yaml" --features speed_filter="$EX/speed_limits.yaml" \
-  --mask zone_keepout="$EX/zones.yaml" --pose 5.0,1.5,0.0
+  --mask zone_keepout="$EX/zones.yaml" --mask binary_filter="$EX/binary_mask.yaml" \
+  --pose 5.0,1.5,0.0
 # zone_server's mask (example/zones.yaml, rasterised as zone_server publishes it) in a KeepoutFilter.
 picture zones "$EX/warehouse.yaml" "$PARAMS/zones.yaml" --mask zone_keepout="$EX/zones.yaml"
 picture gradient "$EX/warehouse.yaml" "$PARAMS/gradient.yaml"

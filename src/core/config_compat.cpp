@@ -26,6 +26,7 @@ const std::vector<PluginTypeAlias>& pluginTypeAliases()
       {"nav2_costmap_2d::KeepoutFilter", "costmap_layers/KeepoutFilter", TypeDialect::Nav2},
       {"nav2_costmap_2d::SpeedFilter", "costmap_layers/SpeedFilter", TypeDialect::Nav2},
       {"nav2_costmap_2d::ZoneParameterFilter", "costmap_layers/ZoneParameterFilter", TypeDialect::Nav2},
+      {"nav2_costmap_2d::BinaryFilter", "costmap_layers/BinaryFilter", TypeDialect::Nav2},
   };
   return table;
 }
@@ -533,6 +534,7 @@ const std::vector<IgnoredKey>& ignoredKeys()
       {"RangeSensorLayer", "ns", "the ROS 1 plugin's topic prefix; write the full topic names in `topics`"},
       {"KeepoutFilter", "transform_tolerance", "Nav2's; the mask is placed with the costmap's transform_tolerance"},
       {"SpeedFilter", "transform_tolerance", "Nav2's; the mask is placed with the costmap's transform_tolerance"},
+      {"BinaryFilter", "transform_tolerance", "Nav2's; the mask is placed with the costmap's transform_tolerance"},
   };
   return table;
 }

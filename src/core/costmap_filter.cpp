@@ -426,6 +426,8 @@ void CostmapFilter::updateBounds(double robot_x, double robot_y, double robot_ya
                            ": the filter does nothing until one arrives");
   }
   if (!active_mask_ || !filter_enabled_) processInactive();
+  changed = changed || redraw_requested_;
+  redraw_requested_ = false;
   // A rolling window moves onto cells nobody else may ask for: the mask's extent is asked for every
   // cycle (the costmap clips it to the window), as costmap_2d's static layer does when rolling.
   const bool rolling_redraw = layered_costmap_->isRolling() && active_mask_ && filter_enabled_;

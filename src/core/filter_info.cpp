@@ -77,14 +77,19 @@ InputError checkFilterInfoFor(FilterFamily family, const FilterInfoData& info)
   if (family == FilterFamily::Keepout && type != filter_info::kKeepout)
   {
     err << "type " << type << " (" << filterInfoTypeName(type) << ") is not for this filter: a keepout or lanes "
-        << "filter takes type 0" << (type == filter_info::kBinary ? " (this package has no binary filter)" : "");
+        << "filter takes type 0" << (type == filter_info::kBinary ? " (type 3 is for a BinaryFilter)" : "");
     return InputError::of("type", err.str());
   }
   if (family == FilterFamily::Speed && type != filter_info::kSpeedPercent && type != filter_info::kSpeedAbsolute)
   {
     err << "type " << type << " (" << filterInfoTypeName(type) << ") is not for this filter: a speed filter takes "
-        << "type 1 (percent) or 2 (m/s)"
-        << (type == filter_info::kBinary ? " (this package has no binary filter)" : "");
+        << "type 1 (percent) or 2 (m/s)" << (type == filter_info::kBinary ? " (type 3 is for a BinaryFilter)" : "");
+    return InputError::of("type", err.str());
+  }
+  if (family == FilterFamily::Binary && type != filter_info::kBinary)
+  {
+    err << "type " << type << " (" << filterInfoTypeName(type) << ") is not for this filter: a binary filter takes "
+        << "type 3";
     return InputError::of("type", err.str());
   }
   if (family == FilterFamily::ZoneParameter && type != filter_info::kZoneParameter)

@@ -106,6 +106,12 @@ const char* inputKindName(InputKind kind)
       return "point clouds";
     case InputKind::Range:
       return "ranges";
+    case InputKind::FilterInfo:
+      return "filter info";
+    case InputKind::Path:
+      return "path";
+    case InputKind::Odometry:
+      return "odometry";
   }
   return "?";
 }

@@ -40,6 +40,24 @@ InputPort InputPort::filterInfo(std::string topic, FilterInfoCallback cb)
   return p;
 }
 
+InputPort InputPort::path(std::string topic, PathCallback cb)
+{
+  InputPort p;
+  p.kind = InputKind::Path;
+  p.topic = std::move(topic);
+  p.on_path = std::move(cb);
+  return p;
+}
+
+InputPort InputPort::odometry(std::string topic, OdometryCallback cb)
+{
+  InputPort p;
+  p.kind = InputKind::Odometry;
+  p.topic = std::move(topic);
+  p.on_odom = std::move(cb);
+  return p;
+}
+
 InputPort InputPort::laserScan(std::string topic, std::string sensor_frame, SensorCallback<LaserScanData> cb)
 {
   InputPort p;

@@ -1,8 +1,11 @@
 #include "costmap_layers/core/speed_filter.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
+#include "costmap_layers/core/limits.hpp"
 #include "costmap_layers/core/param_reader.hpp"
 #include "costmap_layers/core/stamp_order.hpp"
 
@@ -34,6 +37,23 @@ SpeedFilterConfig parseSpeedFilterConfig(const ParamReader& params)
   c.max_speed_topic = params.getString("max_speed_topic", c.max_speed_topic);
   c.speed_limit_topic = params.getString("speed_limit_topic", c.speed_limit_topic);
   c.default_max_speed = params.getDouble("default_max_speed", c.default_max_speed, 0.0);
+  c.enable_path_lookahead = params.getBool("enable_path_lookahead", c.enable_path_lookahead);
+  c.max_decel = params.getDouble("max_decel", c.max_decel, -1e3, 1e3);
+  if (c.max_decel > 0.0)
+    params.fail("max_decel",
+                "is positive (" + num(c.max_decel) +
+                    "): as in Nav2 a deceleration is negative [m/s^2], e.g. -0.5 (0 means always max_lookahead)");
+  c.min_lookahead = params.getDouble("min_lookahead", c.min_lookahead, 0.0, limits::kMaxDistance);
+  c.max_lookahead = params.getDouble("max_lookahead", c.max_lookahead, 0.0, limits::kMaxDistance);
+  if (c.max_lookahead < c.min_lookahead)
+    params.fail("max_lookahead", "(" + num(c.max_lookahead) + " m) is below min_lookahead (" + num(c.min_lookahead) +
+                                     " m): the lookahead is clamped to [min_lookahead, max_lookahead]");
+  c.path_topic = params.getString("path_topic", c.path_topic);
+  c.odom_topic = params.getString("odom_topic", c.odom_topic);
+  c.odom_timeout = params.getDouble("odom_timeout", c.odom_timeout, 1e-3, limits::kMaxDuration);
+  if (c.enable_path_lookahead && (c.path_topic.empty() || c.odom_topic.empty()))
+    params.fail(c.path_topic.empty() ? "path_topic" : "odom_topic",
+                "is empty while enable_path_lookahead is true: the lookahead needs the path and the odometry");
   if (c.filter_info)
   {
     c.mask_mode = SpeedMaskMode::Nav2;
@@ -121,6 +141,99 @@ void SpeedFilter::onInitializeFilter(const ParamReader& params)
                                     {
                                       if (m) setSpeedLimits(*m);
                                     }));
+  path_topic_ = config_.path_topic;
+  odom_topic_ = config_.odom_topic;
+  if (config_.enable_path_lookahead)
+  {
+    addInput(InputPort::path(config_.path_topic, [this](const std::shared_ptr<const PathData>& m) { setPath(m); }));
+    addInput(InputPort::odometry(config_.odom_topic,
+                                 [this](const std::shared_ptr<const OdometryData>& m)
+                                 {
+                                   if (m) setOdometry(*m);
+                                 }));
+  }
+}
+
+std::string SpeedFilter::setPath(const std::shared_ptr<const PathData>& path)
+{
+  InputError error = path ? validatePath(*path) : InputError::of("poses", "no path");
+  if (error.ok())
+  {
+    const uint64_t now = context_ ? context_->nowNs() : UINT64_MAX;
+    std::lock_guard<std::mutex> lock(motion_mutex_);
+    if (!path_ || !isOutOfOrder(path->stamp_ns, path_->stamp_ns, now))
+    {
+      path_ = path;
+      return {};
+    }
+    error = InputError::of("header.stamp", outOfOrderError(path->stamp_ns, path_->stamp_ns, "path"));
+  }
+  if (context_)
+    context_->report(Severity::Error, "path/" + error.field,
+                     name_ + ": path on " + path_topic_ + " refused, keeping the previous one: " + error.message);
+  return error.message;
+}
+
+namespace
+{
+constexpr uint64_t kSpeedWindowNs = 300'000'000;  ///< Nav2's odometry smoother averages 0.3 s
+}
+
+std::string SpeedFilter::setOdometry(const OdometryData& odom)
+{
+  InputError error = validateOdometry(odom);
+  const uint64_t now = context_ ? context_->nowNs() : 0;
+  if (error.ok())
+  {
+    std::lock_guard<std::mutex> lock(motion_mutex_);
+    if (speeds_.empty() || !isOutOfOrder(odom.stamp_ns, speeds_.back().stamp_ns, now))
+    {
+      speeds_.push_back({now, odom.stamp_ns, odom.linear_x});
+      while (speeds_.size() > 1 && (speeds_.size() > 1000 || speeds_.front().received_ns + kSpeedWindowNs < now))
+        speeds_.pop_front();
+      return {};
+    }
+    error = InputError::of("header.stamp", outOfOrderError(odom.stamp_ns, speeds_.back().stamp_ns, "odometry"));
+  }
+  if (context_)
+    context_->report(Severity::Error, "odom/" + error.field,
+                     name_ + ": odometry on " + odom_topic_ + " refused, keeping the previous speed: " + error.message);
+  return error.message;
+}
+
+std::optional<double> SpeedFilter::currentSpeed()
+{
+  const uint64_t now = context_->nowNs();
+  double sum = 0.0;
+  std::size_t n = 0;
+  uint64_t newest = 0;
+  {
+    std::lock_guard<std::mutex> lock(motion_mutex_);
+    if (!speeds_.empty()) newest = speeds_.back().received_ns;
+    for (const SpeedSample& s : speeds_)
+      if (s.received_ns + kSpeedWindowNs >= newest)
+      {
+        sum += s.linear_x;
+        ++n;
+      }
+  }
+  if (n == 0)
+  {
+    context_->report(Severity::Error, "odom/missing",
+                     name_ + ": no odometry yet on " + config_.odom_topic + ": looking max_lookahead (" +
+                         num(config_.max_lookahead) + " m) ahead");
+    return std::nullopt;
+  }
+  const double age = secondsBetween(newest, now);
+  if (age > config_.odom_timeout)
+  {
+    context_->report(Severity::Error, "odom/stale",
+                     name_ + ": the newest odometry on " + config_.odom_topic + " is " + num(age) +
+                         " s old, more than odom_timeout (" + num(config_.odom_timeout) +
+                         " s): looking max_lookahead (" + num(config_.max_lookahead) + " m) ahead");
+    return std::nullopt;
+  }
+  return std::fabs(sum / static_cast<double>(n));
 }
 
 std::size_t SpeedFilter::setSpeedLimits(const SpeedLimitsData& limits)
@@ -179,7 +292,8 @@ namespace
 {
 bool runTimeTunable(const std::string& name)
 {
-  return name != "features_topic" && name != "max_speed_topic" && name != "speed_limit_topic" && name != "mask_mode";
+  return name != "features_topic" && name != "max_speed_topic" && name != "speed_limit_topic" && name != "mask_mode" &&
+         name != "enable_path_lookahead" && name != "path_topic" && name != "odom_topic";
 }
 }  // namespace
 
@@ -189,10 +303,12 @@ void SpeedFilter::onReconfigure(const ParamValue& params)
   const SpeedFilterConfig next = parseSpeedFilterConfig(reader);  // validates first
   if (next.features_topic != config_.features_topic || next.max_speed_topic != config_.max_speed_topic ||
       next.speed_limit_topic != config_.speed_limit_topic || next.mask_mode != config_.mask_mode ||
-      next.filter_info != config_.filter_info)
+      next.filter_info != config_.filter_info || next.enable_path_lookahead != config_.enable_path_lookahead ||
+      next.path_topic != config_.path_topic || next.odom_topic != config_.odom_topic)
     throw std::invalid_argument(name_ +
-                                ": features_topic, max_speed_topic, speed_limit_topic, mask_mode and "
-                                "filter_info_topic cannot change at run time");
+                                ": features_topic, max_speed_topic, speed_limit_topic, mask_mode, "
+                                "filter_info_topic, enable_path_lookahead, path_topic and odom_topic cannot change at "
+                                "run time");
   std::shared_ptr<const SpeedLimitsData> features;
   {
     std::lock_guard<std::mutex> lock(limits_mutex_);
@@ -314,7 +430,7 @@ SpeedFilter::Publication SpeedFilter::limitForValue(int8_t v, const SpeedLimitTa
     {
       warned_ids_.set(static_cast<std::size_t>(v));
       context_->report(Severity::Warn, "mask/area_id",
-                       name_ + ": the robot is in area " + std::to_string(v) +
+                       name_ + ": the robot is (or its path ahead runs) in area " + std::to_string(v) +
                            " of the mask, which has no speed "
                            "limit" +
                            (table ? " in the last message on " : " yet (nothing received on ") +
@@ -356,13 +472,94 @@ void SpeedFilter::processPose(const OccupancyGridData& mask, const Transform2D& 
     warned_values_.reset();  // a new info: its out-of-range values are a new problem
   }
   const std::optional<int8_t> v = maskValueAt(mask, to_mask, robot_x, robot_y);
-  if (v && *v == -1)
+  std::optional<Publication> at_robot;  // nullopt on a -1 (unknown) cell
+  if (!v || *v != -1) at_robot = v ? limitForValue(*v, active_limits_.get()) : noLimit();
+  if (config_.enable_path_lookahead)
   {
-    // Unknown: keep what was published (no limit when nothing was).
-    if (!last_published_ && !last_speed_limit_) publishIfChanged(noLimit());
-    return;
+    const std::optional<Publication> ahead = lookahead(mask, to_mask, robot_x, robot_y, at_robot);
+    if (ahead) at_robot = ahead;
   }
-  publishIfChanged(v ? limitForValue(*v, active_limits_.get()) : noLimit());
+  if (at_robot)
+    publishIfChanged(*at_robot);
+  else if (!last_published_ && !last_speed_limit_)
+    publishIfChanged(noLimit());  // unknown: keep what was published (no limit when nothing was)
+}
+
+namespace
+{
+/// How strict a limit is: smaller is stricter; 0 (no limit) is the least strict.
+double strictness(double speed_limit)
+{
+  return speed_limit > 0.0 ? speed_limit : std::numeric_limits<double>::infinity();
+}
+}  // namespace
+
+std::optional<SpeedFilter::Publication> SpeedFilter::lookahead(const OccupancyGridData& mask,
+                                                               const Transform2D& to_mask, double robot_x,
+                                                               double robot_y,
+                                                               const std::optional<Publication>& at_robot)
+{
+  last_lookahead_ = 0.0;
+  std::shared_ptr<const PathData> path;
+  {
+    std::lock_guard<std::mutex> lock(motion_mutex_);
+    path = path_;
+  }
+  if (!path || path->poses.empty())
+  {
+    active_path_ = path;
+    if (path)
+      context_->report(
+          Severity::Debug, "path/empty",
+          name_ + ": the path on " + config_.path_topic + " is empty (no plan): the robot's own cell only");
+    return std::nullopt;
+  }
+  // The path in the global frame, every cycle (the frames may move against each other).
+  Transform2D to_global;
+  const std::string& global = context_->globalFrame();
+  if (path->frame_id != global)
+  {
+    std::string error;
+    const auto t = context_->lookupTransform(global, path->frame_id, &error);
+    if (!t)
+    {
+      context_->report(Severity::Error, "path/transform",
+                       name_ + ": cannot transform the path on " + config_.path_topic + " from " + path->frame_id +
+                           " into " + global + ": the robot's own cell only this cycle: " + error);
+      return std::nullopt;
+    }
+    to_global = *t;
+  }
+  if (path != active_path_)
+  {
+    active_path_ = path;
+    segment_ = 0;  // a new path: search it from its start
+  }
+  path_global_.resize(path->poses.size());
+  for (std::size_t i = 0; i < path->poses.size(); ++i)
+    to_global.apply(path->poses[i].x, path->poses[i].y, path_global_[i].x, path_global_[i].y);
+
+  const std::optional<double> speed = currentSpeed();
+  double distance = config_.max_lookahead;
+  if (speed && config_.max_decel < 0.0)
+    distance = std::max(lookaheadDistance(*speed, config_.max_decel, config_.min_lookahead, config_.max_lookahead),
+                        held_lookahead_);
+  last_lookahead_ = distance;
+
+  segment_ = closestSegment(path_global_, robot_x, robot_y, segment_);
+  const std::size_t end = lookaheadEnd(path_global_, segment_, distance);
+  std::optional<Publication> best = at_robot;
+  for (std::size_t i = segment_; i < end; ++i)
+  {
+    const std::optional<int8_t> v = maskValueAt(mask, to_mask, path_global_[i].x, path_global_[i].y);
+    if (!v || *v == -1) continue;
+    const Publication p = limitForValue(*v, active_limits_.get());
+    const double bound = best ? strictness(best->speed_limit) : std::numeric_limits<double>::infinity();
+    if (strictness(p.speed_limit) < bound) best = p;
+  }
+  const double here = at_robot ? strictness(at_robot->speed_limit) : std::numeric_limits<double>::infinity();
+  held_lookahead_ = best && strictness(best->speed_limit) != here ? distance : 0.0;
+  return best;
 }
 
 void SpeedFilter::publishIfChanged(const Publication& p)

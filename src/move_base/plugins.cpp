@@ -2,6 +2,7 @@
 // base class costmap_2d::Layer (move_base_plugins.xml), built only when costmap_2d is found.
 #include <pluginlib/class_list_macros.hpp>
 
+#include "costmap_layers/core/binary_filter.hpp"
 #include "costmap_layers/core/gradient_layer.hpp"
 #include "costmap_layers/core/inflation_layer.hpp"
 #include "costmap_layers/core/keepout_filter.hpp"
@@ -39,3 +40,4 @@ COSTMAP_LAYERS_MOVE_BASE_PLUGIN(KeepoutFilter)
 COSTMAP_LAYERS_MOVE_BASE_PLUGIN(SpeedFilter)
 COSTMAP_LAYERS_MOVE_BASE_PLUGIN(LanesFilter)
 COSTMAP_LAYERS_MOVE_BASE_PLUGIN(ZoneParameterFilter)
+COSTMAP_LAYERS_MOVE_BASE_PLUGIN(BinaryFilter)

@@ -101,6 +101,29 @@ costmap_layers::OccupancyGridUpdateData fromMsg(const map_msgs::OccupancyGridUpd
   return u;
 }
 
+costmap_layers::PathData fromMsg(const nav_msgs::Path& msg)
+{
+  costmap_layers::PathData d;
+  d.frame_id = msg.header.frame_id;
+  d.stamp_ns = msg.header.stamp.toNSec();
+  d.poses.reserve(msg.poses.size());
+  for (const auto& p : msg.poses)
+    d.poses.push_back({p.pose.position.x, p.pose.position.y});
+  return d;
+}
+
+costmap_layers::OdometryData fromMsg(const nav_msgs::Odometry& msg)
+{
+  costmap_layers::OdometryData d;
+  d.frame_id = msg.header.frame_id;
+  d.child_frame_id = msg.child_frame_id;
+  d.stamp_ns = msg.header.stamp.toNSec();
+  d.linear_x = msg.twist.twist.linear.x;
+  d.linear_y = msg.twist.twist.linear.y;
+  d.angular_z = msg.twist.twist.angular.z;
+  return d;
+}
+
 costmap_layers::LaserScanData fromMsg(const sensor_msgs::LaserScan& msg)
 {
   costmap_layers::LaserScanData d;

@@ -6,6 +6,7 @@
 #include <sensor_msgs/LaserScan.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <sensor_msgs/Range.h>
+#include <std_msgs/Bool.h>
 #include <std_msgs/UInt8.h>
 #include <std_srvs/SetBool.h>
 #include <tf2/exceptions.h>
@@ -15,6 +16,7 @@
 #include <cstdio>
 #include <deque>
 #include <mutex>
+#include <type_traits>
 
 #include "costmap_layers/CostmapFilterInfo.h"
 #include "costmap_layers/MaxSpeed.h"
@@ -71,6 +73,8 @@ LayerPorts::LayerPorts(ros::NodeHandle public_nh, ros::NodeHandle private_nh, co
       case InputKind::MapUpdates:
       case InputKind::SpeedLimits:
       case InputKind::FilterInfo:
+      case InputKind::Path:
+      case InputKind::Odometry:
         port_subscribers_[i] = subscribe(in);
         break;
       case InputKind::LaserScan:
@@ -109,6 +113,8 @@ LayerPorts::LayerPorts(ros::NodeHandle public_nh, ros::NodeHandle private_nh, co
       publishers_[{out.kind, out.topic}] = public_nh_.advertise<std_msgs::UInt8>(topic, 1, true);
     else if (out.kind == costmap_layers::OutputKind::Setpoints && !setpoints_)
       setpoints_ = std::make_unique<SetpointApplier>(public_nh_, private_nh_.getNamespace(), out.timeout, log_);
+    else if (out.kind == costmap_layers::OutputKind::BinaryState)
+      publishers_[{out.kind, out.topic}] = public_nh_.advertise<std_msgs::Bool>(topic, 1, true);
   }
   if (!publishers_.empty() || setpoints_)
     layer.setOutputListener([this](const costmap_layers::OutputEvent& e) { publish(e); });
@@ -189,6 +195,13 @@ void LayerPorts::publish(const costmap_layers::OutputEvent& e)
     it->second.publish(msg);
     return;
   }
+  if (e.kind == costmap_layers::OutputKind::BinaryState)
+  {
+    std_msgs::Bool msg;
+    msg.data = e.state;
+    it->second.publish(msg);
+    return;
+  }
   if (e.kind == costmap_layers::OutputKind::SpeedLimit)
   {
     costmap_layers::Nav2SpeedLimit msg;
@@ -220,6 +233,10 @@ ros::Subscriber LayerPorts::subscribe(const costmap_layers::InputPort& in)
       return subscribeSpeedLimits(in.topic, in.on_limits);
     case InputKind::FilterInfo:
       return subscribeFilterInfo(in.topic, in.on_info);
+    case InputKind::Path:
+      return subscribeTyped<nav_msgs::Path>(in.topic, "a path", in.on_path, 1);
+    case InputKind::Odometry:
+      return subscribeTyped<nav_msgs::Odometry>(in.topic, "odometry", in.on_odom, 10);
     default:
       return {};  // sensors go through subscribeSensor()
   }
@@ -309,6 +326,29 @@ ros::Subscriber LayerPorts::subscribeSpeedLimits(const std::string& topic, costm
           log->log(Severity::Error, owner + topic, owner + ": dropped speed limits on " + topic + ": " + e.what());
         }
       }));
+}
+
+template <class Msg, class Callback>
+ros::Subscriber LayerPorts::subscribeTyped(const std::string& topic, const std::string& what, Callback cb,
+                                           uint32_t queue)
+{
+  const std::string owner = private_nh_.getNamespace();
+  auto receipts = receiptsFor(topic);
+  return public_nh_.subscribe<Msg>(resolveTopic(topic), queue,
+                                   [cb, owner, topic, what, receipts, log = log_](const typename Msg::ConstPtr& msg)
+                                   {
+                                     receipts->note();
+                                     try
+                                     {
+                                       using Data = typename std::decay_t<decltype(fromMsg(*msg))>;
+                                       cb(std::make_shared<const Data>(fromMsg(*msg)));
+                                     }
+                                     catch (const std::exception& e)
+                                     {
+                                       log->log(Severity::Error, owner + topic,
+                                                owner + ": dropped " + what + " on " + topic + ": " + e.what());
+                                     }
+                                   });
 }
 
 namespace

@@ -1,6 +1,7 @@
 // Every pluginlib export of the package, in one file built into its own library.
 #include <pluginlib/class_list_macros.hpp>
 
+#include "costmap_layers/core/binary_filter.hpp"
 #include "costmap_layers/core/gradient_layer.hpp"
 #include "costmap_layers/core/inflation_layer.hpp"
 #include "costmap_layers/core/keepout_filter.hpp"
@@ -22,3 +23,4 @@ PLUGINLIB_EXPORT_CLASS(costmap_layers::ObstacleLayer, costmap_layers::Layer)
 PLUGINLIB_EXPORT_CLASS(costmap_layers::VoxelLayer, costmap_layers::Layer)
 PLUGINLIB_EXPORT_CLASS(costmap_layers::RangeSensorLayer, costmap_layers::Layer)
 PLUGINLIB_EXPORT_CLASS(costmap_layers::ZoneParameterFilter, costmap_layers::Layer)
+PLUGINLIB_EXPORT_CLASS(costmap_layers::BinaryFilter, costmap_layers::Layer)

@@ -69,6 +69,12 @@ public:
         case InputKind::Range:
           range_subs.push_back({in.topic, "", in.on_range});
           break;
+        case InputKind::Path:
+          path_subs.push_back({in.topic, in.on_path});
+          break;
+        case InputKind::Odometry:
+          odom_subs.push_back({in.topic, in.on_odom});
+          break;
       }
     }
     // A replaced port (a filter info naming the mask topic): the test's "subscription" follows it.
@@ -87,16 +93,20 @@ public:
     for (const OutputPort& out : layer.outputs())
       if (out.kind == OutputKind::MaxSpeed)
         max_speed_topic = out.topic;
-      else
+      else if (out.kind == OutputKind::SpeedLimit)
         speed_limit_topic = out.topic;
+      else
+        binary_state_topic = out.topic;
     if (!layer.outputs().empty())
       layer.setOutputListener(
           [this](const OutputEvent& e)
           {
             if (e.kind == OutputKind::MaxSpeed)
               published_speeds.push_back(e.value);
-            else
+            else if (e.kind == OutputKind::SpeedLimit)
               published_limits.push_back({e.percentage, e.value});
+            else
+              published_states.push_back(e.state);
           });
     if (auto* filter = dynamic_cast<CostmapFilter*>(&layer)) toggle = [filter](bool on) { filter->setEnabled(on); };
   }
@@ -178,6 +188,21 @@ public:
       if (r.key == key) ++n;
     return n;
   }
+  /// Delivers a path / odometry to every such input.
+  int publishPath(const PathData& path)
+  {
+    auto shared = std::make_shared<const PathData>(path);
+    for (auto& s : path_subs)
+      s.cb(shared);
+    return static_cast<int>(path_subs.size());
+  }
+  int publishOdometry(const OdometryData& odom)
+  {
+    auto shared = std::make_shared<const OdometryData>(odom);
+    for (auto& s : odom_subs)
+      s.cb(shared);
+    return static_cast<int>(odom_subs.size());
+  }
   void publishSpeedLimits(const SpeedLimitsData& limits)
   {
     auto shared = std::make_shared<const SpeedLimitsData>(limits);
@@ -210,6 +235,14 @@ public:
     std::string topic;
     SpeedLimitsCallback cb;
   };
+  template <class Callback>
+  struct TopicSub
+  {
+    std::string topic;
+    Callback cb;
+  };
+  std::vector<TopicSub<PathCallback>> path_subs;
+  std::vector<TopicSub<OdometryCallback>> odom_subs;
   struct UpdateSub
   {
     std::string topic;
@@ -246,6 +279,8 @@ public:
   std::vector<double> published_speeds;
   std::string speed_limit_topic;
   std::vector<std::pair<bool, double>> published_limits;  ///< (percentage, speed_limit)
+  std::string binary_state_topic;
+  std::vector<bool> published_states;
   std::function<void(bool)> toggle;
   std::map<std::pair<std::string, std::string>, Transform2D> transforms;  ///< (target, source) -> T
   uint64_t now_ns = 0;

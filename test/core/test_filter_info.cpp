@@ -124,7 +124,10 @@ TEST(FilterInfoRules, WhichFilterTakesWhichType)
   EXPECT_TRUE(checkFilterInfoFor(FilterFamily::Speed, info(2, "/m")).ok());
   for (int t : {0, 3})
     EXPECT_EQ(checkFilterInfoFor(FilterFamily::Speed, info(t, "/m")).field, "type") << t;
-  EXPECT_NE(checkFilterInfoFor(FilterFamily::Speed, info(3, "/m")).message.find("no binary filter"), std::string::npos);
+  // binary: 3 only.
+  EXPECT_TRUE(checkFilterInfoFor(FilterFamily::Binary, info(3, "/m")).ok());
+  for (int t : {0, 1, 2, 4})
+    EXPECT_EQ(checkFilterInfoFor(FilterFamily::Binary, info(t, "/m")).field, "type") << t;
 }
 
 // ---- Nav2's speed rule, value by value

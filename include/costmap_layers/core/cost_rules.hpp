@@ -31,6 +31,16 @@ inline uint8_t maskValueCost(int8_t v)
   return static_cast<uint8_t>(u - 1u) < 100u ? c : FREE_SPACE;
 }
 
+/// KeepoutFilter's escape ramp: the cost of a lethal keepout cell whose centre lies depth [m] inside the
+/// zone (from the nearest cell outside it) while the robot escapes: ceil(top * depth / ramp_length),
+/// at least 1, and top from ramp_length on (and for a ramp_length that is not > 0).
+inline uint8_t escapeRampCost(double depth, double ramp_length, uint8_t top)
+{
+  if (!(ramp_length > 0.0) || !(depth < ramp_length)) return top;
+  const double c = std::ceil(top * depth / ramp_length);
+  return c < 1.0 ? uint8_t{1} : (c > top ? top : static_cast<uint8_t>(c));
+}
+
 /// Merges a filter's cost into a master cell: the master takes the cost when higher; an unknown master
 /// cell only takes a cost >= 253, so a filter never turns unknown space into known free space.
 inline uint8_t mergeFilterCost(uint8_t master, uint8_t cost)

@@ -196,6 +196,9 @@ protected:
   const std::shared_ptr<const FilterInfoData>& activeInfo() const { return active_info_; }
   /// The transform used by the last update (global frame -> mask frame).
   const Transform2D& lastTransform() const { return to_mask_; }
+  /// Asks that this update cover the mask's whole extent, as when a new mask arrived (a subclass whose
+  /// costs changed for another reason). Update thread only; call it from processPose().
+  void requestRedraw() { redraw_requested_ = true; }
 
 private:
   /// The mask's extent as a box in the global frame [m], when the transform is known.
@@ -224,6 +227,7 @@ private:
   std::shared_ptr<const OccupancyGridData> active_mask_;  ///< the mask of this cycle (update thread only)
   std::shared_ptr<const FilterInfoData> active_info_;     ///< the info of this cycle (update thread only)
   bool have_transform_ = false;
+  bool redraw_requested_ = false;  ///< update thread only (requestRedraw())
   double robot_x_ = 0, robot_y_ = 0, robot_yaw_ = 0;
   Transform2D to_mask_;
   MaskMapping mapping_;

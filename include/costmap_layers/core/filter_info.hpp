@@ -5,7 +5,7 @@
 //  0    keepout / preferred lanes                        KeepoutFilter, LanesFilter
 //  1    speed limit in percent of the robot's maximum    SpeedFilter
 //  2    speed limit in m/s                               SpeedFilter
-//  3    binary filter                                    none (no BinaryFilter in this package)
+//  3    binary filter                                    BinaryFilter
 //  4    zone parameters (Nav2's ZONE_PARAMETER_FILTER)   ZoneParameterFilter
 // Every other value is invalid.
 //
@@ -48,12 +48,13 @@ bool isKnownFilterInfoType(int type);
 InputError validateFilterInfo(const FilterInfoData& info);
 
 /// validateFilterInfo() plus what a filter of the given kind accepts: keepout/lanes filters take
-/// type 0 only, the speed filter types 1 and 2, the zone parameter filter type 4 (other types are an error naming the
-/// type and the filter the info is meant for).
+/// type 0 only, the speed filter types 1 and 2, the binary filter type 3, the zone parameter filter
+/// type 4 (other types are an error naming the type and the filter the info is meant for).
 enum class FilterFamily
 {
   Keepout,       ///< KeepoutFilter, LanesFilter
   Speed,         ///< SpeedFilter
+  Binary,        ///< BinaryFilter (type 3)
   ZoneParameter  ///< ZoneParameterFilter (type 4)
 };
 InputError checkFilterInfoFor(FilterFamily family, const FilterInfoData& info);

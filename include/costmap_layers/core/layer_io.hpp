@@ -12,6 +12,7 @@
 
 #include "costmap_layers/core/grid_data.hpp"
 #include "costmap_layers/core/param_value.hpp"
+#include "costmap_layers/core/path_data.hpp"
 #include "costmap_layers/core/sensor_data.hpp"
 
 namespace costmap_layers
@@ -26,7 +27,9 @@ enum class InputKind
   LaserScan,    ///< sensor_msgs/LaserScan, delivered with the sensor pose
   PointCloud2,  ///< sensor_msgs/PointCloud2, delivered with the sensor pose
   Range,        ///< sensor_msgs/Range, delivered with the sensor pose
-  FilterInfo    ///< costmap_layers/CostmapFilterInfo (Nav2's CostmapFilterInfo fields)
+  FilterInfo,   ///< costmap_layers/CostmapFilterInfo (Nav2's CostmapFilterInfo fields)
+  Path,         ///< nav_msgs/Path: a planned path (positions only)
+  Odometry      ///< nav_msgs/Odometry: the robot's velocity
 };
 
 /// A short name of what an input carries ("map", "laser scans", ...), for messages.
@@ -36,6 +39,8 @@ using GridCallback = std::function<void(const std::shared_ptr<const OccupancyGri
 using GridUpdateCallback = std::function<void(const std::shared_ptr<const OccupancyGridUpdateData>&)>;
 using SpeedLimitsCallback = std::function<void(const std::shared_ptr<const SpeedLimitsData>&)>;
 using FilterInfoCallback = std::function<void(const std::shared_ptr<const FilterInfoData>&)>;
+using PathCallback = std::function<void(const std::shared_ptr<const PathData>&)>;
+using OdometryCallback = std::function<void(const std::shared_ptr<const OdometryData>&)>;
 template <class Reading>
 using SensorCallback = std::function<void(const std::shared_ptr<const Reading>&, const SensorPose&)>;
 
@@ -57,6 +62,8 @@ struct InputPort
   GridUpdateCallback on_update;   ///< MapUpdates
   SpeedLimitsCallback on_limits;  ///< SpeedLimits
   FilterInfoCallback on_info;     ///< FilterInfo
+  PathCallback on_path;           ///< Path
+  OdometryCallback on_odom;       ///< Odometry
   SensorCallback<LaserScanData> on_scan;
   SensorCallback<PointCloud2Data> on_cloud;
   SensorCallback<RangeData> on_range;
@@ -65,6 +72,8 @@ struct InputPort
   static InputPort mapUpdates(std::string topic, GridUpdateCallback cb);
   static InputPort speedLimits(std::string topic, SpeedLimitsCallback cb);
   static InputPort filterInfo(std::string topic, FilterInfoCallback cb);
+  static InputPort path(std::string topic, PathCallback cb);
+  static InputPort odometry(std::string topic, OdometryCallback cb);
   static InputPort laserScan(std::string topic, std::string sensor_frame, SensorCallback<LaserScanData> cb);
   static InputPort pointCloud2(std::string topic, std::string sensor_frame, SensorCallback<PointCloud2Data> cb);
   static InputPort range(std::string topic, SensorCallback<RangeData> cb);
@@ -79,8 +88,9 @@ enum class OutputKind
 {
   MaxSpeed,    ///< costmap_layers/MaxSpeed, latched: the speed limit in force [m/s] (0 = none)
   SpeedLimit,  ///< costmap_layers/Nav2SpeedLimit (Nav2's SpeedLimit fields): percentage + speed_limit
-  ZoneState,   ///< std_msgs/UInt8, latched: the id of the zone state in force (Nav2's state event)
-  Setpoints    ///< parameters of other nodes to set through their dynamic_reconfigure servers (no topic)
+  ZoneState,    ///< std_msgs/UInt8, latched: the id of the zone state in force (Nav2's state event)
+  Setpoints,    ///< parameters of other nodes to set through their dynamic_reconfigure servers (no topic)
+  BinaryState  ///< std_msgs/Bool, latched: a BinaryFilter's state (OutputEvent::state)
 };
 
 /// One parameter of another node, set through that node's dynamic_reconfigure server
@@ -113,6 +123,7 @@ struct OutputEvent
   /// name, for messages).
   std::vector<Setpoint> setpoints;
   std::string label;
+  bool state = false;       ///< BinaryState only
 };
 using OutputListener = std::function<void(const OutputEvent&)>;
 }  // namespace costmap_layers

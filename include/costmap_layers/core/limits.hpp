@@ -54,5 +54,11 @@ constexpr double kMaxFrequency = 1e3;
 /// by hand (a few shapes of a few dozen vertices) times a thousand.
 constexpr std::size_t kMaxZoneShapes = 1000;
 constexpr std::size_t kMaxZoneVertices = 1000;
+/// Poses of one path: 200 000 poses is a 5 km plan at navfn's 2.5 cm spacing. Bigger paths are
+/// refused (each cycle may walk the whole path to find the robot on it).
+constexpr std::size_t kMaxPathPoses = 200'000;
+/// [m/s] |speed| an odometry message may report: no ground robot is faster; beyond it the braking
+/// distance v^2 / (2 a) loses meaning.
+constexpr double kMaxSpeed = 100.0;
 }  // namespace limits
 }  // namespace costmap_layers

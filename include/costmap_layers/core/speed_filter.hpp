@@ -33,6 +33,26 @@
 // Each output is published on the first evaluation and then only when its value changes; every
 // warning says what is published instead.
 //
+// Path lookahead (Nav2's enable_path_lookahead): the limit published is the strictest one at the
+// robot and at the poses of the planned path (path_topic) within the lookahead distance ahead of the
+// robot, so that the robot slows before a zone instead of inside it:
+//  - speed v = |linear.x| of odometry (odom_topic), averaged over the messages of the last 0.3 s
+//    (Nav2's odometry smoother); lookahead = v^2 / (2 |max_decel|) clamped to [min_lookahead,
+//    max_lookahead] (lookaheadDistance()); with max_decel 0, max_lookahead. While the limit found
+//    ahead differs from the one at the robot, the lookahead does not shrink below the distance that
+//    found it (Nav2's hold: slowing down must not lift the limit that made the robot slow down).
+//  - the poses walked: from the start of the path segment nearest the robot (searched forward from
+//    the last one, from 0 for a new path) along the path while the distance walked is at most the
+//    lookahead (lookaheadEnd()); a pose outside the mask or on a -1 cell adds nothing;
+//  - strictest: the smallest positive limit (speed_limit as Nav2SpeedLimit carries it; 0 = none).
+//  - the path is transformed into the global frame each cycle (tf); an empty path means "no plan":
+//    the robot's own cell only, as without lookahead.
+//  - without odometry, or when the newest is older than odom_timeout: max_lookahead (the cautious
+//    choice), with an error; a path that cannot be transformed: the robot's own cell only, with an
+//    error. A path with a non-finite or absurd position, more than limits::kMaxPathPoses poses or
+//    no frame is refused with an error naming the field (the previous path stays); so is odometry
+//    with a non-finite or absurd twist (the previous speed stays).
+//
 // Features are checked entry by entry; a bad entry is reported (Error) and dropped, the others kept:
 // ids outside 1..100 (no mask cell can hold them), NaN, infinite or negative max_speed, percentages
 // outside (0, 100] in percent mode. A duplicate id is warned and the later entry wins.
@@ -48,10 +68,18 @@
 //   mask_mode              "area_id" | "nav2"
 //   base                   0.0   nav2 mode
 //   multiplier             1.0   nav2 mode
+//   enable_path_lookahead  false
+//   max_decel              -0.5  [m/s^2] <= 0 (Nav2's sign: negative); 0 = always max_lookahead
+//   min_lookahead          0.3   [m] >= 0
+//   max_lookahead          5.0   [m] >= min_lookahead
+//   path_topic             "plan"  nav_msgs/Path (move_base: e.g. /move_base/NavfnROS/plan)
+//   odom_topic             "odom"  nav_msgs/Odometry
+//   odom_timeout           0.5   [s] > 0: older odometry is stale (this package's own)
 #pragma once
 
 #include <array>
 #include <bitset>
+#include <deque>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -82,6 +110,13 @@ struct SpeedFilterConfig
   SpeedMaskMode mask_mode = SpeedMaskMode::AreaId;
   double base = 0.0;        ///< nav2 mode: limit = base + multiplier * v
   double multiplier = 1.0;  ///< nav2 mode
+  bool enable_path_lookahead = false;
+  double max_decel = -0.5;     ///< [m/s^2], <= 0
+  double min_lookahead = 0.3;  ///< [m]
+  double max_lookahead = 5.0;  ///< [m]
+  std::string path_topic = "plan";
+  std::string odom_topic = "odom";
+  double odom_timeout = 0.5;  ///< [s]
 };
 
 /// Reads the parameters above. Throws std::invalid_argument on a bad value, when
@@ -138,6 +173,15 @@ public:
   /// What was published last on speed_limit_topic (percentage, speed_limit); nullopt before the first
   /// publication and when speed_limit_topic is not set. Update thread only.
   std::optional<std::pair<bool, double>> lastSpeedLimit() const { return last_speed_limit_; }
+  /// The lookahead distance of the last cycle [m] (0 before the first, or without lookahead).
+  /// Update thread only.
+  double lastLookahead() const { return last_lookahead_; }
+
+  /// Checks and installs a planned path (what the path_topic subscription calls); a bad one is
+  /// reported and dropped, the previous one staying. Any thread. @return empty, or the error.
+  std::string setPath(const std::shared_ptr<const PathData>& path);
+  /// Checks and records odometry (the odom_topic subscription). Any thread. @return empty, or the error.
+  std::string setOdometry(const OdometryData& odom);
 
 protected:
   void onInitializeFilter(const ParamReader& params) override;
@@ -177,6 +221,11 @@ private:
   /// What to publish for a mask value other than -1, warning as documented.
   Publication limitForValue(int8_t v, const SpeedLimitTable* table);
   void warnValueOnce(int8_t v, const std::string& message);
+  /// The robot's speed for the lookahead [m/s], or nullopt (reported) when odometry is missing or stale.
+  std::optional<double> currentSpeed();
+  /// The strictest publication at the robot and along the path ahead (see the file comment).
+  std::optional<Publication> lookahead(const OccupancyGridData& mask, const Transform2D& to_mask, double robot_x,
+                                       double robot_y, const std::optional<Publication>& at_robot);
 
   SpeedFilterConfig config_;
 
@@ -191,5 +240,24 @@ private:
   std::bitset<256> warned_ids_;     ///< area ids without a limit, warned for active_limits_
   std::bitset<256> warned_values_;  ///< invalid / out-of-range mask values, warned once per info
   std::shared_ptr<const FilterInfoData> warned_for_info_;
+
+  // Path lookahead: the topics, set once at start (input threads name them in reports) ...
+  std::string path_topic_, odom_topic_;
+  // ... inputs (guarded by motion_mutex_) ...
+  mutable std::mutex motion_mutex_;
+  std::shared_ptr<const PathData> path_;
+  struct SpeedSample
+  {
+    uint64_t received_ns;
+    uint64_t stamp_ns;
+    double linear_x;
+  };
+  std::deque<SpeedSample> speeds_;  ///< the last 0.3 s of odometry, oldest first
+  // ... and their use (update thread only).
+  std::shared_ptr<const PathData> active_path_;
+  std::vector<PathData::Point> path_global_;  ///< active_path_ in the global frame
+  std::size_t segment_ = 0;                   ///< nearest segment found last
+  double held_lookahead_ = 0.0;               ///< [m] Nav2's hold
+  double last_lookahead_ = 0.0;
 };
 }  // namespace costmap_layers

@@ -5,6 +5,8 @@
 #include <geometry_msgs/TransformStamped.h>
 #include <map_msgs/OccupancyGridUpdate.h>
 #include <nav_msgs/OccupancyGrid.h>
+#include <nav_msgs/Odometry.h>
+#include <nav_msgs/Path.h>
 #include <sensor_msgs/LaserScan.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <sensor_msgs/Range.h>
@@ -16,6 +18,7 @@
 #include "costmap_layers/core/grid_data.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
 #include "costmap_layers/core/param_value.hpp"
+#include "costmap_layers/core/path_data.hpp"
 #include "costmap_layers/core/sensor_data.hpp"
 
 namespace costmap_layers_ros
@@ -39,6 +42,11 @@ costmap_layers::SpeedLimitsData fromMsg(const costmap_layers::SpeedLimits& msg);
 /// The fields as they are (base and multiplier widened from float32); the filter checks them.
 costmap_layers::FilterInfoData fromMsg(const costmap_layers::CostmapFilterInfo& msg);
 costmap_layers::OccupancyGridUpdateData fromMsg(const map_msgs::OccupancyGridUpdate& msg);
+/// The positions of the poses, in the path's header frame (each pose's own header is not used, as in
+/// Nav2); the core validates them.
+costmap_layers::PathData fromMsg(const nav_msgs::Path& msg);
+/// The twist as it is; the core validates it.
+costmap_layers::OdometryData fromMsg(const nav_msgs::Odometry& msg);
 /// Sensor messages: plain copies; the core validates them.
 costmap_layers::LaserScanData fromMsg(const sensor_msgs::LaserScan& msg);
 costmap_layers::PointCloud2Data fromMsg(const sensor_msgs::PointCloud2& msg);

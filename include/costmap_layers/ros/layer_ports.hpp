@@ -58,6 +58,10 @@ private:
   ros::Subscriber subscribeGridUpdates(const std::string& topic, costmap_layers::GridUpdateCallback cb);
   ros::Subscriber subscribeSpeedLimits(const std::string& topic, costmap_layers::SpeedLimitsCallback cb);
   ros::Subscriber subscribeFilterInfo(const std::string& topic, costmap_layers::FilterInfoCallback cb);
+  /// A message converted by fromMsg() and handed over as is (the layer validates it); a conversion
+  /// that throws is logged (keyed by the layer and topic) and dropped. `what` names it in the log.
+  template <class Msg, class Callback>
+  ros::Subscriber subscribeTyped(const std::string& topic, const std::string& what, Callback cb, uint32_t queue);
   /// Subscribes through a tf gate (see layer_ports.cpp): a reading is delivered once its frame can be
   /// transformed into the global frame at its stamp, or dropped with a throttled warning.
   template <class Msg, class Reading>
