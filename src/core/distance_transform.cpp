@@ -19,9 +19,14 @@ namespace dt
 {
 /// Widest vector of any target, in bytes: the padding on both sides of a row.
 constexpr int kMaxLanes = 64;
-/// Up to this reach the row pass works in the cost domain with 16-entry byte tables (the saturated
-/// vertical distance reach + 1 must index them).
-constexpr int kMaxCostDomainReach = 14;
+/// Up to this reach the row pass works in the cost domain with 16-entry byte tables: per column offset,
+/// kTablesPerOffset(reach) tables of 15 vertical distances each (and a 0 in entry 15).
+constexpr int kMaxCostDomainReach = 59;
+/// Tables per column offset: vertical distances 15 k .. 15 k + 14 in table k.
+constexpr int tablesPerOffset(int reach)
+{
+  return (reach + 15) / 15;
+}
 /// Up to this reach vertical distances are bytes and squared distances 16 bits.
 constexpr int kMaxBandedReach = 254;
 
@@ -165,19 +170,37 @@ HWY_INLINE bool anyNear(D d, const uint8_t* g, int cap, uint8_t far)
   return !hn::AllTrue(d, hn::Eq(near, hn::Set(d, far)));
 }
 
-/// The cost of vertical distances v at column offset dx: table[16 * dx + v] (v <= 15).
+/// One 16-entry table lookup (indices 0..15) of each lane.
 template <class D, class V>
-HWY_INLINE V offsetCost(D d, const uint8_t* tables, int dx, V v)
+HWY_INLINE V lookup16(D d, const uint8_t* table, V idx)
 {
 #if HWY_TARGET == HWY_SCALAR
-  return hn::Set(d, tables[16 * dx + hn::GetLane(v)]);
+  return hn::Set(d, table[hn::GetLane(idx)]);
 #else
-  return hn::TableLookupBytes(hn::LoadDup128(d, tables + 16 * dx), v);
+  return hn::TableLookupBytes(hn::LoadDup128(d, table), idx);
 #endif
+}
+
+/// The cost of vertical distances v at column offset dx, from the K tables of that offset: table k
+/// holds the costs of v = 15 k + j in entry j < 15 and 0 in entry 15. Lane v takes the maximum over
+/// the tables of entry min(v -sat 15 k, 15): exactly its cost from table v / 15, 0 from the tables
+/// below it (entry 15), and from the tables above it entry 0, the cost of a larger distance, which is
+/// no higher (the costs do not increase with the distance).
+template <int K, class D, class V>
+HWY_INLINE V offsetCost(D d, const uint8_t* tables, int dx, V v)
+{
+  const uint8_t* t = tables + 16 * K * dx;
+  if (K == 1) return lookup16(d, t, v);  // v <= reach + 1 <= 15
+  const auto fifteen = hn::Set(d, 15);
+  auto c = lookup16(d, t, hn::Min(v, fifteen));
+  for (int k = 1; k < K; ++k)
+    c = hn::Max(c, lookup16(d, t + 16 * k, hn::Min(hn::SaturatedSub(v, hn::Set(d, static_cast<uint8_t>(15 * k))), fifteen)));
+  return c;
 }
 
 /// Row pass in the cost domain (reach <= kMaxCostDomainReach): c = max over dx of
 /// cost(dx^2 + min(g[x - dx], g[x + dx])^2), merged into out. g is readable on [-pad, n + pad).
+template <int K>
 HWY_INLINE void rowPassCost8(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRICT out, int n, const dt::Job& j)
 {
   const hn::ScalableTag<uint8_t> d;
@@ -190,16 +213,29 @@ HWY_INLINE void rowPassCost8(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRIC
     const uint8_t* gx = g + x;
     if (!anyNear(d, gx, cap, far)) continue;
     // Two accumulators: two shorter dependency chains of maxima.
-    auto c0 = offsetCost(d, tables, 0, hn::LoadU(d, gx));
+    auto c0 = offsetCost<K>(d, tables, 0, hn::LoadU(d, gx));
     auto c1 = hn::Zero(d);
     int dx = 1;
     for (; dx < cap; dx += 2)
     {
-      c1 = hn::Max(c1, offsetCost(d, tables, dx, hn::Min(hn::LoadU(d, gx - dx), hn::LoadU(d, gx + dx))));
+      c1 = hn::Max(c1, offsetCost<K>(d, tables, dx, hn::Min(hn::LoadU(d, gx - dx), hn::LoadU(d, gx + dx))));
       const int e = dx + 1;
-      c0 = hn::Max(c0, offsetCost(d, tables, e, hn::Min(hn::LoadU(d, gx - e), hn::LoadU(d, gx + e))));
+      c0 = hn::Max(c0, offsetCost<K>(d, tables, e, hn::Min(hn::LoadU(d, gx - e), hn::LoadU(d, gx + e))));
+      // No further offset gives more than the cost of (e + 1)^2 (its entry 0): once every lane has
+      // that much, stop.
+      if (K > 1 && (dx & 3) == 3 && e < cap)
+      {
+        const auto c = hn::Max(c0, c1);
+        const auto bound = hn::Set(d, tables[16 * K * (e + 1)]);
+        if (hn::AllTrue(d, hn::Eq(hn::Max(c, bound), c)))
+        {
+          dx = cap + 1;
+          break;
+        }
+      }
     }
-    if (dx == cap) c1 = hn::Max(c1, offsetCost(d, tables, dx, hn::Min(hn::LoadU(d, gx - dx), hn::LoadU(d, gx + dx))));
+    if (dx == cap)
+      c1 = hn::Max(c1, offsetCost<K>(d, tables, dx, hn::Min(hn::LoadU(d, gx - dx), hn::LoadU(d, gx + dx))));
     mergeStore(d, hn::Max(c0, c1), out + x, std::min(N, n - x), j.rule);
   }
 }
@@ -282,7 +318,8 @@ HWY_INLINE void rowPassSq16(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRICT
 
 /// The vertical pass in stripes of rows and the row pass per row (in decreasing y within a stripe, so
 /// that each grid row is read, as a source row, before it is written).
-template <bool kCostDomain>
+/// K: tables per column offset in the cost domain, 0 for 16-bit squared distances.
+template <int K>
 void runJob(const dt::Job& j)
 {
   const int cap = j.cap;
@@ -345,8 +382,8 @@ void runJob(const dt::Job& j)
       }
       else
         out = j.target + y * j.target_stride + win.x0;
-      if (kCostDomain)
-        rowPassCost8(gr + j.pad, out, n, j);
+      if (K > 0)
+        rowPassCost8<(K > 0 ? K : 1)>(gr + j.pad, out, n, j);
       else
         rowPassSq16(gr + j.pad, out, n, j);
       if (j.sink != nullptr) (*j.sink)(y, j.out_row);
@@ -356,10 +393,23 @@ void runJob(const dt::Job& j)
 
 void RunDistanceJob(const dt::Job& j)
 {
-  if (j.cap <= dt::kMaxCostDomainReach)
-    runJob<true>(j);
-  else
-    runJob<false>(j);
+  switch (j.cap <= dt::kMaxCostDomainReach ? dt::tablesPerOffset(j.cap) : 0)
+  {
+    case 1:
+      runJob<1>(j);
+      break;
+    case 2:
+      runJob<2>(j);
+      break;
+    case 3:
+      runJob<3>(j);
+      break;
+    case 4:
+      runJob<4>(j);
+      break;
+    default:
+      runJob<0>(j);
+  }
 }
 }  // namespace HWY_NAMESPACE
 }  // namespace costmap_layers
@@ -427,10 +477,16 @@ DistanceCosts::DistanceCosts(int64_t max_cells, const std::function<uint8_t(uint
   }
   if (reach_ <= dt::kMaxCostDomainReach)
   {
-    offset_tables_.assign(static_cast<std::size_t>(16 * (reach_ + 1)), 0);
+    const int64_t k_count = dt::tablesPerOffset(static_cast<int>(reach_));
+    offset_tables_.assign(static_cast<std::size_t>(16 * k_count * (reach_ + 1)), 0);
     for (int64_t dx = 0; dx <= reach_; ++dx)
-      for (int64_t v = 0; v <= reach_; ++v)
-        offset_tables_[static_cast<std::size_t>(16 * dx + v)] = at(static_cast<uint64_t>(dx * dx + v * v));
+      for (int64_t k = 0; k < k_count; ++k)
+        for (int64_t j = 0; j < 15; ++j)
+        {
+          const int64_t v = 15 * k + j;
+          offset_tables_[static_cast<std::size_t>(16 * (k_count * dx + k) + j)] =
+              at(static_cast<uint64_t>(dx * dx + v * v));
+        }
   }
 }
 

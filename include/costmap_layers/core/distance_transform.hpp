@@ -9,10 +9,11 @@
 //  - a vertical pass per column, saturating at reach + 1 cells, streamed through cache in stripes of
 //    rows (the grid is read forward, once, plus reach rows of lookahead per stripe);
 //  - a row pass per row: the lower envelope of the parabolas dx^2 + g(x + dx)^2 over the columns
-//    within reach, as a min-plus over the column offsets -- in the cost domain, one 16-entry byte
-//    lookup per offset, for a reach up to 14 cells (cost(min d2) = max cost since the table does not
-//    increase), in 16-bit squared distances up to 254 cells, and with the scalar envelope of Meijster,
-//    Roerdink and Hesselink beyond; blocks of cells with no source within reach are skipped;
+//    within reach, as a min-plus over the column offsets -- in the cost domain, one to four 16-entry
+//    byte lookups per offset, for a reach up to 59 cells (cost(min d2) = max cost since the table does
+//    not increase), in 16-bit squared distances up to 254 cells, and with the scalar envelope of
+//    Meijster, Roerdink and Hesselink beyond; blocks of cells with no source within reach are skipped,
+//    and a block stops early once no further offset can raise any of its costs;
 //  - the cost table lookup and the merge rule.
 // The SIMD kernels are written once with Highway and compiled for every target Highway attains
 // (simd_targets.hpp lists and switches them); the dispatcher is Highway's.
@@ -60,8 +61,9 @@ public:
   /// The cost at squared distance d2 (0 beyond the reach).
   uint8_t at(uint64_t d2) const;
 
-  /// For the engine: per column offset dx in [0, min(reach, 14)], 16 costs of dx^2 + v^2 for v = 0..15
-  /// (0 for v > reach); and the cost of every 16-bit squared distance (reach <= 254 only).
+  /// For the engine (reach <= 59): per column offset dx in [0, reach], ceil((reach + 1) / 15) tables of
+  /// 16 bytes, table k holding the costs of dx^2 + v^2 for v = 15 k .. 15 k + 14 and 0; and (reach <=
+  /// 254) the cost of every 16-bit squared distance.
   const uint8_t* offsetTables() const { return offset_tables_.data(); }
   const uint8_t* table16() const { return table16_.data(); }
 
