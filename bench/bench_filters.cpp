@@ -139,7 +139,8 @@ void BM_SpeedMaskArrives(benchmark::State& state)
   mask->data.resize(static_cast<std::size_t>(kSize) * kSize);
   for (unsigned y = 0; y < kSize; ++y)
     for (unsigned x = 0; x < kSize; ++x)
-      mask->data[static_cast<std::size_t>(y) * kSize + x] = static_cast<int8_t>(1 + (x >= kSize / 2) + 2 * (y >= kSize / 2));
+      mask->data[static_cast<std::size_t>(y) * kSize + x] =
+          static_cast<int8_t>(1 + (x >= kSize / 2) + 2 * (y >= kSize / 2));
   Costmap2D& master = lc.getCostmap();
   bool redraw = false;
   for (auto _ : state)

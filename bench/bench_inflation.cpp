@@ -114,7 +114,7 @@ struct StaticRig
 {
   explicit StaticRig(double radius = 0.55, double factor = 10.0, double resolution = 0.0,
                      const Footprint& footprint = squareFootprint())
-    : lc("map", false, true), footprint(footprint)
+      : lc("map", false, true), footprint(footprint)
   {
     auto grid = std::make_shared<OccupancyGridData>(syntheticMap().grid);
     if (resolution > 0.0) grid->resolution = resolution;
@@ -233,8 +233,7 @@ void BM_StaticInflationSweep(benchmark::State& state)
     state.SkipWithError(syntheticMap().error.c_str());
     return;
   }
-  StaticRig rig(state.range(0) / 1000.0, static_cast<double>(state.range(2)), state.range(1) / 1000.0,
-                toolFootprint());
+  StaticRig rig(state.range(0) / 1000.0, static_cast<double>(state.range(2)), state.range(1) / 1000.0, toolFootprint());
   for (auto _ : state)
   {
     rig.toolUpdate();

@@ -5,10 +5,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <stdexcept>
-#include <string>
 #include <exception>
 #include <functional>
+#include <stdexcept>
+#include <string>
 #include <thread>
 
 #ifndef COSTMAP_LAYERS_DT_SHARED
@@ -194,7 +194,8 @@ HWY_INLINE V offsetCost(D d, const uint8_t* tables, int dx, V v)
   const auto fifteen = hn::Set(d, 15);
   auto c = lookup16(d, t, hn::Min(v, fifteen));
   for (int k = 1; k < K; ++k)
-    c = hn::Max(c, lookup16(d, t + 16 * k, hn::Min(hn::SaturatedSub(v, hn::Set(d, static_cast<uint8_t>(15 * k))), fifteen)));
+    c = hn::Max(
+        c, lookup16(d, t + 16 * k, hn::Min(hn::SaturatedSub(v, hn::Set(d, static_cast<uint8_t>(15 * k))), fifteen)));
   return c;
 }
 
@@ -772,8 +773,8 @@ void run(const Call& call_in, DistanceTransformScratch& scratch, int threads)
   {
     try
     {
-      runBand(c, bounds[static_cast<std::size_t>(k)], bounds[static_cast<std::size_t>(k) + 1], buffers, snap,
-              c.win.y0, snap_stride);
+      runBand(c, bounds[static_cast<std::size_t>(k)], bounds[static_cast<std::size_t>(k) + 1], buffers, snap, c.win.y0,
+              snap_stride);
     }
     catch (...)
     {

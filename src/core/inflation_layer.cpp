@@ -85,8 +85,10 @@ void InflationLayer::rebuildTable()
   const double res = resolution_, inscribed = inscribed_radius_, factor = config_.cost_scaling_factor;
   // costmap_2d's rule (cost_rules.hpp) at the exact distance; 0 past the radius. It does not increase
   // with the distance (factor >= 0), and the engine stops where it reaches 0.
-  costs_ = DistanceCosts(cell_inflation_radius_, [&](uint64_t d2) -> uint8_t
-                         { return d2 > cap_sq ? 0 : inflationCost(std::sqrt(static_cast<double>(d2)), res, inscribed, factor); });
+  costs_ = DistanceCosts(
+      cell_inflation_radius_,
+      [&](uint64_t d2) -> uint8_t
+      { return d2 > cap_sq ? 0 : inflationCost(std::sqrt(static_cast<double>(d2)), res, inscribed, factor); });
   table_key_ = key;
 }
 

@@ -14,8 +14,8 @@
 
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "src/core/lanes_filter.cpp"
-#include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/cache_control.h>
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
 HWY_BEFORE_NAMESPACE();
@@ -36,8 +36,7 @@ HWY_INLINE uint8_t finishCell(uint8_t v, uint8_t c, std::size_t& invalid)
 /// a compare and a subtraction; a block holding anything else also computes soft costs,
 /// (254 v + 50) / 100 in 16-bit lanes (the division as a multiply-high by 5243 and a shift by 16 + 3,
 /// exact for v in 1..99, the only values it is kept for), and counts the invalid values.
-std::size_t FinishLaneCosts(const uint8_t* HWY_RESTRICT u, const uint8_t* c, uint8_t* out, std::size_t n,
-                            bool stream)
+std::size_t FinishLaneCosts(const uint8_t* HWY_RESTRICT u, const uint8_t* c, uint8_t* out, std::size_t n, bool stream)
 {
   const hn::ScalableTag<uint8_t> d;
   const hn::ScalableTag<uint16_t> d16;
@@ -207,13 +206,14 @@ std::size_t LanesFilter::computeCosts(const OccupancyGridData& mask, std::vector
   // forbidden, so they take the first cells' value.
   const double r = mask.resolution;
   const LanesFilterConfig config = config_;
-  const DistanceCosts distance_costs(static_cast<int64_t>(cap),
-                                     [&](uint64_t d2) -> uint8_t
-                                     {
-                                       if (d2 >= q) return 0;
-                                       const double dist = std::sqrt(static_cast<double>(std::max<uint64_t>(d2, 1))) * r;
-                                       return static_cast<uint8_t>(LETHAL_OBSTACLE - lanesForbiddenCost(config, dist, r));
-                                     });
+  const DistanceCosts distance_costs(
+      static_cast<int64_t>(cap),
+      [&](uint64_t d2) -> uint8_t
+      {
+        if (d2 >= q) return 0;
+        const double dist = std::sqrt(static_cast<double>(std::max<uint64_t>(d2, 1))) * r;
+        return static_cast<uint8_t>(LETHAL_OBSTACLE - lanesForbiddenCost(config, dist, r));
+      });
   std::size_t invalid = 0;
   const SourceRange lanes{static_cast<uint8_t>(kLane), static_cast<uint8_t>(kLane)};
   distanceCostRows(bytes, w, h, w, lanes, distance_costs, DistanceWindow{0, 0, w, h}, scratch_,

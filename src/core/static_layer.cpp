@@ -222,11 +222,9 @@ void StaticLayer::processMap(const OccupancyGridData& map)
   if (config_.trinary_costmap)
     // The table is three-valued then (rebuildTable() says the same): compare instead of looking up.
     HWY_DYNAMIC_DISPATCH(ConvertTrinary)
-    (reinterpret_cast<const uint8_t*>(in), out, n, static_cast<uint8_t>(config_.unknown_cost_value),
-     table_[static_cast<uint8_t>(config_.unknown_cost_value)], static_cast<uint8_t>(config_.lethal_cost_threshold));
-  else
-    for (std::size_t k = 0; k < n; ++k)
-      out[k] = table_[static_cast<uint8_t>(in[k])];
+  (reinterpret_cast<const uint8_t*>(in), out, n, static_cast<uint8_t>(config_.unknown_cost_value),
+   table_[static_cast<uint8_t>(config_.unknown_cost_value)], static_cast<uint8_t>(config_.lethal_cost_threshold));
+  else for (std::size_t k = 0; k < n; ++k) out[k] = table_[static_cast<uint8_t>(in[k])];
   if (!rolling && differs(layered_costmap_->getCostmap()))
     layered_costmap_->resizeMap(map.width, map.height, map.resolution, map.origin_x, map.origin_y, true);
   if (!rolling && map.origin_yaw != 0.0)

@@ -26,8 +26,7 @@ namespace
 constexpr uint64_t kNone = std::numeric_limits<uint64_t>::max();
 
 /// Squared distance to the nearest source by exhaustive search over every source, or kNone.
-std::vector<uint64_t> bruteForce(const std::vector<uint8_t>& grid, int w, int h, std::ptrdiff_t stride,
-                                 SourceRange src)
+std::vector<uint64_t> bruteForce(const std::vector<uint8_t>& grid, int w, int h, std::ptrdiff_t stride, SourceRange src)
 {
   std::vector<std::pair<int64_t, int64_t>> sources;
   for (int y = 0; y < h; ++y)
@@ -39,8 +38,8 @@ std::vector<uint64_t> bruteForce(const std::vector<uint8_t>& grid, int w, int h,
     {
       uint64_t best = kNone;
       for (const auto& s : sources)
-        best = std::min<uint64_t>(best, static_cast<uint64_t>((s.first - x) * (s.first - x) +
-                                                              (s.second - y) * (s.second - y)));
+        best = std::min<uint64_t>(
+            best, static_cast<uint64_t>((s.first - x) * (s.first - x) + (s.second - y) * (s.second - y)));
       out[static_cast<std::size_t>(y) * w + x] = best;
     }
   return out;
@@ -108,8 +107,8 @@ protected:
     int bad = 0;
     for (std::size_t i = 0; i < got.size(); ++i)
       if (got[i] != expected[i] && bad++ < 3)
-        ADD_FAILURE() << what << ": cell " << i % stride << "," << i / stride << " got " << int{got[i]}
-                      << " expected " << int{expected[i]} << " (reach " << costs.reach() << ")";
+        ADD_FAILURE() << what << ": cell " << i % stride << "," << i / stride << " got " << int{got[i]} << " expected "
+                      << int{expected[i]} << " (reach " << costs.reach() << ")";
     EXPECT_EQ(bad, 0) << what;
   }
 
@@ -193,11 +192,12 @@ TEST_P(Engine, SweepRadiiAndResolutionsEqualBruteForce)
         const int h = static_cast<int>(std::min<int64_t>(2 * cells + 21, 170));
         const auto grid = randomGrid(rng, static_cast<std::size_t>(w) * h, 0.6 / (cells + 3));
         const double r = res, f = factor;
-        const auto rule_fn = [&](uint64_t d2) { return d2 > static_cast<uint64_t>(cells * cells) ? uint8_t{0} : inflationRule(r, f)(d2); };
-        checkMerge(grid, w, h, w, SourceRange{254, 254}, DistanceWindow{0, 0, w, h}, cells, rule_fn,
-                   CostMergeRule{255, 253}, 1,
-                   "res " + std::to_string(res) + " radius " + std::to_string(radius) + " factor " +
-                       std::to_string(factor));
+        const auto rule_fn = [&](uint64_t d2)
+        { return d2 > static_cast<uint64_t>(cells * cells) ? uint8_t{0} : inflationRule(r, f)(d2); };
+        checkMerge(
+            grid, w, h, w, SourceRange{254, 254}, DistanceWindow{0, 0, w, h}, cells, rule_fn, CostMergeRule{255, 253},
+            1,
+            "res " + std::to_string(res) + " radius " + std::to_string(radius) + " factor " + std::to_string(factor));
       }
 }
 
@@ -253,8 +253,9 @@ TEST_P(Engine, ThreadsGiveTheSameResult)
     {
       const auto fn = [cap](uint64_t d2) -> uint8_t
       { return d2 > static_cast<uint64_t>(cap * cap) ? 0 : static_cast<uint8_t>(252 - d2 / 8); };
-      checkMerge(grid, w, h, w, SourceRange{254, 255}, DistanceWindow{0, 13, w, h - 7}, cap, fn, CostMergeRule{255, 253},
-                 threads, "cap " + std::to_string(cap) + " threads " + std::to_string(threads));
+      checkMerge(grid, w, h, w, SourceRange{254, 255}, DistanceWindow{0, 13, w, h - 7}, cap, fn,
+                 CostMergeRule{255, 253}, threads,
+                 "cap " + std::to_string(cap) + " threads " + std::to_string(threads));
     }
 }
 
@@ -287,8 +288,8 @@ TEST_P(Engine, RowsEqualBruteForce)
                          const uint64_t d2 = d[static_cast<std::size_t>(y) * w + x];
                          const uint8_t expected = d2 <= static_cast<uint64_t>(cap * cap) ? fn(d2) : uint8_t{0};
                          if (row[x - win.x0] != expected && bad++ < 3)
-                           ADD_FAILURE() << "cap " << cap << " cell " << x << "," << y << " got " << int{row[x - win.x0]}
-                                         << " expected " << int{expected};
+                           ADD_FAILURE() << "cap " << cap << " cell " << x << "," << y << " got "
+                                         << int{row[x - win.x0]} << " expected " << int{expected};
                        }
                      });
     EXPECT_EQ(bad, 0);

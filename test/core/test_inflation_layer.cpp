@@ -12,10 +12,10 @@
 
 #include "costmap_layers/core/cost_values.hpp"
 #include "costmap_layers/core/costmap_layer.hpp"
-#include "costmap_layers/core/simd_targets.hpp"
 #include "costmap_layers/core/inflation_layer.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
 #include "costmap_layers/core/param_reader.hpp"
+#include "costmap_layers/core/simd_targets.hpp"
 #include "fake_context.hpp"
 
 using namespace costmap_layers;

@@ -15,8 +15,8 @@
 
 #include "costmap_layers/core/cost_values.hpp"
 #include "costmap_layers/core/lanes_filter.hpp"
-#include "costmap_layers/core/simd_targets.hpp"
 #include "costmap_layers/core/param_reader.hpp"
+#include "costmap_layers/core/simd_targets.hpp"
 #include "fake_context.hpp"
 
 using namespace costmap_layers;

@@ -518,8 +518,8 @@ TEST(StaticLayer, TrinaryConversionOfEveryByteOnEveryTarget)
             for (uint32_t x = 0; x < 37; ++x)
             {
               const uint8_t v = static_cast<uint8_t>(m.data[static_cast<std::size_t>(y) * 37 + x]);
-              const uint8_t expected = v == static_cast<uint8_t>(unknown) ? (track ? 255 : 0)
-                                                                          : (v >= threshold ? 254 : 0);
+              const uint8_t expected =
+                  v == static_cast<uint8_t>(unknown) ? (track ? 255 : 0) : (v >= threshold ? 254 : 0);
               ASSERT_EQ(rig.at(x, y), expected) << "value " << int{v};
             }
         }
