@@ -155,9 +155,9 @@ HWY_INLINE void mergeStore(D d, V c, uint8_t* HWY_RESTRICT out, int n, const Cos
   std::memcpy(out, tmp, static_cast<std::size_t>(n));
 }
 
-/// The smallest vertical distance in [g - cap, g + N + cap) (far when no source is within reach).
+/// Whether any vertical distance in [g - cap, g + N + cap) is below far.
 template <class D>
-HWY_INLINE uint8_t nearest(D d, const uint8_t* g, int cap)
+HWY_INLINE bool anyNear(D d, const uint8_t* g, int cap, uint8_t far)
 {
   const int N = static_cast<int>(hn::Lanes(d));
   auto near = hn::LoadU(d, g - cap);
@@ -167,15 +167,7 @@ HWY_INLINE uint8_t nearest(D d, const uint8_t* g, int cap)
     near = hn::Min(near, hn::LoadU(d, g + oo));
     if (oo == cap) break;
   }
-#if HWY_TARGET == HWY_SCALAR
-  return hn::GetLane(near);
-#else
-  // Highway 1.0.3 reduces 16-bit lanes only: the smaller byte of each pair first.
-  const hn::Repartition<uint16_t, D> d16;
-  const auto w = hn::BitCast(d16, near);
-  const auto m = hn::Min(hn::And(w, hn::Set(d16, 0xFF)), hn::ShiftRight<8>(w));
-  return static_cast<uint8_t>(hn::GetLane(hn::MinOfLanes(d16, m)));
-#endif
+  return !hn::AllTrue(d, hn::Eq(near, hn::Set(d, far)));
 }
 
 /// One 16-entry table lookup (indices 0..15) of each lane.
@@ -195,13 +187,13 @@ HWY_INLINE V lookup16(D d, const uint8_t* table, V idx)
 /// below it (entry 15), and from the tables above it entry 0, the cost of a larger distance, which is
 /// no higher (the costs do not increase with the distance).
 template <int K, class D, class V>
-HWY_INLINE V offsetCost(D d, const uint8_t* tables, int dx, int tables_used, V v)
+HWY_INLINE V offsetCost(D d, const uint8_t* tables, int dx, V v)
 {
   const uint8_t* t = tables + 16 * K * dx;
   if (K == 1) return lookup16(d, t, v);  // v <= reach + 1 <= 15
   const auto fifteen = hn::Set(d, 15);
   auto c = lookup16(d, t, hn::Min(v, fifteen));
-  for (int k = 1; k < tables_used; ++k)
+  for (int k = 1; k < K; ++k)
     c = hn::Max(
         c, lookup16(d, t + 16 * k, hn::Min(hn::SaturatedSub(v, hn::Set(d, static_cast<uint8_t>(15 * k))), fifteen)));
   return c;
@@ -217,38 +209,25 @@ HWY_INLINE void rowPassCost8(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRIC
   const int cap = j.cap;
   const uint8_t far = static_cast<uint8_t>(cap + 1);
   const uint8_t* tables = j.offset_tables;
-  // At offset dx only vertical distances v with dx^2 + v^2 <= cap^2 can cost anything: the tables of
-  // larger v (all 0 there) are left out.
-  int used[dt::kMaxCostDomainReach + 1];
-  for (int dx = 0; dx <= cap; ++dx)
-  {
-    int vmax = 0;
-    while ((vmax + 1) * (vmax + 1) + dx * dx <= cap * cap)
-      ++vmax;
-    used[dx] = std::min(K, vmax / 15 + 1);
-  }
-  // Entry (dx, v) of the tables: the cost of dx^2 + v^2, for v <= cap.
-  auto entry = [&](int dx, int v) { return tables[16 * (K * dx + v / 15) + v % 15]; };
   for (int x = 0; x < n; x += N)
   {
     const uint8_t* gx = g + x;
-    const uint8_t gmin = nearest(d, gx, cap);
-    if (gmin >= far) continue;  // no source within reach: nothing to write
+    if (!anyNear(d, gx, cap, far)) continue;
     // Two accumulators: two shorter dependency chains of maxima.
-    auto c0 = offsetCost<K>(d, tables, 0, used[0], hn::LoadU(d, gx));
+    auto c0 = offsetCost<K>(d, tables, 0, hn::LoadU(d, gx));
     auto c1 = hn::Zero(d);
     int dx = 1;
     for (; dx < cap; dx += 2)
     {
-      c1 = hn::Max(c1, offsetCost<K>(d, tables, dx, used[dx], hn::Min(hn::LoadU(d, gx - dx), hn::LoadU(d, gx + dx))));
+      c1 = hn::Max(c1, offsetCost<K>(d, tables, dx, hn::Min(hn::LoadU(d, gx - dx), hn::LoadU(d, gx + dx))));
       const int e = dx + 1;
-      c0 = hn::Max(c0, offsetCost<K>(d, tables, e, used[e], hn::Min(hn::LoadU(d, gx - e), hn::LoadU(d, gx + e))));
-      // Every further offset (>= e + 1) reads vertical distances >= gmin, so it gives at most the cost
-      // of (e + 1)^2 + gmin^2: once every lane has that much, stop.
-      if ((dx & 3) == 3 && e < cap)
+      c0 = hn::Max(c0, offsetCost<K>(d, tables, e, hn::Min(hn::LoadU(d, gx - e), hn::LoadU(d, gx + e))));
+      // No further offset gives more than the cost of (e + 1)^2 (its entry 0): once every lane has
+      // that much, stop.
+      if (K > 1 && (dx & 3) == 3 && e < cap)
       {
         const auto c = hn::Max(c0, c1);
-        const auto bound = hn::Set(d, entry(e + 1, gmin));
+        const auto bound = hn::Set(d, tables[16 * K * (e + 1)]);
         if (hn::AllTrue(d, hn::Eq(hn::Max(c, bound), c)))
         {
           dx = cap + 1;
@@ -257,7 +236,7 @@ HWY_INLINE void rowPassCost8(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRIC
       }
     }
     if (dx == cap)
-      c1 = hn::Max(c1, offsetCost<K>(d, tables, dx, used[dx], hn::Min(hn::LoadU(d, gx - dx), hn::LoadU(d, gx + dx))));
+      c1 = hn::Max(c1, offsetCost<K>(d, tables, dx, hn::Min(hn::LoadU(d, gx - dx), hn::LoadU(d, gx + dx))));
     mergeStore(d, hn::Max(c0, c1), out + x, std::min(N, n - x), j.rule);
   }
 }
