@@ -4,6 +4,8 @@
 //    cells, costs per mask cell), for a grid of lanes, with lane_border_width 0.5 m (Arg 50: a band of
 //    10 cells, 8-bit engine) and 1.5 m (Arg 150: 30 cells, 16-bit engine), at 5 cm.
 //  - BM_LanesFullUpdate: a LanesFilter update over the whole 4000x4000 master, costs already computed.
+//  - BM_SpeedMaskArrives: what a republished 4000x4000 speed mask costs the update loop: the mask
+//    handed over, then one update cycle of the filter (bounds and costs: SpeedFilter writes nothing).
 #include <benchmark/benchmark.h>
 
 #include "bench_stats.hpp"
@@ -14,6 +16,7 @@
 
 #include "costmap_layers/core/lanes_filter.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
+#include "costmap_layers/core/speed_filter.hpp"
 #include "fake_context.hpp"
 
 using namespace costmap_layers;
@@ -118,8 +121,42 @@ void BM_LanesFullUpdate(benchmark::State& state)
   if (filter->costComputations() != 1) state.SkipWithError("costs were recomputed during updates");
   state.SetBytesProcessed(static_cast<int64_t>(state.iterations()) * kSize * kSize);
 }
+void BM_SpeedMaskArrives(benchmark::State& state)
+{
+  LayeredCostmap lc("map", false, false);
+  lc.resizeMap(kSize, kSize, kRes, 0.0, 0.0);
+  auto ctx = std::make_shared<FakeContext>(ParamValue::makeMap());
+  auto filter = std::make_shared<SpeedFilter>();
+  filter->initialize(&lc, "speed", ctx);
+  ctx->bind(*filter);
+  lc.addFilter(filter);
+  // Areas 1..4 in quarters of the map.
+  auto mask = std::make_shared<OccupancyGridData>();
+  mask->frame_id = "map";
+  mask->width = kSize;
+  mask->height = kSize;
+  mask->resolution = kRes;
+  mask->data.resize(static_cast<std::size_t>(kSize) * kSize);
+  for (unsigned y = 0; y < kSize; ++y)
+    for (unsigned x = 0; x < kSize; ++x)
+      mask->data[static_cast<std::size_t>(y) * kSize + x] =
+          static_cast<int8_t>(1 + (x >= kSize / 2) + 2 * (y >= kSize / 2));
+  Costmap2D& master = lc.getCostmap();
+  bool redraw = false;
+  for (auto _ : state)
+  {
+    filter->setMask(mask);
+    double x0 = 1e30, y0 = 1e30, x1 = -1e30, y1 = -1e30;
+    filter->updateBounds(50.0, 50.0, 0.0, &x0, &y0, &x1, &y1);
+    redraw = redraw || x0 <= x1;
+    filter->updateCosts(master, 0, 0, 0, 0);
+    benchmark::ClobberMemory();
+  }
+  if (redraw) state.SkipWithError("a new speed mask asked for a redraw");
+}
 }  // namespace
 
+COSTMAP_BENCH(BM_SpeedMaskArrives)->Unit(benchmark::kMillisecond);
 COSTMAP_BENCH(BM_Memcpy)->Unit(benchmark::kMillisecond);
 COSTMAP_BENCH(BM_LanesRecompute)->Arg(50)->Arg(150)->Unit(benchmark::kMillisecond);
 COSTMAP_BENCH(BM_LanesFullUpdate)->Unit(benchmark::kMillisecond);

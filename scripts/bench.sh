@@ -1,7 +1,14 @@
 #!/usr/bin/env bash
 # Builds (Release) and runs every benchmark in bench/, then prints each result as a ratio to the
-# memcpy of the same 4000x4000 grid measured in the same run. COSTMAP_LAYERS_BENCH_MAP=/path/map.yaml
-# benchmarks another map than the synthetic one (scripts/make_synthetic_map.py).
+# memcpy of the same grid measured in the same run (median and minimum).
+#   COSTMAP_LAYERS_BENCH_MAP=/path/map.yaml     benchmarks another map than the synthetic 4000x4000
+#                                               one (scripts/make_synthetic_map.py); the inflation
+#                                               sweep then reads it at 0.025, 0.05 and 0.1 m
+#   COSTMAP_LAYERS_BENCH_MAPS="a.yaml b.yaml"   after that, the whole static + inflation update of
+#                                               each of these maps at its own resolution (the sweep
+#                                               of radii, factors 3 and 10), e.g. willow and warehouse
+#   BENCH_REPETITIONS=5                         repetitions of each benchmark
+# Extra arguments go to every benchmark program (e.g. --benchmark_filter=Sweep).
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 build_package
@@ -33,13 +40,23 @@ with_master() {
   return $rc
 }
 source_install
-for exe in "$ROOT"/build/costmap_layers/devel/lib/costmap_layers/bench_*; do
-  [ -x "$exe" ] && [ "${exe%.py}" = "$exe" ] || continue
-  name=$(basename "$exe")
+BIN="$ROOT/build/costmap_layers/devel/lib/costmap_layers"
+run() {  # run NAME EXE [ARGS...]: one benchmark program, its JSON, its ratios
+  local name=$1 exe=$2
+  shift 2
   echo "== $name"
   runner=()
   [ "$name" = bench_move_base ] && runner=(with_master)
   "${runner[@]}" "$exe" --benchmark_repetitions="${BENCH_REPETITIONS:-5}" --benchmark_report_aggregates_only=true \
     --benchmark_out="$OUT/$name.json" --benchmark_out_format=json "$@"
   python3 "$ROOT/scripts/bench_ratios.py" "$OUT/$name.json"
+}
+for exe in "$BIN"/bench_*; do
+  [ -x "$exe" ] && [ "${exe%.py}" = "$exe" ] || continue
+  run "$(basename "$exe")" "$exe" "$@"
+done
+for map in ${COSTMAP_LAYERS_BENCH_MAPS:-}; do
+  COSTMAP_LAYERS_BENCH_MAP="$map" COSTMAP_LAYERS_BENCH_RESOLUTIONS=native \
+    run "bench_inflation_$(basename "${map%.yaml}")" "$BIN/bench_inflation" \
+    --benchmark_filter='MemcpyMap|StaticPlus|Sweep' "$@"
 done

@@ -8,8 +8,58 @@
 #include "costmap_layers/core/param_reader.hpp"
 #include "costmap_layers/core/stamp_order.hpp"
 
+// The byte gather of MaskMapping::forEachRow, written once with Highway (foreach_target.h compiles it
+// per target; HWY_DYNAMIC_DISPATCH picks one at run time).
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "src/core/costmap_filter.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
+
+HWY_BEFORE_NAMESPACE();
 namespace costmap_layers
 {
+namespace HWY_NAMESPACE
+{
+namespace hn = hwy::HWY_NAMESPACE;
+
+/// For each chunk k: width window columns from pos[k] on take mask_row[src[k] + shuffle[16 k + i]]
+/// (one 16-byte load and one byte shuffle; indices 0x80 past the width).
+void GatherMaskBytes(const uint8_t* HWY_RESTRICT mask_row, const int32_t* HWY_RESTRICT chunks, std::size_t count,
+                     const uint8_t* HWY_RESTRICT shuffle, int width, uint8_t* HWY_RESTRICT out)
+{
+#if HWY_TARGET == HWY_SCALAR
+  for (std::size_t k = 0; k < count; ++k)
+    for (int i = 0; i < width; ++i)
+      out[chunks[2 * k] + i] = mask_row[chunks[2 * k + 1] + shuffle[16 * k + static_cast<std::size_t>(i)]];
+#else
+  const hn::FixedTag<uint8_t, 16> d;
+  const hn::FixedTag<uint8_t, 8> d8;
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    const auto v = hn::LoadU(d, mask_row + chunks[2 * k + 1]);
+    const auto gathered = hn::TableLookupBytesOr0(v, hn::LoadU(d, shuffle + 16 * k));
+    if (width == 16)
+      hn::StoreU(gathered, d, out + chunks[2 * k]);
+    else
+      hn::StoreU(hn::LowerHalf(d8, gathered), d8, out + chunks[2 * k]);
+  }
+#endif
+}
+}  // namespace HWY_NAMESPACE
+}  // namespace costmap_layers
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace costmap_layers
+{
+HWY_EXPORT(GatherMaskBytes);
+
+void MaskMapping::shuffleRow(const uint8_t* mask_row, uint8_t* out) const
+{
+  HWY_DYNAMIC_DISPATCH(GatherMaskBytes)
+  (mask_row, chunks_.data(), chunks_.size() / 2, chunk_shuffle_.data(), chunk_width_, out);
+}
+
 InputError validateGrid(const OccupancyGridData& grid, uint64_t max_cells)
 {
   std::ostringstream err;
@@ -169,7 +219,8 @@ void MaskMapping::build(const Costmap2D& master, const CellWindow& window, const
         break;
       }
       const int32_t src = std::min(*lo_it, mask_w - 16);
-      chunks_.push_back(ShuffleChunk{p, src});
+      chunks_.push_back(p);
+      chunks_.push_back(src);
       for (int k = 0; k < 16; ++k)
         chunk_shuffle_.push_back(k < width ? static_cast<uint8_t>(first[k] - src) : uint8_t{0x80});
     }
@@ -428,8 +479,10 @@ void CostmapFilter::updateBounds(double robot_x, double robot_y, double robot_ya
   if (!active_mask_ || !filter_enabled_) processInactive();
   changed = changed || redraw_requested_;
   redraw_requested_ = false;
-  // A rolling window moves onto cells nobody else may ask for: the mask's extent is asked for every
-  // cycle (the costmap clips it to the window), as costmap_2d's static layer does when rolling.
+  // A filter that writes no cost (SpeedFilter) asks for no redraw. A rolling window moves onto cells
+  // nobody else may ask for: a filter that writes costs asks for its mask's extent every cycle then
+  // (the costmap clips it to the window), as costmap_2d's static layer does when rolling.
+  if (!drawsCosts()) return;
   const bool rolling_redraw = layered_costmap_->isRolling() && active_mask_ && filter_enabled_;
   if (!changed && !rolling_redraw) return;
   for (const auto* m : {&active_mask_, &old})
@@ -516,3 +569,4 @@ LayerStatus CostmapFilter::status() const
   return s;
 }
 }  // namespace costmap_layers
+#endif  // HWY_ONCE

@@ -10,8 +10,48 @@
 #include "costmap_layers/core/param_reader.hpp"
 #include "costmap_layers/core/stamp_order.hpp"
 
+// The map conversion of a trinary map, written once with Highway (foreach_target.h compiles it per
+// target; HWY_DYNAMIC_DISPATCH picks one at run time).
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "src/core/static_layer.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
+
+HWY_BEFORE_NAMESPACE();
 namespace costmap_layers
 {
+namespace HWY_NAMESPACE
+{
+namespace hn = hwy::HWY_NAMESPACE;
+
+/// out[k] = in[k] == unknown ? unknown_cost : (in[k] >= threshold ? 254 : 0), bytes compared unsigned:
+/// interpretStaticValue() of a trinary map, one vector at a time.
+void ConvertTrinary(const uint8_t* HWY_RESTRICT in, uint8_t* HWY_RESTRICT out, std::size_t n, uint8_t unknown,
+                    uint8_t unknown_cost, uint8_t threshold)
+{
+  const hn::ScalableTag<uint8_t> d;
+  const std::size_t N = hn::Lanes(d);
+  const auto vu = hn::Set(d, unknown), vuc = hn::Set(d, unknown_cost), vt = hn::Set(d, threshold);
+  const auto lethal = hn::Set(d, LETHAL_OBSTACLE);
+  std::size_t k = 0;
+  for (; k + N <= n; k += N)
+  {
+    const auto v = hn::LoadU(d, in + k);
+    const auto cost = hn::IfThenElseZero(hn::Eq(hn::Max(v, vt), v), lethal);
+    hn::StoreU(hn::IfThenElse(hn::Eq(v, vu), vuc, cost), d, out + k);
+  }
+  for (; k < n; ++k)
+    out[k] = in[k] == unknown ? unknown_cost : (in[k] >= threshold ? LETHAL_OBSTACLE : FREE_SPACE);
+}
+}  // namespace HWY_NAMESPACE
+}  // namespace costmap_layers
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace costmap_layers
+{
+HWY_EXPORT(ConvertTrinary);
+
 StaticConfig parseStaticConfig(const ParamReader& params, bool default_track_unknown)
 {
   StaticConfig cfg;
@@ -179,8 +219,12 @@ void StaticLayer::processMap(const OccupancyGridData& map)
   const std::size_t n = map.data.size();
   uint8_t* out = costmap_.data();
   const int8_t* in = map.data.data();
-  for (std::size_t k = 0; k < n; ++k)
-    out[k] = table_[static_cast<uint8_t>(in[k])];
+  if (config_.trinary_costmap)
+    // The table is three-valued then (rebuildTable() says the same): compare instead of looking up.
+    HWY_DYNAMIC_DISPATCH(ConvertTrinary)
+  (reinterpret_cast<const uint8_t*>(in), out, n, static_cast<uint8_t>(config_.unknown_cost_value),
+   table_[static_cast<uint8_t>(config_.unknown_cost_value)], static_cast<uint8_t>(config_.lethal_cost_threshold));
+  else for (std::size_t k = 0; k < n; ++k) out[k] = table_[static_cast<uint8_t>(in[k])];
   if (!rolling && differs(layered_costmap_->getCostmap()))
     layered_costmap_->resizeMap(map.width, map.height, map.resolution, map.origin_x, map.origin_y, true);
   if (!rolling && map.origin_yaw != 0.0)
@@ -406,3 +450,4 @@ LayerStatus StaticLayer::status() const
   return s;
 }
 }  // namespace costmap_layers
+#endif  // HWY_ONCE

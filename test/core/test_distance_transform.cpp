@@ -1,519 +1,338 @@
+// The distance engine against an exhaustive search, on every SIMD target this build compiled that this
+// CPU runs (simdTargets(): each Highway target, the scalar one included), at every radius and
+// resolution of the benchmark sweep, through each of its paths (cost domain, 16-bit, envelope), with
+// windows, strides, the merge rule, streamed rows and threads.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "costmap_layers/core/cost_rules.hpp"
 #include "costmap_layers/core/distance_transform.hpp"
+#include "costmap_layers/core/simd_targets.hpp"
 
 using namespace costmap_layers;
 
 namespace
 {
-/// Squared distance to the nearest source by exhaustive search, or kFarSquaredDistance.
-std::vector<uint32_t> bruteForce(const std::vector<uint8_t>& grid, int w, int h, SourceRange src)
+constexpr uint64_t kNone = std::numeric_limits<uint64_t>::max();
+
+/// Squared distance to the nearest source by exhaustive search over every source, or kNone.
+std::vector<uint64_t> bruteForce(const std::vector<uint8_t>& grid, int w, int h, std::ptrdiff_t stride, SourceRange src)
 {
-  std::vector<uint32_t> out(static_cast<std::size_t>(w) * h, kFarSquaredDistance);
-  std::vector<std::pair<int, int>> sources;
+  std::vector<std::pair<int64_t, int64_t>> sources;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
-      if (src.contains(grid[static_cast<std::size_t>(y) * w + x])) sources.emplace_back(x, y);
+      if (src.contains(grid[static_cast<std::size_t>(y * stride + x)])) sources.emplace_back(x, y);
+  std::vector<uint64_t> out(static_cast<std::size_t>(w) * h, kNone);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
     {
-      uint32_t best = kFarSquaredDistance;
+      uint64_t best = kNone;
       for (const auto& s : sources)
-      {
-        const uint32_t d = static_cast<uint32_t>((s.first - x) * (s.first - x) + (s.second - y) * (s.second - y));
-        best = std::min(best, d);
-      }
+        best = std::min<uint64_t>(
+            best, static_cast<uint64_t>((s.first - x) * (s.first - x) + (s.second - y) * (s.second - y)));
       out[static_cast<std::size_t>(y) * w + x] = best;
     }
   return out;
 }
 
-std::vector<uint8_t> randomGrid(std::mt19937& rng, int w, int h, double density)
+/// A grid of free-ish values with sparse sources (254) and unknown cells (255).
+std::vector<uint8_t> randomGrid(std::mt19937& rng, std::size_t cells, double density)
 {
-  std::vector<uint8_t> g(static_cast<std::size_t>(w) * h);
+  std::vector<uint8_t> g(cells);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   std::uniform_int_distribution<int> v(0, 253);
   for (auto& c : g)
   {
     const double r = u(rng);
-    c = r < density ? 254 : (r < 2 * density ? 255 : static_cast<uint8_t>(v(rng)));
+    c = r < density ? 254 : (r < 2 * density ? 255 : static_cast<uint8_t>(v(rng) % 60));
   }
   return g;
 }
 
-/// Runs a banded engine over the window and collects its rows into a w x h image (far outside).
-template <class T>
-std::vector<uint32_t> banded(const std::vector<uint8_t>& grid, int w, int h, SourceRange src, int cap,
-                             DistanceWindow win, DistanceTransformScratch& scratch)
+/// The merge the engine must do, cell by cell from brute-force distances of the original grid; the
+/// cost by the rule itself (cost_fn), 0 past max_cells.
+std::vector<uint8_t> mergeReference(const std::vector<uint8_t>& grid, int w, int h, std::ptrdiff_t stride,
+                                    SourceRange src, DistanceWindow win, int64_t max_cells,
+                                    const std::function<uint8_t(uint64_t)>& cost_fn, CostMergeRule rule)
 {
-  std::vector<uint32_t> out(static_cast<std::size_t>(w) * h, kFarSquaredDistance);
-  int expected_y = win.y0;
-  auto sink = [&](int y, const T* d)
-  {
-    EXPECT_EQ(y, expected_y++);
-    for (int x = win.x0; x < win.x1; ++x)
-    {
-      const uint32_t v = d[x - win.x0];
-      out[static_cast<std::size_t>(y) * w + x] = v > static_cast<uint32_t>(cap * cap) ? kFarSquaredDistance : v;
-    }
-  };
-  if constexpr (sizeof(T) == 1)
-    cappedSquaredDistanceRows8(grid.data(), w, h, w, src, cap, win, scratch, sink);
-  else
-    cappedSquaredDistanceRows16(grid.data(), w, h, w, src, cap, win, scratch, sink);
-  EXPECT_EQ(expected_y, win.y1);
-  return out;
-}
-
-uint32_t capped(uint32_t d, uint32_t cap_sq)
-{
-  return d > cap_sq ? kFarSquaredDistance : d;
-}
-}  // namespace
-
-TEST(DistanceTransform, SingleSourceIsExact)
-{
-  const int w = 7, h = 5;
-  std::vector<uint8_t> g(w * h, 0);
-  g[2 * w + 3] = 1;
-  std::vector<uint32_t> out(w * h);
-  DistanceTransformScratch scratch;
-  squaredDistanceTransform(g.data(), w, h, out.data(), scratch);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      EXPECT_EQ(out[y * w + x], static_cast<uint32_t>((x - 3) * (x - 3) + (y - 2) * (y - 2)));
-}
-
-TEST(DistanceTransform, NoSourceIsFar)
-{
-  std::vector<uint8_t> g(12, 0);
-  std::vector<uint32_t> out(12, 0);
-  DistanceTransformScratch scratch;
-  squaredDistanceTransform(g.data(), 4, 3, out.data(), scratch);
-  for (uint32_t v : out)
-    EXPECT_EQ(v, kFarSquaredDistance);
-}
-
-TEST(DistanceTransform, EmptyGridDoesNothing)
-{
-  DistanceTransformScratch scratch;
-  squaredDistanceTransform(nullptr, 0, 0, nullptr, scratch);
-  int calls = 0;
-  cappedSquaredDistanceRows8(nullptr, 0, 0, 0, SourceRange{254, 254}, 3, DistanceWindow{0, 0, 0, 0}, scratch,
-                             [&](int, const uint8_t*) { ++calls; });
-  EXPECT_EQ(calls, 0);
-}
-
-TEST(DistanceTransform, ExactMatchesBruteForceOnRandomGrids)
-{
-  std::mt19937 rng(42);
-  DistanceTransformScratch scratch;
-  for (int trial = 0; trial < 60; ++trial)
-  {
-    const int w = 1 + static_cast<int>(rng() % 40), h = 1 + static_cast<int>(rng() % 40);
-    const double density = (trial % 6) * 0.04;
-    const auto grid = randomGrid(rng, w, h, density);
-    const SourceRange src = trial % 2 ? SourceRange{254, 254} : SourceRange{254, 255};
-    const auto ref = bruteForce(grid, w, h, src);
-    std::vector<uint32_t> out(grid.size());
-    squaredDistanceTransform(grid.data(), w, h, w, src, out.data(), w, kFarSquaredDistance, scratch);
-    ASSERT_EQ(out, ref) << "trial " << trial << " " << w << "x" << h;
-    // With a cap.
-    const uint32_t cap_sq = static_cast<uint32_t>(rng() % 50);
-    squaredDistanceTransform(grid.data(), w, h, w, src, out.data(), w, cap_sq, scratch);
-    for (std::size_t i = 0; i < out.size(); ++i)
-      ASSERT_EQ(out[i], capped(ref[i], cap_sq));
-  }
-}
-
-TEST(DistanceTransform, ExactWorksOnSubWindowWithStrides)
-{
-  std::mt19937 rng(7);
-  const int W = 50, H = 40;
-  const auto grid = randomGrid(rng, W, H, 0.03);
-  const int x0 = 5, y0 = 7, w = 31, h = 22;
-  std::vector<uint8_t> sub(static_cast<std::size_t>(w) * h);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      sub[y * w + x] = grid[(y0 + y) * W + x0 + x];
-  const SourceRange src{254, 254};
-  const auto ref = bruteForce(sub, w, h, src);
-  const int out_stride = 37;
-  std::vector<uint32_t> out(static_cast<std::size_t>(out_stride) * h, 12345u);
-  DistanceTransformScratch scratch;
-  squaredDistanceTransform(grid.data() + y0 * W + x0, w, h, W, src, out.data(), out_stride, kFarSquaredDistance,
-                           scratch);
-  for (int y = 0; y < h; ++y)
-  {
-    for (int x = 0; x < w; ++x)
-      ASSERT_EQ(out[y * out_stride + x], ref[y * w + x]);
-    for (int x = w; x < out_stride; ++x)
-      ASSERT_EQ(out[y * out_stride + x], 12345u);  // untouched
-  }
-}
-
-TEST(DistanceTransform, LargeDistancesDoNotOverflow)
-{
-  const int w = 3000, h = 2;
-  std::vector<uint8_t> g(w * h, 0);
-  g[0] = 1;
-  std::vector<uint32_t> out(w * h);
-  DistanceTransformScratch scratch;
-  squaredDistanceTransform(g.data(), w, h, out.data(), scratch);
-  EXPECT_EQ(out[w - 1], static_cast<uint32_t>((w - 1) * (w - 1)));
-  EXPECT_EQ(out[2 * w - 1], static_cast<uint32_t>((w - 1) * (w - 1) + 1));
-}
-
-class BandedTest : public ::testing::TestWithParam<bool>
-{
-protected:
-  void SetUp() override { setDistanceTransformSimd(GetParam()); }
-  void TearDown() override { setDistanceTransformSimd(true); }
-};
-
-TEST_P(BandedTest, MatchesBruteForceOnWindows)
-{
-  std::mt19937 rng(GetParam() ? 11 : 12);
-  DistanceTransformScratch scratch;
-  for (int trial = 0; trial < 80; ++trial)
-  {
-    const int w = 1 + static_cast<int>(rng() % 70), h = 1 + static_cast<int>(rng() % 70);
-    const auto grid = randomGrid(rng, w, h, (trial % 5) * 0.01 + 0.002);
-    const SourceRange src = trial % 3 ? SourceRange{254, 254} : SourceRange{254, 255};
-    const auto ref = bruteForce(grid, w, h, src);
-    DistanceWindow win;
-    win.x0 = static_cast<int>(rng() % static_cast<unsigned>(w));
-    win.y0 = static_cast<int>(rng() % static_cast<unsigned>(h));
-    win.x1 = win.x0 + 1 + static_cast<int>(rng() % static_cast<unsigned>(w - win.x0));
-    win.y1 = win.y0 + 1 + static_cast<int>(rng() % static_cast<unsigned>(h - win.y0));
-    if (trial % 4 == 0) win = DistanceWindow{0, 0, w, h};
-    const int cap8 = static_cast<int>(rng() % (kMaxBandedCap8 + 1));
-    const auto out8 = banded<uint8_t>(grid, w, h, src, cap8, win, scratch);
-    const int cap16 = static_cast<int>(rng() % 40);
-    const auto out16 = banded<uint16_t>(grid, w, h, src, cap16, win, scratch);
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x)
-      {
-        const std::size_t i = static_cast<std::size_t>(y) * w + x;
-        const bool inside = x >= win.x0 && x < win.x1 && y >= win.y0 && y < win.y1;
-        const uint32_t e8 = inside ? capped(ref[i], static_cast<uint32_t>(cap8 * cap8)) : kFarSquaredDistance;
-        const uint32_t e16 = inside ? capped(ref[i], static_cast<uint32_t>(cap16 * cap16)) : kFarSquaredDistance;
-        ASSERT_EQ(out8[i], e8) << "trial " << trial << " cell " << x << "," << y << " cap " << cap8;
-        ASSERT_EQ(out16[i], e16) << "trial " << trial << " cell " << x << "," << y << " cap " << cap16;
-      }
-  }
-}
-
-TEST_P(BandedTest, LargestCapsAreExact)
-{
-  const int w = 400, h = 390;
-  std::vector<uint8_t> g(static_cast<std::size_t>(w) * h, 0);
-  g[200 * w + 190] = 254;
-  g[10 * w + 3] = 254;
-  const auto ref = bruteForce(g, w, h, SourceRange{254, 254});
-  DistanceTransformScratch scratch;
-  const auto out8 =
-      banded<uint8_t>(g, w, h, SourceRange{254, 254}, kMaxBandedCap8, DistanceWindow{0, 0, w, h}, scratch);
-  const auto out16 =
-      banded<uint16_t>(g, w, h, SourceRange{254, 254}, kMaxBandedCap16, DistanceWindow{0, 0, w, h}, scratch);
-  for (std::size_t i = 0; i < ref.size(); ++i)
-  {
-    ASSERT_EQ(out8[i], capped(ref[i], kMaxBandedCap8 * kMaxBandedCap8));
-    ASSERT_EQ(out16[i], capped(ref[i], kMaxBandedCap16 * kMaxBandedCap16));
-  }
-}
-
-INSTANTIATE_TEST_SUITE_P(Kernels, BandedTest, ::testing::Values(true, false),
-                         [](const ::testing::TestParamInfo<bool>& info)
-                         { return info.param ? std::string("Dispatched") : std::string("Portable"); });
-
-TEST(DistanceTransform, DispatchedAndPortableAgreeOnLargeGrid)
-{
-  std::mt19937 rng(3);
-  const int w = 517, h = 301;
-  const auto grid = randomGrid(rng, w, h, 0.004);
-  DistanceTransformScratch scratch;
-  setDistanceTransformSimd(false);
-  EXPECT_STREQ(distanceTransformKernel(), "portable");
-  const auto a = banded<uint8_t>(grid, w, h, SourceRange{254, 254}, 11, DistanceWindow{3, 4, 500, 290}, scratch);
-  const auto a16 = banded<uint16_t>(grid, w, h, SourceRange{254, 255}, 25, DistanceWindow{0, 0, w, h}, scratch);
-  setDistanceTransformSimd(true);
-  const auto b = banded<uint8_t>(grid, w, h, SourceRange{254, 254}, 11, DistanceWindow{3, 4, 500, 290}, scratch);
-  const auto b16 = banded<uint16_t>(grid, w, h, SourceRange{254, 255}, 25, DistanceWindow{0, 0, w, h}, scratch);
-  EXPECT_EQ(a, b);
-  EXPECT_EQ(a16, b16);
-}
-
-TEST(DistanceTransform, CapAboveLimitThrows)
-{
-  DistanceTransformScratch scratch;
-  std::vector<uint8_t> g(4, 0);
-  EXPECT_THROW(cappedSquaredDistanceRows8(g.data(), 2, 2, 2, SourceRange{}, kMaxBandedCap8 + 1,
-                                          DistanceWindow{0, 0, 2, 2}, scratch, [](int, const uint8_t*) {}),
-               std::invalid_argument);
-  EXPECT_THROW(cappedSquaredDistanceRows16(g.data(), 2, 2, 2, SourceRange{}, kMaxBandedCap16 + 1,
-                                           DistanceWindow{0, 0, 2, 2}, scratch, [](int, const uint16_t*) {}),
-               std::invalid_argument);
-}
-
-namespace
-{
-/// A random non-increasing cost table of cap^2 + 1 entries.
-std::vector<uint8_t> randomCosts(std::mt19937& rng, int cap)
-{
-  std::vector<uint8_t> costs(static_cast<std::size_t>(cap * cap + 1));
-  int v = 200 + static_cast<int>(rng() % 56);
-  for (auto& c : costs)
-  {
-    c = static_cast<uint8_t>(v);
-    if (rng() % 3 == 0) v = std::max(0, v - static_cast<int>(rng() % 40));
-  }
-  return costs;
-}
-
-/// What cappedCostMerge8 must leave in the grid, from brute-force distances on the original grid.
-std::vector<uint8_t> mergeReference(const std::vector<uint8_t>& grid, int w, int h, SourceRange src, int cap,
-                                    DistanceWindow win, const std::vector<uint8_t>& costs, CostMergeRule rule)
-{
-  const auto d = bruteForce(grid, w, h, src);
+  const auto d = bruteForce(grid, w, h, stride, src);
   std::vector<uint8_t> out = grid;
+  const uint64_t max_sq = static_cast<uint64_t>(max_cells) * static_cast<uint64_t>(max_cells);
   for (int y = std::max(0, win.y0); y < std::min(h, win.y1); ++y)
     for (int x = std::max(0, win.x0); x < std::min(w, win.x1); ++x)
     {
-      const std::size_t i = static_cast<std::size_t>(y) * w + x;
-      const uint8_t c = d[i] <= static_cast<uint32_t>(cap * cap) ? costs[d[i]] : uint8_t{0};
-      const uint8_t old = grid[i];
-      out[i] = old == rule.special ? (c >= rule.special_threshold ? c : old) : std::max(old, c);
+      const uint64_t d2 = d[static_cast<std::size_t>(y) * w + x];
+      const uint8_t c = d2 <= max_sq ? cost_fn(d2) : uint8_t{0};
+      uint8_t& cell = out[static_cast<std::size_t>(y * stride + x)];
+      cell = cell == rule.special ? (c >= rule.special_threshold ? c : cell) : std::max(cell, c);
     }
   return out;
 }
 
-class CostMergeTest : public ::testing::TestWithParam<std::string>
+/// The inflation rule (costmap_2d's, cost_rules.hpp) for a robot of inscribed radius 0.2256 m.
+std::function<uint8_t(uint64_t)> inflationRule(double resolution, double factor)
+{
+  return [=](uint64_t d2) { return inflationCost(std::sqrt(static_cast<double>(d2)), resolution, 0.2256, factor); };
+}
+
+class Engine : public ::testing::TestWithParam<std::string>
 {
 protected:
-  void SetUp() override { ASSERT_TRUE(setDistanceTransformKernel(GetParam().c_str())); }
-  void TearDown() override { setDistanceTransformKernel(nullptr); }
+  void SetUp() override { ASSERT_TRUE(setSimdTarget(GetParam())); }
+  void TearDown() override { setSimdTarget(""); }
+  unsigned seed(unsigned base) const
+  {
+    return base + static_cast<unsigned>(std::hash<std::string>()(GetParam()) % 1000);
+  }
+
+  /// Merges with `threads` threads and compares with the reference; returns the mismatch count.
+  void checkMerge(const std::vector<uint8_t>& grid, int w, int h, std::ptrdiff_t stride, SourceRange src,
+                  DistanceWindow win, int64_t max_cells, const std::function<uint8_t(uint64_t)>& cost_fn,
+                  CostMergeRule rule, int threads, const std::string& what)
+  {
+    const DistanceCosts costs(max_cells, [&](uint64_t d2) { return cost_fn(d2); });
+    const auto expected = mergeReference(grid, w, h, stride, src, win, max_cells, cost_fn, rule);
+    std::vector<uint8_t> got = grid;
+    distanceCostMerge(got.data(), w, h, stride, src, costs, win, rule, scratch_, threads);
+    int bad = 0;
+    for (std::size_t i = 0; i < got.size(); ++i)
+      if (got[i] != expected[i] && bad++ < 3)
+        ADD_FAILURE() << what << ": cell " << i % stride << "," << i / stride << " got " << int{got[i]} << " expected "
+                      << int{expected[i]} << " (reach " << costs.reach() << ")";
+    EXPECT_EQ(bad, 0) << what;
+  }
+
+  DistanceTransformScratch scratch_;
 };
 
-std::vector<std::string> kernelNames()
+std::vector<std::string> targets()
 {
-  std::vector<std::string> names;
-  for (const char* k : distanceTransformKernels())
-    names.emplace_back(k);
-  return names;
+  return simdTargets();
 }
 }  // namespace
 
-TEST(DistanceTransform, KernelChoice)
+TEST(SimdTargets, ListedSwitchableAndScalarLast)
 {
-  const auto names = distanceTransformKernels();
+  const auto names = simdTargets();
   ASSERT_FALSE(names.empty());
-  EXPECT_STREQ(names.front(), "portable");
-  for (const char* k : names)
+  // The scalar fallback is always compiled and always runs (Highway's SCALAR or EMU128).
+  EXPECT_TRUE(names.back() == "SCALAR" || names.back() == "EMU128") << names.back();
+  EXPECT_EQ(simdTarget(), names.front());  // the best one by default
+  for (const auto& n : names)
   {
-    ASSERT_TRUE(setDistanceTransformKernel(k));
-    EXPECT_STREQ(distanceTransformKernel(), k);
+    ASSERT_TRUE(setSimdTarget(n));
+    EXPECT_EQ(simdTarget(), n);
+    EXPECT_EQ(simdTargets(), names);  // the list is what the CPU runs, not the restriction
   }
-  EXPECT_FALSE(setDistanceTransformKernel("no-such-kernel"));
-  EXPECT_STREQ(distanceTransformKernel(), names.back());  // unchanged
-  setDistanceTransformSimd(false);
-  EXPECT_STREQ(distanceTransformKernel(), "portable");
-  setDistanceTransformSimd(true);
-  EXPECT_STREQ(distanceTransformKernel(), names.back());  // the widest
-  ASSERT_TRUE(setDistanceTransformKernel(""));
-  EXPECT_STREQ(distanceTransformKernel(), names.back());
+  EXPECT_FALSE(setSimdTarget("NO_SUCH_TARGET"));
+  EXPECT_EQ(simdTarget(), names.back());  // unchanged
+  ASSERT_TRUE(setSimdTarget(""));
+  EXPECT_EQ(simdTarget(), names.front());
 }
 
-TEST_P(CostMergeTest, MatchesBruteForceOnWindows)
+TEST(DistanceCosts, ReachIsTheLastNonZeroCost)
 {
-  std::mt19937 rng(static_cast<unsigned>(std::hash<std::string>()(GetParam()) % 1000));
-  DistanceTransformScratch scratch;
-  for (int trial = 0; trial < 120; ++trial)
-  {
-    const int w = 1 + static_cast<int>(rng() % 150), h = 1 + static_cast<int>(rng() % 60);
-    const auto grid = randomGrid(rng, w, h, (trial % 5) * 0.01 + 0.002);
-    const SourceRange src = trial % 3 ? SourceRange{254, 254} : SourceRange{254, 255};
-    DistanceWindow win;
-    win.x0 = static_cast<int>(rng() % static_cast<unsigned>(w));
-    win.y0 = static_cast<int>(rng() % static_cast<unsigned>(h));
-    win.x1 = win.x0 + 1 + static_cast<int>(rng() % static_cast<unsigned>(w - win.x0));
-    win.y1 = win.y0 + 1 + static_cast<int>(rng() % static_cast<unsigned>(h - win.y0));
-    if (trial % 4 == 0) win = DistanceWindow{0, 0, w, h};
-    if (trial % 7 == 0) win = DistanceWindow{-5, -3, w + 4, h + 9};  // clipped to the grid
-    const int cap = static_cast<int>(rng() % (kMaxBandedCap8 + 1));
-    const auto costs = randomCosts(rng, cap);
-    CostMergeRule rule;
-    rule.special = trial % 2 ? uint8_t{255} : static_cast<uint8_t>(rng() % 256);
-    rule.special_threshold = static_cast<uint8_t>(1 + rng() % 255);
-    const auto expected = mergeReference(grid, w, h, src, cap, win, costs, rule);
-    auto out = grid;
-    cappedCostMerge8(out.data(), w, h, w, src, cap, win, costs.data(), rule, scratch);
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x)
-        ASSERT_EQ(out[static_cast<std::size_t>(y) * w + x], expected[static_cast<std::size_t>(y) * w + x])
-            << "trial " << trial << " cell " << x << "," << y << " cap " << cap << " grid " << w << "x" << h;
-  }
+  // 100 - d2 for d2 < 100: the last non-zero cost is at d2 = 99, 10 cells (10^2 >= 99 > 9^2).
+  const DistanceCosts c(50, [](uint64_t d2) { return static_cast<uint8_t>(d2 < 100 ? 100 - d2 : 0); });
+  EXPECT_TRUE(c.any());
+  EXPECT_EQ(c.reachSquared(), 99u);
+  EXPECT_EQ(c.reach(), 10);
+  EXPECT_EQ(c.at(0), 100);
+  EXPECT_EQ(c.at(99), 1);
+  EXPECT_EQ(c.at(100), 0);
+  // The cap cuts first: max_cells 3 -> d2 <= 9.
+  const DistanceCosts capped(3, [](uint64_t d2) { return static_cast<uint8_t>(d2 < 100 ? 100 - d2 : 0); });
+  EXPECT_EQ(capped.reachSquared(), 9u);
+  EXPECT_EQ(capped.reach(), 3);
+  EXPECT_EQ(capped.at(10), 0);
+  EXPECT_FALSE(DistanceCosts(5, [](uint64_t) { return uint8_t{0}; }).any());
+  EXPECT_FALSE(DistanceCosts().any());
+  EXPECT_THROW(DistanceCosts(5, [](uint64_t d2) { return static_cast<uint8_t>(d2 == 3 ? 9 : 5); }),
+               std::invalid_argument);
+  EXPECT_THROW(DistanceCosts(-1, [](uint64_t) { return uint8_t{1}; }), std::invalid_argument);
 }
 
-TEST_P(CostMergeTest, AgreesWithPortableOnLargeGridWithStride)
+TEST(DistanceCosts, InflationReachIsWhereTheCostRoundsToZero)
 {
-  std::mt19937 rng(5);
-  const int w = 1290, h = 333, stride = 1301;  // several stripes, a partial last block
-  std::vector<uint8_t> grid(static_cast<std::size_t>(stride) * h);
-  const auto cells = randomGrid(rng, stride, h, 0.003);
-  std::copy(cells.begin(), cells.end(), grid.begin());
-  const auto costs = randomCosts(rng, kMaxBandedCap8);
-  const DistanceWindow win{7, 3, 1283, 330};
-  const CostMergeRule rule{255, 253};
-  DistanceTransformScratch scratch;
-  auto mine = grid;
-  cappedCostMerge8(mine.data(), w, h, stride, SourceRange{254, 255}, kMaxBandedCap8, win, costs.data(), rule, scratch);
-  ASSERT_TRUE(setDistanceTransformKernel("portable"));
-  auto portable = grid;
-  cappedCostMerge8(portable.data(), w, h, stride, SourceRange{254, 255}, kMaxBandedCap8, win, costs.data(), rule,
-                   scratch);
-  EXPECT_EQ(mine, portable);
-  // Columns past the grid's width (inside the stride) are never touched.
-  for (int y = 0; y < h; ++y)
-    for (int x = w; x < stride; ++x)
-      ASSERT_EQ(mine[static_cast<std::size_t>(y) * stride + x], grid[static_cast<std::size_t>(y) * stride + x]);
+  // With factor 3 the cost (uchar)(252 exp(-3 (d - 0.2256))) is 0 once 252 exp(...) < 1, i.e. past
+  // d = 0.2256 + ln(252) / 3 = 2.0687 m = 41.37 cells at 0.05 m: the last squared cell distance with a
+  // cost is floor(41.37^2) = 1711, and the band is 42 cells (41^2 = 1681 < 1711 <= 42^2).
+  const double res = 0.05, factor = 3.0;
+  const double limit_cells = (0.2256 + std::log(252.0) / factor) / res;  // 41.37 cells
+  const uint64_t last = static_cast<uint64_t>(std::floor(limit_cells * limit_cells));
+  const DistanceCosts c(60, inflationRule(res, factor));
+  EXPECT_EQ(c.reachSquared(), last);
+  EXPECT_EQ(c.reach(), 42);  // 41^2 = 1681 < 1711 = floor(41.37^2) <= 42^2
+  // A radius below that limit cuts first.
+  EXPECT_EQ(DistanceCosts(20, inflationRule(res, factor)).reach(), 20);
 }
 
-TEST_P(CostMergeTest, CostRowsMatchBruteForceAndLeaveTheGridAlone)
+// Every radius and resolution of the benchmark sweep, three scaling factors (the factor-bound reach at
+// 3 and 10, the radius-bound one at 1), against the exhaustive search.
+TEST_P(Engine, SweepRadiiAndResolutionsEqualBruteForce)
 {
-  std::mt19937 rng(static_cast<unsigned>(std::hash<std::string>()(GetParam()) % 1000 + 17));
-  DistanceTransformScratch scratch;
-  for (int trial = 0; trial < 100; ++trial)
-  {
-    const int w = 1 + static_cast<int>(rng() % 200), h = 1 + static_cast<int>(rng() % 50);
-    const int stride = w + static_cast<int>(rng() % 5);
-    const auto cells = randomGrid(rng, stride, h, (trial % 5) * 0.02 + 0.002);
-    const SourceRange src = trial % 3 ? SourceRange{254, 254} : SourceRange{254, 255};
-    std::vector<uint8_t> tight(static_cast<std::size_t>(w) * h);  // the same cells without the stride
-    for (int y = 0; y < h; ++y)
-      std::copy_n(cells.begin() + static_cast<std::ptrdiff_t>(y) * stride, w,
-                  tight.begin() + static_cast<std::ptrdiff_t>(y) * w);
-    DistanceWindow win;
-    win.x0 = static_cast<int>(rng() % static_cast<unsigned>(w));
-    win.y0 = static_cast<int>(rng() % static_cast<unsigned>(h));
-    win.x1 = win.x0 + 1 + static_cast<int>(rng() % static_cast<unsigned>(w - win.x0));
-    win.y1 = win.y0 + 1 + static_cast<int>(rng() % static_cast<unsigned>(h - win.y0));
-    if (trial % 4 == 0) win = DistanceWindow{0, 0, w, h};
-    if (trial % 7 == 0) win = DistanceWindow{-5, -3, w + 4, h + 9};  // clipped to the grid
-    const int x0 = std::max(0, win.x0), x1 = std::min(w, win.x1);
-    const int y0 = std::max(0, win.y0), y1 = std::min(h, win.y1);
-    const int cap = static_cast<int>(rng() % (kMaxBandedCap8 + 1));
-    const auto costs = randomCosts(rng, cap);
-    const auto d = bruteForce(tight, w, h, src);
-    std::vector<int> calls(static_cast<std::size_t>(h), 0);
-    cappedCostRows8(cells.data(), w, h, stride, src, cap, win, costs.data(), scratch,
-                    [&](int y, const uint8_t* row)
-                    {
-                      ASSERT_GE(y, y0);
-                      ASSERT_LT(y, y1);
-                      ++calls[static_cast<std::size_t>(y)];
-                      for (int x = x0; x < x1; ++x)
-                      {
-                        const uint32_t d2 = d[static_cast<std::size_t>(y) * w + x];
-                        const uint8_t expected = d2 <= static_cast<uint32_t>(cap * cap) ? costs[d2] : uint8_t{0};
-                        ASSERT_EQ(row[x - x0], expected) << "trial " << trial << " cell " << x << "," << y << " cap "
-                                                         << cap << " grid " << w << "x" << h;
-                      }
-                    });
-    for (int y = 0; y < h; ++y)
-      ASSERT_EQ(calls[static_cast<std::size_t>(y)], y >= y0 && y < y1 ? 1 : 0) << y;
-  }
-  // Runs of identical rows (whose costs are reused) between rows that differ only in their last or
-  // first column.
-  {
-    const int w = 300, h = 200;
-    std::vector<uint8_t> grid(static_cast<std::size_t>(w) * h, 0);
-    for (int y = 0; y < h; ++y)
-    {
-      uint8_t* row = grid.data() + static_cast<std::size_t>(y) * w;
-      const int kind = y % 41;
-      if (kind < 30)
+  std::mt19937 rng(seed(7));
+  for (const double res : {0.025, 0.05, 0.1})
+    for (const double radius : {0.3, 0.55, 1.0, 2.0, 3.0})
+      for (const double factor : {1.0, 3.0, 10.0})
       {
-        row[10] = row[11] = row[150] = 254;
-        if (kind >= 20) row[w - 1] = 254;
-        if (kind == 25) row[0] = 254;
+        const int64_t cells = static_cast<int64_t>(std::ceil(radius / res));
+        // Wide enough for the band to matter on every side, sparse enough for long distances.
+        const int w = static_cast<int>(std::min<int64_t>(2 * cells + 37, 280));
+        const int h = static_cast<int>(std::min<int64_t>(2 * cells + 21, 170));
+        const auto grid = randomGrid(rng, static_cast<std::size_t>(w) * h, 0.6 / (cells + 3));
+        const double r = res, f = factor;
+        const auto rule_fn = [&](uint64_t d2)
+        { return d2 > static_cast<uint64_t>(cells * cells) ? uint8_t{0} : inflationRule(r, f)(d2); };
+        checkMerge(
+            grid, w, h, w, SourceRange{254, 254}, DistanceWindow{0, 0, w, h}, cells, rule_fn, CostMergeRule{255, 253},
+            1,
+            "res " + std::to_string(res) + " radius " + std::to_string(radius) + " factor " + std::to_string(factor));
       }
-      if (y == 133) std::fill(row, row + w, uint8_t{254});
-    }
-    const auto d = bruteForce(grid, w, h, SourceRange{254, 254});
-    for (const int cap : {3, kMaxBandedCap8})
-    {
-      const auto costs = randomCosts(rng, cap);
-      int rows = 0;
-      cappedCostRows8(grid.data(), w, h, w, SourceRange{254, 254}, cap, DistanceWindow{0, 0, w, h}, costs.data(),
-                      scratch,
-                      [&](int y, const uint8_t* row)
-                      {
-                        ++rows;
-                        for (int x = 0; x < w; ++x)
-                        {
-                          const uint32_t d2 = d[static_cast<std::size_t>(y) * w + x];
-                          const uint8_t expected = d2 <= static_cast<uint32_t>(cap * cap) ? costs[d2] : uint8_t{0};
-                          ASSERT_EQ(row[x], expected) << "repeated rows, cell " << x << "," << y << " cap " << cap;
-                        }
-                      });
-      EXPECT_EQ(rows, h);
-    }
-  }
-  // The same over several stripes of a wide grid, against cappedCostMerge8 (brute-force checked above):
-  // merged into the grid itself, non-source cells (0) end up with the cost.
+}
+
+// The switches between the engine's paths: reach 14 / 15 / 29 / 30 / 44 / 45 (one to four tables per
+// offset in the cost domain), 59 / 60 (cost domain / 16-bit) and 254 / 255 (16-bit /
+// envelope), a flat cost so that the reach is exactly the cap.
+TEST_P(Engine, PathBoundariesEqualBruteForce)
+{
+  std::mt19937 rng(seed(21));
+  for (const int64_t cap : {0, 1, 2, 13, 14, 15, 16, 29, 30, 44, 45, 59, 60, 253, 254, 255, 300})
   {
-    const int w = 5000, h = 150;
-    std::vector<uint8_t> grid(static_cast<std::size_t>(w) * h, 0);
-    for (int y = 0; y < h; ++y)
+    const int w = cap > 100 ? 300 : 97, h = cap > 100 ? 260 : 61;
+    const auto grid = randomGrid(rng, static_cast<std::size_t>(w) * h, cap > 100 ? 0.00005 : 0.01);
+    // A cost falling in steps, so that different distances give different costs.
+    const auto fn = [cap](uint64_t d2) -> uint8_t
     {
-      uint8_t* row = grid.data() + static_cast<std::size_t>(y) * w;
-      if (y % 23 < 15)
-        for (int x = 7; x < w; x += 97)
-          row[x] = 254;
-      if (y % 23 == 9) row[w - 1] = 254;
-      if (y % 61 == 5) std::fill(row, row + w, uint8_t{254});
-    }
-    const auto costs = randomCosts(rng, kMaxBandedCap8);
-    auto merged = grid;
-    cappedCostMerge8(merged.data(), w, h, w, SourceRange{254, 254}, kMaxBandedCap8, DistanceWindow{0, 0, w, h},
-                     costs.data(), CostMergeRule{255, 255}, scratch);
-    int rows = 0;
-    cappedCostRows8(grid.data(), w, h, w, SourceRange{254, 254}, kMaxBandedCap8, DistanceWindow{0, 0, w, h},
-                    costs.data(), scratch,
-                    [&](int y, const uint8_t* row)
-                    {
-                      ++rows;
-                      for (int x = 0; x < w; ++x)
-                      {
-                        const std::size_t i = static_cast<std::size_t>(y) * w + x;
-                        ASSERT_EQ(row[x], grid[i] == 254 ? costs[0] : merged[i]) << "wide, cell " << x << "," << y;
-                      }
-                    });
-    EXPECT_EQ(rows, h);
+      if (d2 > static_cast<uint64_t>(cap * cap)) return 0;
+      return static_cast<uint8_t>(250 - (d2 * 240) / static_cast<uint64_t>(cap * cap + 1));
+    };
+    checkMerge(grid, w, h, w, SourceRange{254, 255}, DistanceWindow{0, 0, w, h}, cap, fn, CostMergeRule{255, 253}, 1,
+               "cap " + std::to_string(cap));
   }
-  // The grid is only read.
-  const auto cells = randomGrid(rng, 70, 30, 0.05);
-  auto copy = cells;
-  cappedCostRows8(copy.data(), 70, 30, 70, SourceRange{254, 255}, 6, DistanceWindow{0, 0, 70, 30},
-                  randomCosts(rng, 6).data(), scratch, [](int, const uint8_t*) {});
-  EXPECT_EQ(copy, cells);
-  const std::vector<uint8_t> rising = {10, 20};
-  EXPECT_THROW(cappedCostRows8(copy.data(), 2, 2, 2, SourceRange{}, 1, DistanceWindow{0, 0, 2, 2}, rising.data(),
-                               scratch, [](int, const uint8_t*) {}),
+}
+
+// Sub-windows of a grid with a row stride: sources outside the window count, cells outside stay.
+TEST_P(Engine, WindowsAndStrideEqualBruteForce)
+{
+  std::mt19937 rng(seed(3));
+  for (int trial = 0; trial < 24; ++trial)
+  {
+    const int w = 20 + static_cast<int>(rng() % 150), h = 10 + static_cast<int>(rng() % 90);
+    const int stride = w + static_cast<int>(rng() % 9);
+    const auto grid = randomGrid(rng, static_cast<std::size_t>(stride) * h, 0.004 + 0.01 * (rng() % 3));
+    const int64_t cap = static_cast<int64_t>(rng() % 40);
+    DistanceWindow win{static_cast<int>(rng() % w) - 5, static_cast<int>(rng() % h) - 5, 0, 0};
+    win.x1 = win.x0 + 1 + static_cast<int>(rng() % w);
+    win.y1 = win.y0 + 1 + static_cast<int>(rng() % h);
+    const CostMergeRule rule{static_cast<uint8_t>(trial % 2 ? 255 : 200), static_cast<uint8_t>(1 + rng() % 253)};
+    const auto fn = [cap](uint64_t d2) -> uint8_t
+    { return d2 > static_cast<uint64_t>(cap * cap) ? 0 : static_cast<uint8_t>(254 - std::min<uint64_t>(d2, 200)); };
+    checkMerge(grid, w, h, stride, SourceRange{254, 255}, win, cap, fn, rule, 1, "trial " + std::to_string(trial));
+  }
+}
+
+// Bands of rows on several threads give exactly the single-thread (and brute-force) result.
+TEST_P(Engine, ThreadsGiveTheSameResult)
+{
+  std::mt19937 rng(seed(5));
+  const int w = 230, h = 400;
+  const auto grid = randomGrid(rng, static_cast<std::size_t>(w) * h, 0.003);
+  for (const int64_t cap : {9, 30})
+    for (const int threads : {1, 2, 3, 4})
+    {
+      const auto fn = [cap](uint64_t d2) -> uint8_t
+      { return d2 > static_cast<uint64_t>(cap * cap) ? 0 : static_cast<uint8_t>(252 - d2 / 8); };
+      checkMerge(grid, w, h, w, SourceRange{254, 255}, DistanceWindow{0, 13, w, h - 7}, cap, fn,
+                 CostMergeRule{255, 253}, threads,
+                 "cap " + std::to_string(cap) + " threads " + std::to_string(threads));
+    }
+}
+
+// The streamed form: every window row exactly once, with the costs of the brute-force distances.
+TEST_P(Engine, RowsEqualBruteForce)
+{
+  std::mt19937 rng(seed(11));
+  for (const int64_t cap : {0, 5, 14, 15, 31, 260})
+  {
+    const int w = 150 + static_cast<int>(rng() % 40), h = 120;
+    auto grid = randomGrid(rng, static_cast<std::size_t>(w) * h, cap > 100 ? 0.0002 : 0.004);
+    // Long identical rows (what lanes look like), so that row reuse is exercised.
+    for (int y = 40; y < 80; ++y)
+      std::copy(grid.begin() + 40 * w, grid.begin() + 41 * w, grid.begin() + static_cast<std::ptrdiff_t>(y) * w);
+    const auto fn = [cap](uint64_t d2) -> uint8_t
+    { return d2 > static_cast<uint64_t>(cap * cap) ? 0 : static_cast<uint8_t>(200 - std::min<uint64_t>(d2, 199)); };
+    const DistanceCosts costs(cap, fn);
+    const auto d = bruteForce(grid, w, h, w, SourceRange{254, 254});
+    const DistanceWindow win{3, 2, w - 1, h - 5};
+    std::vector<int> seen(static_cast<std::size_t>(h), 0);
+    int bad = 0;
+    distanceCostRows(grid.data(), w, h, w, SourceRange{254, 254}, costs, win, scratch_,
+                     [&](int y, const uint8_t* row)
+                     {
+                       ASSERT_GE(y, win.y0);
+                       ASSERT_LT(y, win.y1);
+                       ++seen[static_cast<std::size_t>(y)];
+                       for (int x = win.x0; x < win.x1; ++x)
+                       {
+                         const uint64_t d2 = d[static_cast<std::size_t>(y) * w + x];
+                         const uint8_t expected = d2 <= static_cast<uint64_t>(cap * cap) ? fn(d2) : uint8_t{0};
+                         if (row[x - win.x0] != expected && bad++ < 3)
+                           ADD_FAILURE() << "cap " << cap << " cell " << x << "," << y << " got "
+                                         << int{row[x - win.x0]} << " expected " << int{expected};
+                       }
+                     });
+    EXPECT_EQ(bad, 0);
+    for (int y = 0; y < h; ++y)
+      EXPECT_EQ(seen[static_cast<std::size_t>(y)], y >= win.y0 && y < win.y1 ? 1 : 0) << "row " << y;
+  }
+}
+
+TEST_P(Engine, EmptyAndDegenerateInputs)
+{
+  const auto fn = [](uint64_t d2) { return static_cast<uint8_t>(d2 <= 4 ? 200 : 0); };
+  const DistanceCosts costs(2, fn);
+  std::vector<uint8_t> g = {254, 0, 0, 0};
+  distanceCostMerge(g.data(), 0, 0, 0, SourceRange{254, 254}, costs, DistanceWindow{0, 0, 0, 0}, CostMergeRule{},
+                    scratch_);
+  distanceCostMerge(g.data(), 4, 1, 4, SourceRange{254, 254}, costs, DistanceWindow{3, 0, 1, 1}, CostMergeRule{},
+                    scratch_);  // empty window
+  EXPECT_EQ(g, (std::vector<uint8_t>{254, 0, 0, 0}));
+  distanceCostMerge(g.data(), 4, 1, 4, SourceRange{254, 254}, costs, DistanceWindow{-9, -9, 99, 99}, CostMergeRule{},
+                    scratch_);  // clipped
+  EXPECT_EQ(g, (std::vector<uint8_t>{254, 200, 200, 0}));
+  // Nothing costs anything: the grid stays, the rows are zero.
+  std::vector<uint8_t> h = {254, 3, 0, 255};
+  distanceCostMerge(h.data(), 4, 1, 4, SourceRange{254, 254}, DistanceCosts(), DistanceWindow{0, 0, 4, 1},
+                    CostMergeRule{}, scratch_);
+  EXPECT_EQ(h, (std::vector<uint8_t>{254, 3, 0, 255}));
+  int rows = 0;
+  distanceCostRows(h.data(), 4, 1, 4, SourceRange{254, 254}, DistanceCosts(), DistanceWindow{0, 0, 4, 1}, scratch_,
+                   [&](int, const uint8_t* row)
+                   {
+                     ++rows;
+                     EXPECT_EQ(std::count(row, row + 4, 0), 4);
+                   });
+  EXPECT_EQ(rows, 1);
+  EXPECT_THROW(distanceCostMerge(h.data(), 4, 1, 4, SourceRange{254, 254}, costs, DistanceWindow{0, 0, 4, 1},
+                                 CostMergeRule{255, 0}, scratch_),
+               std::invalid_argument);
+  EXPECT_THROW(distanceCostMerge(h.data(), 4, 1, 4, SourceRange{254, 254}, costs, DistanceWindow{0, 0, 4, 1},
+                                 CostMergeRule{}, scratch_, 0),
                std::invalid_argument);
 }
 
-INSTANTIATE_TEST_SUITE_P(Kernels, CostMergeTest, ::testing::ValuesIn(kernelNames()),
+INSTANTIATE_TEST_SUITE_P(Targets, Engine, ::testing::ValuesIn(targets()),
                          [](const ::testing::TestParamInfo<std::string>& info)
                          {
                            std::string name = info.param;
@@ -521,20 +340,3 @@ INSTANTIATE_TEST_SUITE_P(Kernels, CostMergeTest, ::testing::ValuesIn(kernelNames
                              if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
                            return name;
                          });
-
-TEST(DistanceTransform, CostMergeRejectsBadArguments)
-{
-  DistanceTransformScratch scratch;
-  std::vector<uint8_t> g(4, 0);
-  const std::vector<uint8_t> rising = {10, 20};
-  EXPECT_THROW(cappedCostMerge8(g.data(), 2, 2, 2, SourceRange{}, 1, DistanceWindow{0, 0, 2, 2}, rising.data(),
-                                CostMergeRule{}, scratch),
-               std::invalid_argument);
-  const std::vector<uint8_t> costs(200, 5);
-  EXPECT_THROW(cappedCostMerge8(g.data(), 2, 2, 2, SourceRange{}, kMaxBandedCap8 + 1, DistanceWindow{0, 0, 2, 2},
-                                costs.data(), CostMergeRule{}, scratch),
-               std::invalid_argument);
-  EXPECT_THROW(cappedCostMerge8(g.data(), 2, 2, 2, SourceRange{}, 1, DistanceWindow{0, 0, 2, 2}, costs.data(),
-                                CostMergeRule{255, 0}, scratch),
-               std::invalid_argument);
-}

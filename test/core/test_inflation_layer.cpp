@@ -12,10 +12,10 @@
 
 #include "costmap_layers/core/cost_values.hpp"
 #include "costmap_layers/core/costmap_layer.hpp"
-#include "costmap_layers/core/distance_transform.hpp"
 #include "costmap_layers/core/inflation_layer.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
 #include "costmap_layers/core/param_reader.hpp"
+#include "costmap_layers/core/simd_targets.hpp"
 #include "fake_context.hpp"
 
 using namespace costmap_layers;
@@ -113,7 +113,7 @@ struct Rig
 };
 
 /// The layer's contract computed the slow way: for each cell of the window, the nearest source by
-/// exhaustive search within the radius, the formula, and the write rule.
+/// exhaustive search over every source of the grid, the formula, and the write rule.
 void naiveInflate(const Costmap2D& base, Costmap2D& out, const InflationConfig& cfg, double inscribed, int x0, int y0,
                   int x1, int y1)
 {
@@ -123,16 +123,16 @@ void naiveInflate(const Costmap2D& base, Costmap2D& out, const InflationConfig& 
   if (cap <= 0) return;
   auto is_source = [&](uint8_t c)
   { return c == LETHAL_OBSTACLE || (cfg.inflate_around_unknown && c == NO_INFORMATION); };
+  std::vector<std::pair<long, long>> sources;
+  for (int sy = 0; sy < h; ++sy)
+    for (int sx = 0; sx < w; ++sx)
+      if (is_source(base.getCost(static_cast<unsigned>(sx), static_cast<unsigned>(sy)))) sources.emplace_back(sx, sy);
   for (int y = y0; y < y1; ++y)
     for (int x = x0; x < x1; ++x)
     {
       long best = std::numeric_limits<long>::max();
-      for (int sy = std::max(0, y - cap); sy <= std::min(h - 1, y + cap); ++sy)
-        for (int sx = std::max(0, x - cap); sx <= std::min(w - 1, x + cap); ++sx)
-        {
-          if (!is_source(base.getCost(static_cast<unsigned>(sx), static_cast<unsigned>(sy)))) continue;
-          best = std::min(best, static_cast<long>((sx - x) * (sx - x) + (sy - y) * (sy - y)));
-        }
+      for (const auto& [sx, sy] : sources)
+        best = std::min(best, (sx - x) * (sx - x) + (sy - y) * (sy - y));
       if (best > static_cast<long>(cap) * cap) continue;
       const uint8_t cost = inflationCost(std::sqrt(static_cast<double>(best)), res, inscribed, cfg.cost_scaling_factor);
       const uint8_t old_cost = base.getCost(static_cast<unsigned>(x), static_cast<unsigned>(y));
@@ -444,7 +444,7 @@ RandomCase makeCase(std::mt19937& rng, int i)
   c.w = 5 + rng() % 70;
   c.h = 5 + rng() % 70;
   c.res = i % 3 == 0 ? 1.0 : (i % 3 == 1 ? 0.05 : 0.1);
-  // Radii in cells across all three engines: <= 11 (8-bit), <= 40 (16-bit), beyond (exact).
+  // Radii in cells across the engine's paths: <= 14 (cost domain), beyond (16-bit squared distances).
   const int engine = i % 5;
   const double cells = engine < 3 ? 0.5 + u(rng) * 11 : (engine == 3 ? 11.5 + u(rng) * 28 : 41 + u(rng) * 20);
   c.radius = cells * c.res;
@@ -471,12 +471,13 @@ void randomFill(std::mt19937& rng, MarkLayer& marks, const RandomCase& c, double
 }
 }  // namespace
 
-// Every kernel this machine runs ("portable" first), each against the naive reference.
+// Every SIMD target this build compiled that this CPU runs (the scalar one included), each against the
+// naive reference.
 class InflationReference : public ::testing::TestWithParam<std::string>
 {
 protected:
-  void SetUp() override { ASSERT_TRUE(setDistanceTransformKernel(GetParam().c_str())); }
-  void TearDown() override { setDistanceTransformKernel(nullptr); }
+  void SetUp() override { ASSERT_TRUE(setSimdTarget(GetParam())); }
+  void TearDown() override { setSimdTarget(""); }
   unsigned seed(unsigned base) const
   {
     return base + static_cast<unsigned>(std::hash<std::string>()(GetParam()) % 1000);
@@ -487,10 +488,7 @@ namespace
 {
 std::vector<std::string> inflationKernels()
 {
-  std::vector<std::string> names;
-  for (const char* k : distanceTransformKernels())
-    names.emplace_back(k);
-  return names;
+  return simdTargets();
 }
 }  // namespace
 
@@ -529,6 +527,59 @@ TEST_P(InflationReference, FullAndPartialUpdatesEqualNaiveRecomputation)
       ASSERT_TRUE(sameCells(rig.lc.getCostmap(), naiveFull(rig.marks->costmap(), rig.inflation->config(), inscribed)))
           << "partial, case " << i << " step " << step;
     }
+  }
+}
+
+// The benchmark sweep through the layer: every radius (0.3 .. 3 m) at every resolution (0.025, 0.05,
+// 0.1 m), factors 3 and 10, a robot of inscribed radius 0.2256 m (costmap_tool's robot_radius 0.22 with
+// padding), one and two threads: every cell equals the naive inflation.
+TEST_P(InflationReference, SweepEqualsNaiveOnEveryCell)
+{
+  std::mt19937 rng(seed(555));
+  for (const double res : {0.025, 0.05, 0.1})
+    for (const double radius : {0.3, 0.55, 1.0, 2.0, 3.0})
+      for (const double factor : {3.0, 10.0})
+      {
+        const int cells = static_cast<int>(std::ceil(radius / res));
+        const unsigned w = static_cast<unsigned>(std::min(2 * cells + 60, 260));
+        const unsigned h = static_cast<unsigned>(std::min(2 * cells + 140, 330));
+        const int threads = 1 + static_cast<int>(rng() % 2);
+        ParamValue params = inflationParams(radius, factor, false, false);
+        params.set("num_threads", ParamValue::makeInt(threads));
+        Rig rig(w, h, res, params, 0.2256, true);
+        RandomCase c{w, h, res, radius, 0.2256, factor, 0.0, true, false, false};
+        randomFill(rng, *rig.marks, c, 0.5 / (cells + 4));
+        rig.update();
+        ASSERT_TRUE(sameCells(rig.lc.getCostmap(), naiveFull(rig.marks->costmap(), rig.inflation->config(), 0.2256)))
+            << "res " << res << " radius " << radius << " factor " << factor << " threads " << threads;
+      }
+}
+
+// num_threads: the same result on every cell for 1 .. 4 threads, on a map tall enough for bands.
+TEST(InflationLayer, ThreadsGiveTheSameResult)
+{
+  for (const int threads : {1, 2, 3, 4})
+  {
+    ParamValue params = inflationParams(0.6, 3.0, false, true);
+    params.set("num_threads", ParamValue::makeInt(threads));
+    Rig rig(150, 420, 0.05, params, 0.2256, true);
+    std::mt19937 fill(9);
+    RandomCase c{150, 420, 0.05, 0.6, 0.2256, 3.0, 0.0, true, false, true};
+    randomFill(fill, *rig.marks, c, 0.01);
+    rig.update();
+    EXPECT_EQ(rig.inflation->config().num_threads, threads);
+    ASSERT_TRUE(sameCells(rig.lc.getCostmap(), naiveFull(rig.marks->costmap(), rig.inflation->config(), 0.2256)))
+        << threads << " threads";
+  }
+}
+
+TEST(InflationLayer, NumThreadsOutOfRangeIsRefused)
+{
+  for (const int bad : {0, -1, 65})
+  {
+    ParamValue params = inflationParams(0.55, 10.0);
+    params.set("num_threads", ParamValue::makeInt(bad));
+    EXPECT_THROW(parseInflationConfig(ParamReader(params, "inflation")), std::invalid_argument) << bad;
   }
 }
 

@@ -16,6 +16,7 @@
 #include "costmap_layers/core/cost_values.hpp"
 #include "costmap_layers/core/lanes_filter.hpp"
 #include "costmap_layers/core/param_reader.hpp"
+#include "costmap_layers/core/simd_targets.hpp"
 #include "fake_context.hpp"
 
 using namespace costmap_layers;
@@ -607,20 +608,16 @@ TEST(LanesFilter, FinishKernelsMatchTheDefinition)
         invalid += mask[k] < -1 || mask[k] > 100 ? 1 : 0;
         expected[k] = mask[k] == 100 ? static_cast<uint8_t>(254 - c[k]) : maskValueCost(mask[k]);
       }
-      for (const char* kernel : {"portable", "sse2", "avx2", static_cast<const char*>(nullptr)})
+      for (const std::string& target : simdTargets())
         for (const bool stream : {false, true})
           for (const std::size_t offset : {0, 1, 13, 32})
           {
-            SCOPED_TRACE(std::string(kernel ? kernel : "default") + " n " + std::to_string(n) + " trial " +
-                         std::to_string(trial) + (stream ? " streamed" : "") + " offset " + std::to_string(offset));
+            SCOPED_TRACE(target + " n " + std::to_string(n) + " trial " + std::to_string(trial) +
+                         (stream ? " streamed" : "") + " offset " + std::to_string(offset));
+            ASSERT_TRUE(setSimdTarget(target));
             std::vector<uint8_t> buf(n + 96, 0xAB);
             uint8_t* out = buf.data() + offset;
-            const std::size_t got = lanesFinishCosts(mask.data(), c.data(), out, n, stream, kernel);
-            if (got == std::numeric_limits<std::size_t>::max())
-            {
-              EXPECT_TRUE(kernel != nullptr && std::string(kernel) != "portable");  // not run here
-              continue;
-            }
+            const std::size_t got = lanesFinishCosts(mask.data(), c.data(), out, n, stream);
             EXPECT_EQ(got, invalid);
             for (std::size_t k = 0; k < n; ++k)
               ASSERT_EQ(out[k], expected[k]) << "cell " << k << " value " << int{mask[k]};
@@ -631,10 +628,11 @@ TEST(LanesFilter, FinishKernelsMatchTheDefinition)
               }
             // In place (out == c).
             std::vector<uint8_t> inplace = c;
-            EXPECT_EQ(lanesFinishCosts(mask.data(), inplace.data(), inplace.data(), n, stream, kernel), invalid);
+            EXPECT_EQ(lanesFinishCosts(mask.data(), inplace.data(), inplace.data(), n, stream), invalid);
             EXPECT_EQ(inplace, expected);
           }
     }
+  setSimdTarget("");
 }
 
 TEST(LanesFilter, RandomMaskOfEveryValueMatchesBruteForce)

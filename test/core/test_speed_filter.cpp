@@ -725,3 +725,34 @@ TEST(SpeedFilter, OutOfOrderFeaturesAreDroppedWhole)
   ASSERT_EQ(r.atArea(7), 1u);
   EXPECT_DOUBLE_EQ(r.last(), 0.9);
 }
+
+// ---------------------------------------------------------------- bounds
+
+// SpeedFilter writes nothing into the costmap: a new mask, a switch off and on, ask for no redraw; the
+// bounds stay exactly what the layers before it asked for (here: an empty box, then a small one).
+TEST(SpeedFilter, NewMaskAsksForNoRedraw)
+{
+  Rig rig;
+  rig.filter->setSpeedLimits(allLimits());
+  for (int round = 0; round < 3; ++round)
+  {
+    if (round == 0) ASSERT_EQ(rig.filter->setMask(std::make_shared<OccupancyGridData>(makeMask())), "");
+    if (round == 1) rig.filter->setFilterEnabled(false);
+    if (round == 2) rig.filter->setFilterEnabled(true);
+    double x0 = 1e30, y0 = 1e30, x1 = -1e30, y1 = -1e30;
+    rig.filter->updateBounds(centreOf(5).first, centreOf(5).second, 0.0, &x0, &y0, &x1, &y1);
+    EXPECT_EQ(x0, 1e30) << "round " << round;
+    EXPECT_EQ(y0, 1e30);
+    EXPECT_EQ(x1, -1e30);
+    EXPECT_EQ(y1, -1e30);
+    double a0 = 2.0, b0 = 3.0, a1 = 2.5, b1 = 3.5;
+    ASSERT_EQ(rig.filter->setMask(std::make_shared<OccupancyGridData>(makeMask())), "");
+    rig.filter->updateBounds(centreOf(5).first, centreOf(5).second, 0.0, &a0, &b0, &a1, &b1);
+    EXPECT_EQ(a0, 2.0);
+    EXPECT_EQ(b0, 3.0);
+    EXPECT_EQ(a1, 2.5);
+    EXPECT_EQ(b1, 3.5);
+  }
+  // It still acts: the robot in area 5 gets area 5's limit.
+  EXPECT_DOUBLE_EQ(rig.last(), limitOf(5));
+}

@@ -4,12 +4,14 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <string>
 #include <thread>
 #include <vector>
 
 #include "costmap_layers/core/cost_values.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
 #include "costmap_layers/core/param_reader.hpp"
+#include "costmap_layers/core/simd_targets.hpp"
 #include "costmap_layers/core/static_layer.hpp"
 #include "fake_context.hpp"
 
@@ -487,4 +489,39 @@ TEST(StaticLayer, WaitingForTheMapIsReported)
   r.update();
   EXPECT_EQ(r.ctx->countReports("waiting"), 0);
   EXPECT_TRUE(r.layer->isCurrent());
+}
+
+// A trinary map is converted by compares, one vector at a time (on every SIMD target): every byte
+// value, at every position of a vector, gives the costmap_2d rule's cost, stated here by hand:
+// the unknown value -> 255 (tracking) or 0, a value >= the threshold (as unsigned bytes) -> 254, else 0.
+TEST(StaticLayer, TrinaryConversionOfEveryByteOnEveryTarget)
+{
+  for (const std::string& target : simdTargets())
+    for (const int threshold : {0, 1, 65, 100})
+      for (const int unknown : {-1, 0, 50, 200})
+        for (const bool track : {false, true})
+        {
+          SCOPED_TRACE(target + " threshold " + std::to_string(threshold) + " unknown " + std::to_string(unknown) +
+                       (track ? " tracked" : ""));
+          ASSERT_TRUE(setSimdTarget(target));
+          Rig rig(params({{"lethal_cost_threshold", ParamValue::makeInt(threshold)},
+                          {"unknown_cost_value", ParamValue::makeInt(unknown)},
+                          {"track_unknown_space", ParamValue::makeBool(track)}}),
+                  false, track);
+          // 37 x 29 cells (not a multiple of any vector), byte values cycling with an odd step.
+          OccupancyGridData m = makeMap(37, 29, 1.0, 0, 0);
+          for (std::size_t k = 0; k < m.data.size(); ++k)
+            m.data[k] = static_cast<int8_t>(static_cast<uint8_t>(k * 7 % 256));
+          rig.publish(m);
+          rig.update();
+          for (uint32_t y = 0; y < 29; ++y)
+            for (uint32_t x = 0; x < 37; ++x)
+            {
+              const uint8_t v = static_cast<uint8_t>(m.data[static_cast<std::size_t>(y) * 37 + x]);
+              const uint8_t expected =
+                  v == static_cast<uint8_t>(unknown) ? (track ? 255 : 0) : (v >= threshold ? 254 : 0);
+              ASSERT_EQ(rig.at(x, y), expected) << "value " << int{v};
+            }
+        }
+  setSimdTarget("");
 }

@@ -60,6 +60,8 @@ protected:
   /// Changes default_state, flip_threshold, base and multiplier at run time (not the topic).
   void onReconfigure(const ParamValue& params) override;
   std::vector<ParamSpec> tunableLayerParameters(const ParamValue& params) const override;
+  /// Writes nothing, so a new mask, a switch or a rolling window asks for no redraw of the costmap.
+  bool drawsCosts() const override { return false; }
   /// Writes nothing: the binary filter acts through its output only.
   void process(Costmap2D&, const CellWindow&, const OccupancyGridData&, const MaskMapping&, double, double,
                double) override

@@ -25,11 +25,6 @@
 #include <type_traits>
 #include <vector>
 
-#if (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)
-#include <tmmintrin.h>
-#define COSTMAP_LAYERS_MASK_SHUFFLE_SSSE3 1
-#endif
-
 #include "costmap_layers/core/costmap_2d.hpp"
 #include "costmap_layers/core/filter_info.hpp"
 #include "costmap_layers/core/input_error.hpp"
@@ -85,16 +80,8 @@ public:
   int byteGatherBlock() const { return offset_ || !axis_aligned_ ? 0 : chunk_width_; }
 
 private:
-  /// One block of the byte gather: chunk_width_ window columns starting at window column `pos` take
-  /// bytes src + shuffle[0..chunk_width_) of the mask row (shuffle indices 0..15, so one 16-byte load).
-  struct ShuffleChunk
-  {
-    int32_t pos;
-    int32_t src;
-  };
-  /// Whether this CPU runs the byte-shuffle gather (checked once).
-  static bool byteShuffleAvailable();
-  /// Gathers the on-mask columns of one window row from a byte mask row through the shuffle plan.
+  /// Gathers the on-mask columns of one window row from a byte mask row through the shuffle plan (a
+  /// Highway kernel in costmap_filter.cpp).
   void shuffleRow(const uint8_t* mask_row, uint8_t* out) const;
 
   CellWindow window_;
@@ -109,7 +96,10 @@ private:
   int cols_lo_ = 0, cols_hi_ = 0;
   bool cols_contiguous_ = false;
   int chunk_width_ = 0;
-  std::vector<ShuffleChunk> chunks_;
+  /// The blocks of the byte gather, two numbers each: chunk_width_ window columns starting at window
+  /// column pos take bytes src + shuffle[0..chunk_width_) of the mask row (shuffle indices 0..15, so
+  /// one 16-byte load per block).
+  std::vector<int32_t> chunks_;
   std::vector<uint8_t> chunk_shuffle_;  ///< 16 indices per chunk (0x80 past chunk_width_)
   // General case: mask-grid coordinates [cells] of master cell (i, j) = p0 + i * du + j * dv.
   double p0x_ = 0, p0y_ = 0, dux_ = 0, duy_ = 0, dvx_ = 0, dvy_ = 0;
@@ -119,7 +109,8 @@ class CostmapFilter : public Layer
 {
 public:
   /// Takes the newest mask, looks up the transform (global -> mask frame) once for the cycle and calls
-  /// processPose(); grows the bounds by the old and new mask extents when the mask changed.
+  /// processPose(); grows the bounds by the old and new mask extents when the mask changed (and the
+  /// filter drawsCosts()).
   void updateBounds(double robot_x, double robot_y, double robot_yaw, double* min_x, double* min_y, double* max_x,
                     double* max_y) override;
   /// Calls process(); skips (writing nothing) when disabled, without a mask, or without a transform.
@@ -183,6 +174,10 @@ protected:
   /// Called every cycle instead of processPose() while the filter is switched off or has no mask yet
   /// (not when only the transform is missing): SpeedFilter restores its default there.
   virtual void processInactive() {}
+  /// Whether the filter writes costs into the master grid. A filter that does not (SpeedFilter) asks for
+  /// no redraw when its mask changes or it is switched: the next update's bounds stay what the other
+  /// layers ask for.
+  virtual bool drawsCosts() const { return true; }
   /// Default topic of the mask, overridable per filter type.
   virtual std::string defaultMaskTopic() const { return "/map_filter"; }
   /// The mask value at a world point (global frame), or nullopt when outside the mask.
@@ -248,7 +243,7 @@ void MaskMapping::forEachRow(Costmap2D& master, const T* source, uint32_t source
   {
     std::fill(scratch.begin(), scratch.begin() + cols_lo_, neutral);
     std::fill(scratch.begin() + cols_hi_, scratch.end(), neutral);
-    if constexpr (std::is_integral_v<T> && sizeof(T) == 1) use_shuffle = chunk_width_ > 0 && byteShuffleAvailable();
+    if constexpr (std::is_integral_v<T> && sizeof(T) == 1) use_shuffle = chunk_width_ > 0;
   }
   int cached_row = -1;
   for (int j = window_.y0; j < window_.yn; ++j)
@@ -302,41 +297,6 @@ void MaskMapping::forEachRow(Costmap2D& master, const T* source, uint32_t source
     }
   }
 }
-
-inline bool MaskMapping::byteShuffleAvailable()
-{
-#ifdef COSTMAP_LAYERS_MASK_SHUFFLE_SSSE3
-  static const bool available = __builtin_cpu_supports("ssse3");
-  return available;
-#else
-  return false;
-#endif
-}
-
-#ifdef COSTMAP_LAYERS_MASK_SHUFFLE_SSSE3
-__attribute__((target("ssse3"))) inline void MaskMapping::shuffleRow(const uint8_t* mask_row, uint8_t* out) const
-{
-  const ShuffleChunk* c = chunks_.data();
-  const uint8_t* shuffle = chunk_shuffle_.data();
-  const std::size_t count = chunks_.size();
-  if (chunk_width_ == 16)
-    for (std::size_t k = 0; k < count; ++k)
-    {
-      const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(mask_row + c[k].src));
-      const __m128i s = _mm_loadu_si128(reinterpret_cast<const __m128i*>(shuffle + 16 * k));
-      _mm_storeu_si128(reinterpret_cast<__m128i*>(out + c[k].pos), _mm_shuffle_epi8(v, s));
-    }
-  else
-    for (std::size_t k = 0; k < count; ++k)
-    {
-      const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(mask_row + c[k].src));
-      const __m128i s = _mm_loadu_si128(reinterpret_cast<const __m128i*>(shuffle + 16 * k));
-      _mm_storel_epi64(reinterpret_cast<__m128i*>(out + c[k].pos), _mm_shuffle_epi8(v, s));
-    }
-}
-#else
-inline void MaskMapping::shuffleRow(const uint8_t*, uint8_t*) const {}
-#endif
 
 template <class Fn>
 void MaskMapping::forEach(Costmap2D& master, const OccupancyGridData& mask, Fn&& fn) const

@@ -1,7 +1,9 @@
 // costmap_2d's InflationLayer, exact: every cell within the inflation radius of a lethal cell (and,
 // with inflate_around_unknown, of an unknown cell) gets the cost of its true Euclidean distance to the
-// nearest such cell. Distances come from an exact distance transform over the update window padded
-// by the radius; costs from a table indexed by the squared cell distance.
+// nearest such cell. Distances and costs come from the core's distance engine (distance_transform.hpp)
+// over the update window; only distances with a cost above 0 are computed: up to
+// min(inflation_radius, inscribed radius + ln(252) / cost_scaling_factor), beyond which the cost rounds
+// down to 0.
 #pragma once
 
 #include <cstdint>
@@ -21,10 +23,11 @@ struct InflationConfig
   double cost_scaling_factor = 10.0;    ///< [1/m]
   bool inflate_unknown = false;         ///< an unknown cell takes any cost > 0, not only >= 253
   bool inflate_around_unknown = false;  ///< unknown cells are sources like lethal ones
+  int num_threads = 1;                  ///< threads of one update (the window cut into bands of rows)
 };
 
-/// Reads inflation_radius (>= 0), cost_scaling_factor (>= 0), inflate_unknown and
-/// inflate_around_unknown. Throws std::invalid_argument naming the parameter.
+/// Reads inflation_radius (>= 0), cost_scaling_factor (>= 0), inflate_unknown, inflate_around_unknown
+/// and num_threads (1..64). Throws std::invalid_argument naming the parameter.
 InflationConfig parseInflationConfig(const ParamReader& params);
 
 class InflationLayer : public Layer
@@ -49,32 +52,37 @@ protected:
 public:
   /// ceil(inflation_radius / resolution): cells farther than this are not written.
   int cellInflationRadius() const { return cell_inflation_radius_; }
+  /// The distance [cells] beyond which every cost is 0: at most cellInflationRadius(), and less when
+  /// the cost rounds down to 0 earlier (inscribed radius + ln(252) / cost_scaling_factor).
+  int64_t costReach() const { return costs_.reach(); }
   double inscribedRadius() const { return inscribed_radius_; }
   /// The cost written at squared cell distance d2 (0 when d2 exceeds the radius).
-  uint8_t costAtSquaredDistance(uint32_t d2) const;
+  uint8_t costAtSquaredDistance(uint64_t d2) const { return costs_.at(d2); }
 
 protected:
   void onInitialize() override;
 
 private:
+  /// Rebuilds the cost table when the radius, factor, resolution or inscribed radius changed.
   void rebuildTable();
-  /// Writes the costs of one window row, given its squared distances (T lanes), into master_row.
-  template <class T>
-  void writeRow(uint8_t* master_row, const T* sq_dist, int n);
 
   InflationConfig config_;
   double resolution_ = 0.0;
   double inscribed_radius_ = 0.0;
   int cell_inflation_radius_ = 0;
   bool need_reinflation_ = true;
-  /// Cost per squared cell distance, zero past the radius; sized for every value the engine reports.
-  std::vector<uint8_t> cost_table_;
-  uint32_t table_limit_ = 0;  ///< squared distances above this are past the radius
-  /// Whether cost_table_ never increases with the distance (it does not for sane parameters): the
-  /// cost-domain engine relies on it.
-  bool table_non_increasing_ = false;
-  std::vector<uint8_t> row_costs_;
-  std::vector<uint32_t> exact_;  ///< padded window for radii beyond the banded engines
+  /// What the table was built for: radius [cells], factor, resolution, inscribed radius.
+  struct TableKey
+  {
+    int cells = -1;
+    double factor = 0, resolution = 0, inscribed = 0;
+    bool operator==(const TableKey& o) const
+    {
+      return cells == o.cells && factor == o.factor && resolution == o.resolution && inscribed == o.inscribed;
+    }
+  };
+  TableKey table_key_;
+  DistanceCosts costs_;
   DistanceTransformScratch scratch_;
 };
 }  // namespace costmap_layers

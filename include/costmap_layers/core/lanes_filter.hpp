@@ -18,8 +18,8 @@
 // lethal. Without any lane cell in the mask, every forbidden cell is lethal. With W <= r every
 // forbidden cell is lethal.
 //
-// The costs are computed once per mask, on the mask grid (an exact distance transform from the lane
-// cells, banded to W when W spans few cells), and sampled at master cell centres by the base's mapping.
+// The costs are computed once per mask, on the mask grid (the core's distance engine from the lane
+// cells, up to W), and sampled at master cell centres by the base's mapping.
 // Merging follows mergeFilterCost (higher cost wins; an unknown master cell takes only costs >= 253).
 //
 // Parameters (in the filter's namespace):
@@ -70,12 +70,10 @@ uint64_t lanesLethalSquaredDistance(const LanesFilterConfig& config, double reso
 /// LanesFilter's last step over n mask cells, exposed for tests: a forbidden cell (100) takes
 /// 254 - c[k] (c: 254 minus its distance cost, 0 beyond the band), any other value its soft cost
 /// round(v * 254 / 100) (0 for 0, -1 and values outside -1..100). out may be c. With stream, out is
-/// written around the caches (and ordered before the return).
-/// @param kernel  "portable", "sse2" or "avx2" (x86); nullptr for the one LanesFilter uses
-/// @return the number of values outside -1..100, or SIZE_MAX (writing nothing) for a kernel this
-///         machine does not run
-std::size_t lanesFinishCosts(const int8_t* mask, const uint8_t* c, uint8_t* out, std::size_t n, bool stream,
-                             const char* kernel = nullptr);
+/// written around the caches (and ordered before the return). Runs on the SIMD target in force
+/// (simd_targets.hpp).
+/// @return the number of values outside -1..100
+std::size_t lanesFinishCosts(const int8_t* mask, const uint8_t* c, uint8_t* out, std::size_t n, bool stream);
 
 class LanesFilter : public CostGridFilter
 {
@@ -96,6 +94,5 @@ private:
   LanesFilterConfig config_;
   std::atomic<std::size_t> cost_computations_{0};
   DistanceTransformScratch scratch_;
-  std::vector<uint32_t> sq_dist_;  ///< full transform only (wide borders)
 };
 }  // namespace costmap_layers

@@ -191,6 +191,8 @@ protected:
   /// mask_mode cannot change); the last features message is re-evaluated.
   void onReconfigure(const ParamValue& params) override;
   std::vector<ParamSpec> tunableLayerParameters(const ParamValue& params) const override;
+  /// Writes nothing, so a new mask (or a switch) asks for no redraw of the costmap.
+  bool drawsCosts() const override { return false; }
   /// Writes nothing: the speed filter acts through its MaxSpeed output only.
   void process(Costmap2D&, const CellWindow&, const OccupancyGridData&, const MaskMapping&, double, double,
                double) override

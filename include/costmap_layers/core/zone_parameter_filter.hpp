@@ -94,6 +94,8 @@ protected:
   void onInitializeFilter(const ParamReader& params) override;
   FilterFamily filterFamily() const override { return FilterFamily::ZoneParameter; }
   void onFilterInfo(const FilterInfoData& info) override;
+  /// Writes nothing, so a new mask, a switch or a rolling window asks for no redraw of the costmap.
+  bool drawsCosts() const override { return false; }
   /// Writes nothing: the filter acts through its setpoints.
   void process(Costmap2D&, const CellWindow&, const OccupancyGridData&, const MaskMapping&, double, double,
                double) override
