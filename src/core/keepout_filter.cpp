@@ -123,27 +123,33 @@ bool robotInLethalKeepout(const OccupancyGridData& mask, const Transform2D& to_m
 }
 
 void writeEscapeRamp(std::vector<uint8_t>& costs, uint32_t width, uint32_t height, double resolution,
-                     double ramp_length, uint8_t top, std::vector<uint32_t>& d2, DistanceTransformScratch& scratch)
+                     double ramp_length, uint8_t top, std::vector<uint8_t>& ramp, DistanceTransformScratch& scratch)
 {
-  const std::size_t n = static_cast<std::size_t>(width) * height;
-  d2.resize(n);
-  // Sources: every cell that is not lethal keepout (a way out).
-  squaredDistanceTransform(costs.data(), static_cast<int>(width), static_cast<int>(height), width,
-                           SourceRange{0, MAX_NON_OBSTACLE}, d2.data(), width, kFarSquaredDistance, scratch);
-  for (uint32_t j = 0; j < height; ++j)
-    for (uint32_t i = 0; i < width; ++i)
-    {
-      const std::size_t k = static_cast<std::size_t>(j) * width + i;
-      if (costs[k] < INSCRIBED_INFLATED_OBSTACLE) continue;
-      // No way out at all (the whole mask is lethal): the top.
-      if (d2[k] == kFarSquaredDistance)
-      {
-        costs[k] = top;
-        continue;
-      }
-      const double depth = std::sqrt(static_cast<double>(d2[k])) * resolution;
-      costs[k] = escapeRampCost(depth, ramp_length, top);
-    }
+  if (width == 0 || height == 0) return;
+  // The distance engine takes costs that do not rise with the distance: it computes
+  // g = top + 1 - escapeRampCost(depth) (top + 1 at the edge, 1 from ramp_length on, 0 beyond its
+  // reach), and the ramp is top + 1 - g, the top where g is 1 or 0 (deep inside, or no way out at all).
+  // The ways out are the cells that are not lethal.
+  const double cells = std::ceil(ramp_length / resolution);
+  const int64_t max_cells = cells > 0.0 && cells < 1e6 ? static_cast<int64_t>(cells) : (cells >= 1e6 ? 1000000 : 0);
+  const DistanceCosts complement(max_cells,
+                                 [&](uint64_t d2)
+                                 {
+                                   const double depth = std::sqrt(static_cast<double>(d2)) * resolution;
+                                   return static_cast<uint8_t>(top + 1 - escapeRampCost(depth, ramp_length, top));
+                                 });
+  ramp.assign(costs.size(), top);
+  distanceCostRows(costs.data(), static_cast<int>(width), static_cast<int>(height), width,
+                   SourceRange{0, MAX_NON_OBSTACLE}, complement,
+                   DistanceWindow{0, 0, static_cast<int>(width), static_cast<int>(height)}, scratch,
+                   [&](int y, const uint8_t* g)
+                   {
+                     uint8_t* out = ramp.data() + static_cast<std::size_t>(y) * width;
+                     for (uint32_t x = 0; x < width; ++x)
+                       out[x] = g[x] <= 1 ? top : static_cast<uint8_t>(top + 1 - g[x]);
+                   });
+  for (std::size_t k = 0; k < costs.size(); ++k)
+    if (costs[k] >= INSCRIBED_INFLATED_OBSTACLE) costs[k] = ramp[k];
 }
 
 void KeepoutFilter::onInitializeFilter(const ParamReader& params)
@@ -199,7 +205,7 @@ std::size_t KeepoutFilter::computeCosts(const OccupancyGridData& mask, std::vect
   {
     const double circumscribed = layered_costmap_ ? layered_costmap_->getCircumscribedRadius() : 0.0;
     writeEscapeRamp(costs, mask.width, mask.height, mask.resolution, std::max(circumscribed, mask.resolution),
-                    static_cast<uint8_t>(config_.lethal_override_cost), d2_, scratch_);
+                    static_cast<uint8_t>(config_.lethal_override_cost), ramp_, scratch_);
   }
   return invalid;
 }

@@ -119,7 +119,7 @@ TEST(KeepoutEscape, RampDepthIsTheBruteForceNearestWayOut)
       costs[j * w + i] = LETHAL_OBSTACLE;
   costs[4 * w + 8] = 127;  // a costly, not lethal, cell: a way out
   std::vector<uint8_t> ramp = costs;
-  std::vector<uint32_t> d2;
+  std::vector<uint8_t> d2;
   DistanceTransformScratch scratch;
   const double res = 0.1, length = 0.45;
   writeEscapeRamp(ramp, w, h, res, length, 200, d2, scratch);

@@ -82,9 +82,9 @@ bool robotInLethalKeepout(const OccupancyGridData& mask, const Transform2D& to_m
 
 /// Replaces every lethal cost (>= 253) of `costs` (one per mask cell, row-major, width x height) by
 /// escapeRampCost() of the cell's depth [m] (resolution: the mask's): the distance to the nearest
-/// cell that is not lethal; top when there is none. d2 is scratch.
+/// cell that is not lethal; top when there is none. `ramp` is scratch.
 void writeEscapeRamp(std::vector<uint8_t>& costs, uint32_t width, uint32_t height, double resolution,
-                     double ramp_length, uint8_t top, std::vector<uint32_t>& d2, DistanceTransformScratch& scratch);
+                     double ramp_length, uint8_t top, std::vector<uint8_t>& ramp, DistanceTransformScratch& scratch);
 
 class KeepoutFilter : public CostGridFilter
 {
@@ -105,7 +105,7 @@ protected:
 private:
   KeepoutFilterConfig config_;
   bool escaping_ = false;  ///< update thread only
-  std::vector<uint32_t> d2_;
+  std::vector<uint8_t> ramp_;
   DistanceTransformScratch scratch_;
 };
 }  // namespace costmap_layers
