@@ -12,7 +12,7 @@
 namespace costmap_layers
 {
 void CostGridFilter::process(Costmap2D& master_grid, const CellWindow&, const OccupancyGridData& mask,
-                             const MaskMapping& mapping, double, double, double)
+                             const GridSampler& mapping, double, double, double)
 {
   // The mask pointer changes only when a new mask was accepted: recompute its costs then, not per update.
   const std::shared_ptr<const OccupancyGridData>& current = activeMask();

@@ -356,7 +356,7 @@ void StaticLayer::updateCosts(Costmap2D& master_grid, int min_i, int min_j, int 
   max_j = std::min(max_j, static_cast<int>(master_grid.getSizeInCellsY()));
   if (min_i >= max_i || min_j >= max_j) return;
 
-  // Master cell centre -> costmap frame -> map frame -> map cell, an affine map computed once.
+  // Master cell centre -> costmap frame -> map frame -> map cell: the filters' sampler.
   const std::string& global = context_->globalFrame();
   Transform2D to_map;
   if (!map_frame_.empty() && map_frame_ != global)
@@ -371,39 +371,14 @@ void StaticLayer::updateCosts(Costmap2D& master_grid, int min_i, int min_j, int 
     }
     to_map = *t;
   }
-  const double inv = 1.0 / costmap_.getResolution();
-  const double c = std::cos(map_yaw_), s = std::sin(map_yaw_);
-  auto toCell = [&](double wx, double wy, double& gx, double& gy)
-  {
-    double fx, fy;
-    to_map.apply(wx, wy, fx, fy);
-    fx -= costmap_.getOriginX();
-    fy -= costmap_.getOriginY();
-    gx = (c * fx + s * fy) * inv;
-    gy = (-s * fx + c * fy) * inv;
-  };
-  double wx0, wy0;
-  master_grid.mapToWorld(static_cast<unsigned>(min_i), static_cast<unsigned>(min_j), wx0, wy0);
-  const double res = master_grid.getResolution();
-  double p0x, p0y, pux, puy, pvx, pvy;
-  toCell(wx0, wy0, p0x, p0y);
-  toCell(wx0 + res, wy0, pux, puy);
-  toCell(wx0, wy0 + res, pvx, pvy);
-  const double dux = pux - p0x, duy = puy - p0y, dvx = pvx - p0x, dvy = pvy - p0y;
-  const double sx = costmap_.getSizeInCellsX(), sy = costmap_.getSizeInCellsY();
-  const bool use_max = config_.use_maximum;
-  for (int j = min_j; j < max_j; ++j)
-  {
-    uint8_t* row = master_grid.data() + master_grid.getIndex(0, static_cast<unsigned>(j));
-    const double rx = p0x + (j - min_j) * dvx, ry = p0y + (j - min_j) * dvy;
-    for (int i = min_i; i < max_i; ++i)
-    {
-      const double gx = rx + (i - min_i) * dux, gy = ry + (i - min_i) * duy;
-      if (!(gx >= 0.0) || !(gy >= 0.0) || gx >= sx || gy >= sy) continue;
-      const uint8_t v = costmap_.getCost(static_cast<unsigned>(gx), static_cast<unsigned>(gy));
-      row[i] = use_max ? std::max(v, row[i]) : v;
-    }
-  }
+  const GridPlacement map{costmap_.getSizeInCellsX(), costmap_.getSizeInCellsY(), costmap_.getResolution(),
+                          costmap_.getOriginX(),      costmap_.getOriginY(),      map_yaw_};
+  sampler_.build(master_grid, CellWindow{min_i, min_j, max_i, max_j}, map, to_map);
+  if (config_.use_maximum)
+    sampler_.forEach(master_grid, costmap_.data(), map.width, map.height,
+                     [](uint8_t& cell, uint8_t v) { cell = std::max(cell, v); });
+  else
+    sampler_.forEach(master_grid, costmap_.data(), map.width, map.height, [](uint8_t& cell, uint8_t v) { cell = v; });
 }
 }  // namespace costmap_layers
 

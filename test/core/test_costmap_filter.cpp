@@ -1,4 +1,4 @@
-// Unit tests of the CostmapFilter base (through a tiny test subclass) and of MaskMapping, checked
+// Unit tests of the CostmapFilter base (through a tiny test subclass) and of GridSampler, checked
 // against a naive per-cell computation.
 #include <gtest/gtest.h>
 
@@ -36,7 +36,7 @@ public:
 
 protected:
   void onInitializeFilter(const ParamReader&) override { init_topic = maskTopic(); }
-  void process(Costmap2D& master, const CellWindow& window, const OccupancyGridData& mask, const MaskMapping& mapping,
+  void process(Costmap2D& master, const CellWindow& window, const OccupancyGridData& mask, const GridSampler& mapping,
                double, double, double) override
   {
     ++process_calls;
@@ -119,7 +119,7 @@ int expectMatchesNaive(const Costmap2D& master, const CellWindow& w, const Occup
 
 /// Runs the row-wise form of the mapping on a copy of master, with the mask values widened to int16 and
 /// the sentinel as the neutral value, and checks it against the naive computation too.
-void expectRowsMatchNaive(const MaskMapping& m, const Costmap2D& master, const CellWindow& w,
+void expectRowsMatchNaive(const GridSampler& m, const Costmap2D& master, const CellWindow& w,
                           const OccupancyGridData& mask, const Transform2D& to_mask)
 {
   Costmap2D copy = master;
@@ -138,7 +138,7 @@ void expectRowsMatchNaive(const MaskMapping& m, const Costmap2D& master, const C
 
 /// As expectRowsMatchNaive, with the mask values as bytes (the block-shuffle gather), twice over the
 /// same scratch (which starts with stale values).
-void expectByteRowsMatchNaive(const MaskMapping& m, const Costmap2D& master, const CellWindow& w,
+void expectByteRowsMatchNaive(const GridSampler& m, const Costmap2D& master, const CellWindow& w,
                               const OccupancyGridData& mask, const Transform2D& to_mask)
 {
   const std::vector<uint8_t> source(mask.data.begin(), mask.data.end());
@@ -496,14 +496,14 @@ TEST(CostmapFilterBase, TransformedMaskMatchesNaiveAndWindowIsClamped)
   EXPECT_LT(on, 16 * 10);  // part of the window lies off the mask
 }
 
-// ---------------------------------------------------------------- MaskMapping
+// ---------------------------------------------------------------- GridSampler
 
-TEST(MaskMappingTest, OffsetPath)
+TEST(GridSamplerTest, OffsetPath)
 {
   Costmap2D master(12, 10, 0.5, -1.0, 0.5, kSentinel);
   const auto mask = makeMask(7, 5, 0.5, 0.0, 1.0);  // same resolution, shifted by (2, 1) cells
   const CellWindow w{1, 2, 11, 9};
-  MaskMapping m;
+  GridSampler m;
   m.build(master, w, mask, Transform2D{});
   EXPECT_TRUE(m.axisAligned());
   EXPECT_TRUE(m.isOffset());
@@ -518,13 +518,13 @@ TEST(MaskMappingTest, OffsetPath)
   EXPECT_EQ(master.getCost(1, 2), kSentinel);
 }
 
-TEST(MaskMappingTest, OffsetPathWithTranslationAndNegativeOffset)
+TEST(GridSamplerTest, OffsetPathWithTranslationAndNegativeOffset)
 {
   Costmap2D master(10, 10, 1.0, 0.0, 0.0, kSentinel);
   const auto mask = makeMask(20, 20, 1.0, -4.0, -3.0);
   const Transform2D t{2.0, -5.0, 0.0};
   const CellWindow w{0, 0, 10, 10};
-  MaskMapping m;
+  GridSampler m;
   m.build(master, w, mask, t);
   EXPECT_TRUE(m.isOffset());
   expectRowsMatchNaive(m, master, w, mask, t);
@@ -533,12 +533,12 @@ TEST(MaskMappingTest, OffsetPathWithTranslationAndNegativeOffset)
   EXPECT_GT(expectMatchesNaive(master, w, mask, t), 0);
 }
 
-TEST(MaskMappingTest, AxisAlignedDifferentResolution)
+TEST(GridSamplerTest, AxisAlignedDifferentResolution)
 {
   Costmap2D master(14, 12, 0.2, -0.5, 0.3, kSentinel);
   const auto mask = makeMask(10, 8, 0.3, 0.13, 0.71);
   const CellWindow w{0, 1, 13, 12};
-  MaskMapping m;
+  GridSampler m;
   m.build(master, w, mask, Transform2D{});
   EXPECT_TRUE(m.axisAligned());
   EXPECT_FALSE(m.isOffset());
@@ -553,7 +553,7 @@ TEST(MaskMappingTest, AxisAlignedDifferentResolution)
   Costmap2D coarse(8, 8, 1.0, 0.0, 0.0, kSentinel);
   const auto fine = makeMask(30, 25, 0.27, 0.12, 0.37);
   const Transform2D t{0.9, 0.4, 0.0};
-  MaskMapping m2;
+  GridSampler m2;
   m2.build(coarse, CellWindow{0, 0, 8, 8}, fine, t);
   EXPECT_TRUE(m2.axisAligned());
   EXPECT_FALSE(m2.isOffset());
@@ -563,7 +563,7 @@ TEST(MaskMappingTest, AxisAlignedDifferentResolution)
   EXPECT_GT(expectMatchesNaive(coarse, CellWindow{0, 0, 8, 8}, fine, t), 0);
 }
 
-TEST(MaskMappingTest, AxisAlignedByteGatherBlocks)
+TEST(GridSamplerTest, AxisAlignedByteGatherBlocks)
 {
   struct Case
   {
@@ -598,7 +598,7 @@ TEST(MaskMappingTest, AxisAlignedByteGatherBlocks)
     SCOPED_TRACE(c.what);
     Costmap2D master(120, 40, 0.05, -1.0, -0.5, kSentinel);
     const auto mask = makeMask(c.mask_w, c.mask_h, c.mask_res, c.ox, c.oy);
-    MaskMapping m;
+    GridSampler m;
     m.build(master, c.w, mask, c.t);
     ASSERT_TRUE(m.axisAligned());
     ASSERT_FALSE(m.isOffset());
@@ -610,12 +610,12 @@ TEST(MaskMappingTest, AxisAlignedByteGatherBlocks)
   }
 }
 
-TEST(MaskMappingTest, RotatedMaskOrigin)
+TEST(GridSamplerTest, RotatedMaskOrigin)
 {
   Costmap2D master(20, 18, 0.25, -1.0, -1.0, kSentinel);
   const auto mask = makeMask(12, 9, 0.33, 0.4, -0.6, 0.47);
   const CellWindow w{2, 1, 19, 17};
-  MaskMapping m;
+  GridSampler m;
   m.build(master, w, mask, Transform2D{});
   EXPECT_FALSE(m.axisAligned());
   EXPECT_FALSE(m.isOffset());
@@ -627,13 +627,13 @@ TEST(MaskMappingTest, RotatedMaskOrigin)
   EXPECT_LT(on, 17 * 16);
 }
 
-TEST(MaskMappingTest, RotatedTransformAndMask)
+TEST(GridSamplerTest, RotatedTransformAndMask)
 {
   Costmap2D master(16, 16, 0.5, -3.0, -2.0, kSentinel);
   const auto mask = makeMask(15, 11, 0.45, -1.3, -0.2, -0.8);
   const Transform2D t{0.77, -1.21, 2.1};
   const CellWindow w{0, 0, 16, 16};
-  MaskMapping m;
+  GridSampler m;
   m.build(master, w, mask, t);
   EXPECT_FALSE(m.axisAligned());
   expectRowsMatchNaive(m, master, w, mask, t);
@@ -644,13 +644,13 @@ TEST(MaskMappingTest, RotatedTransformAndMask)
   EXPECT_LT(on, 256);
 }
 
-TEST(MaskMappingTest, MaskEntirelyOutsideTheWindowTouchesNothing)
+TEST(GridSamplerTest, MaskEntirelyOutsideTheWindowTouchesNothing)
 {
   Costmap2D master(8, 8, 1.0, 0.0, 0.0, kSentinel);
   for (const auto& mask :
        {makeMask(3, 3, 1.0, 50.0, 0.0), makeMask(3, 3, 0.3, -20.0, 2.0), makeMask(3, 3, 0.3, 2.0, 40.0, 0.7)})
   {
-    MaskMapping m;
+    GridSampler m;
     m.build(master, CellWindow{0, 0, 8, 8}, mask, Transform2D{});
     int calls = 0;
     m.forEach(master, mask, [&](uint8_t&, int8_t) { ++calls; });
@@ -660,7 +660,7 @@ TEST(MaskMappingTest, MaskEntirelyOutsideTheWindowTouchesNothing)
     EXPECT_EQ(master.getCost(i), kSentinel);
 }
 
-TEST(MaskMappingTest, MaskValueAtMatchesNaive)
+TEST(GridSamplerTest, MaskValueAtMatchesNaive)
 {
   // maskValueAt is protected: reach it through a subclass.
   struct Probe : CopyFilter

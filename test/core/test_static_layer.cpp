@@ -525,3 +525,41 @@ TEST(StaticLayer, TrinaryConversionOfEveryByteOnEveryTarget)
         }
   setSimdTarget("");
 }
+
+TEST(StaticLayer, RollingWindowSamplesAnAxisAlignedMapAtAnyResolution)
+{
+  // The map in the costmap's own frame, no rotation: the sampler's offset path (same resolution) and its
+  // row/column tables (another resolution). Expected: the map cell under each master cell's centre,
+  // computed here cell by cell; the offsets keep centres off map cell borders.
+  for (const double map_res : {0.5, 0.25, 1.5})
+  {
+    Rig rig(ParamValue::makeMap(), true, true, "odom");
+    rig.lc.resizeMap(20, 20, 0.5, 0, 0);
+    const uint32_t w = static_cast<uint32_t>(std::lround(12.0 / map_res));
+    OccupancyGridData m = makeMap(w, w, map_res, -4.1, -2.9, 0, "odom");
+    for (uint32_t y = 0; y < w; ++y)
+      for (uint32_t x = 0; x < w; ++x)
+        setCell(m, x, y, static_cast<int8_t>((x * 5 + y * 2) % 3 == 0 ? 100 : ((x + y) % 7 == 0 ? -1 : 0)));
+    rig.publish(m);
+    rig.update(1.0, 0.5);  // the window is [-4, 6) x [-4.5, 5.5)
+    const Costmap2D& c = rig.lc.getCostmap();
+    int inside = 0;
+    for (unsigned j = 0; j < 20; ++j)
+      for (unsigned i = 0; i < 20; ++i)
+      {
+        double wx, wy;
+        c.mapToWorld(i, j, wx, wy);
+        const double gx = (wx + 4.1) / map_res, gy = (wy + 2.9) / map_res;
+        if (gx < 0 || gy < 0 || gx >= w || gy >= w)
+        {
+          EXPECT_EQ(c.getCost(i, j), NO_INFORMATION) << map_res << ": " << i << "," << j;
+          continue;
+        }
+        ++inside;
+        const int8_t v = m.data[unsigned(gy) * w + unsigned(gx)];
+        EXPECT_EQ(c.getCost(i, j), v == 100 ? LETHAL_OBSTACLE : (v == -1 ? NO_INFORMATION : FREE_SPACE))
+            << map_res << ": " << i << "," << j;
+      }
+    EXPECT_GT(inside, 200) << map_res;
+  }
+}

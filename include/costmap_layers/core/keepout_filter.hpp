@@ -49,7 +49,7 @@ protected:
   virtual std::size_t computeCosts(const OccupancyGridData& mask, std::vector<uint8_t>& costs) = 0;
 
   void process(Costmap2D& master_grid, const CellWindow& window, const OccupancyGridData& mask,
-               const MaskMapping& mapping, double robot_x, double robot_y, double robot_yaw) final;
+               const GridSampler& mapping, double robot_x, double robot_y, double robot_yaw) final;
   /// Recompute the costs at the next update (after a parameter change). Update thread only.
   void invalidateCosts() { costs_for_.reset(); }
 

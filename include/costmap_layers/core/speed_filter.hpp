@@ -194,7 +194,7 @@ protected:
   /// Writes nothing, so a new mask (or a switch) asks for no redraw of the costmap.
   bool drawsCosts() const override { return false; }
   /// Writes nothing: the speed filter acts through its MaxSpeed output only.
-  void process(Costmap2D&, const CellWindow&, const OccupancyGridData&, const MaskMapping&, double, double,
+  void process(Costmap2D&, const CellWindow&, const OccupancyGridData&, const GridSampler&, double, double,
                double) override
   {
   }

@@ -13,6 +13,7 @@
 
 #include "costmap_layers/core/costmap_layer.hpp"
 #include "costmap_layers/core/grid_data.hpp"
+#include "costmap_layers/core/grid_sampler.hpp"
 
 namespace costmap_layers
 {
@@ -117,6 +118,7 @@ private:
   bool dirty_ = false;
   unsigned dirty_x0_ = 0, dirty_y0_ = 0, dirty_x1_ = 0, dirty_y1_ = 0;  ///< own cells [x0, x1) x [y0, y1)
   std::string map_frame_;
+  GridSampler sampler_;  ///< update thread only: master cells -> map cells in a rolling window
   double map_yaw_ = 0.0;
 };
 }  // namespace costmap_layers

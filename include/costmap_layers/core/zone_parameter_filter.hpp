@@ -97,7 +97,7 @@ protected:
   /// Writes nothing, so a new mask, a switch or a rolling window asks for no redraw of the costmap.
   bool drawsCosts() const override { return false; }
   /// Writes nothing: the filter acts through its setpoints.
-  void process(Costmap2D&, const CellWindow&, const OccupancyGridData&, const MaskMapping&, double, double,
+  void process(Costmap2D&, const CellWindow&, const OccupancyGridData&, const GridSampler&, double, double,
                double) override
   {
   }
