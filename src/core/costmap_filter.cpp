@@ -363,15 +363,9 @@ void CostmapFilter::updateCosts(Costmap2D& master_grid, int min_i, int min_j, in
 std::optional<int8_t> CostmapFilter::maskValueAt(const OccupancyGridData& mask, const Transform2D& to_mask, double wx,
                                                  double wy)
 {
-  double fx, fy;
-  to_mask.apply(wx, wy, fx, fy);
-  fx -= mask.origin_x;
-  fy -= mask.origin_y;
-  const double cm = std::cos(mask.origin_yaw), sm = std::sin(mask.origin_yaw);
-  const double gx = (cm * fx + sm * fy) / mask.resolution;
-  const double gy = (-sm * fx + cm * fy) / mask.resolution;
-  if (!(gx >= 0.0) || !(gy >= 0.0) || gx >= mask.width || gy >= mask.height) return std::nullopt;
-  return mask.data[static_cast<std::size_t>(gy) * mask.width + static_cast<std::size_t>(gx)];
+  std::size_t k;
+  if (!gridCellAt(GridPlacement::of(mask), to_mask, wx, wy, k)) return std::nullopt;
+  return mask.data[k];
 }
 }  // namespace costmap_layers
 

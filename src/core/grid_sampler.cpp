@@ -62,17 +62,8 @@ void GridSampler::build(const Costmap2D& master, const CellWindow& window, const
   // Master cell (i, j) centre in the global frame, then in the mask frame, then in mask cells.
   const double res = master.getResolution();
   const double ox = master.getOriginX() + 0.5 * res, oy = master.getOriginY() + 0.5 * res;
-  const double ct = std::cos(to_mask.yaw), st = std::sin(to_mask.yaw);
-  const double cm = std::cos(mask.origin_yaw), sm = std::sin(mask.origin_yaw);
-  const double inv = 1.0 / mask.resolution;
-  // to grid coordinates: g = R(-origin_yaw) * (T(p) - origin) / mask_res
-  auto toGrid = [&](double wx, double wy, double& gx, double& gy)
-  {
-    const double fx = to_mask.x + ct * wx - st * wy - mask.origin_x;
-    const double fy = to_mask.y + st * wx + ct * wy - mask.origin_y;
-    gx = (cm * fx + sm * fy) * inv;
-    gy = (-sm * fx + cm * fy) * inv;
-  };
+  // Three points through the one point-to-grid rule; the rest is affine.
+  auto toGrid = [&](double wx, double wy, double& gx, double& gy) { toGridCells(mask, to_mask, wx, wy, gx, gy); };
   toGrid(ox, oy, p0x_, p0y_);
   double ux, uy, vx, vy;
   toGrid(ox + res, oy, ux, uy);

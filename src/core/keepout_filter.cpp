@@ -71,15 +71,12 @@ bool robotInLethalKeepout(const OccupancyGridData& mask, const Transform2D& to_m
                           const Footprint& footprint, double clearance)
 {
   // Everything in mask-grid coordinates [cells]: cell (i, j) spans [i, i + 1) x [j, j + 1).
-  const double cm = std::cos(mask.origin_yaw), sm = std::sin(mask.origin_yaw);
-  const double inv = 1.0 / mask.resolution;
+  const GridPlacement grid = GridPlacement::of(mask);
   auto toGrid = [&](double wx, double wy)
   {
-    double fx, fy;
-    to_mask.apply(wx, wy, fx, fy);
-    fx -= mask.origin_x;
-    fy -= mask.origin_y;
-    return Eigen::Vector2d((cm * fx + sm * fy) * inv, (-sm * fx + cm * fy) * inv);
+    Eigen::Vector2d g;
+    toGridCells(grid, to_mask, wx, wy, g.x(), g.y());
+    return g;
   };
   const Eigen::Vector2d c = toGrid(x, y);
   if (!std::isfinite(c.x()) || !std::isfinite(c.y())) return false;
@@ -87,7 +84,7 @@ bool robotInLethalKeepout(const OccupancyGridData& mask, const Transform2D& to_m
   polygon.reserve(footprint.size());
   for (const Eigen::Vector2d& p : transformFootprint(x, y, yaw, footprint))
     polygon.push_back(toGrid(p.x(), p.y()));
-  const double rc = std::max(0.0, clearance) * inv;
+  const double rc = std::max(0.0, clearance) / mask.resolution;
   double u0 = c.x() - rc, u1 = c.x() + rc, v0 = c.y() - rc, v1 = c.y() + rc;
   for (const Eigen::Vector2d& p : polygon)
   {

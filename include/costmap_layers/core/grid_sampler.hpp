@@ -3,6 +3,8 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <type_traits>
 #include <vector>
@@ -29,6 +31,31 @@ struct GridPlacement
     return {g.width, g.height, g.resolution, g.origin_x, g.origin_y, g.origin_yaw};
   }
 };
+
+/// The one rule from a point to a grid: (wx, wy) in the costmap's global frame, through to_grid (global
+/// frame -> the grid's frame), to the grid's cell coordinates (gx, gy) [cells]: cell (i, j) spans
+/// [i, i + 1) x [j, j + 1).
+inline void toGridCells(const GridPlacement& g, const Transform2D& to_grid, double wx, double wy, double& gx,
+                        double& gy)
+{
+  double fx, fy;
+  to_grid.apply(wx, wy, fx, fy);
+  fx -= g.origin_x;
+  fy -= g.origin_y;
+  const double c = std::cos(g.origin_yaw), s = std::sin(g.origin_yaw);
+  gx = (c * fx + s * fy) / g.resolution;
+  gy = (-s * fx + c * fy) / g.resolution;
+}
+
+/// The index of the grid cell under a point, or false when the point is off the grid (NaN too).
+inline bool gridCellAt(const GridPlacement& g, const Transform2D& to_grid, double wx, double wy, std::size_t& index)
+{
+  double gx, gy;
+  toGridCells(g, to_grid, wx, wy, gx, gy);
+  if (!(gx >= 0.0) || !(gy >= 0.0) || gx >= g.width || gy >= g.height) return false;
+  index = static_cast<std::size_t>(gy) * g.width + static_cast<std::size_t>(gx);
+  return true;
+}
 
 /// The one grid-to-grid sampler: how master cells of one update window map to cells of another grid
 /// (a filter's mask, or the static layer's map in a rolling window), each master cell taking the cell
