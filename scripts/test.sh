@@ -53,7 +53,7 @@ if costmap_2d_at="$(ros_package_prefix costmap_2d)"; then
     n=$(python3 - "$ROOT/build/costmap_layers/test_results" <<'PY'
 import glob, sys, xml.etree.ElementTree as ET
 n = 0
-for f in glob.glob(sys.argv[1] + "/**/rostest-test_move_base_*.xml", recursive=True):
+for f in glob.glob(sys.argv[1] + "/**/rosunit-move_base_integration.xml", recursive=True):
     n += sum(1 for _ in ET.parse(f).getroot().iter("testcase"))
 print(n)
 PY
