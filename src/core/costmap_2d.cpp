@@ -27,15 +27,20 @@ Costmap2D::Costmap2D(const Costmap2D& other)
 {
 }
 
-Costmap2D& Costmap2D::operator=(const Costmap2D& other)
+void Costmap2D::copyGeometry(const Costmap2D& other)
 {
-  if (this == &other) return *this;
   size_x_ = other.size_x_;
   size_y_ = other.size_y_;
   resolution_ = other.resolution_;
   origin_x_ = other.origin_x_;
   origin_y_ = other.origin_y_;
   default_value_ = other.default_value_;
+}
+
+Costmap2D& Costmap2D::operator=(const Costmap2D& other)
+{
+  if (this == &other) return *this;
+  copyGeometry(other);
   owned_.assign(other.cells_, other.cells_ + other.count_);
   cells_ = owned_.data();
   count_ = other.count_;
@@ -51,12 +56,7 @@ Costmap2D::Costmap2D(Costmap2D&& other) noexcept
 Costmap2D& Costmap2D::operator=(Costmap2D&& other) noexcept
 {
   if (this == &other) return *this;
-  size_x_ = other.size_x_;
-  size_y_ = other.size_y_;
-  resolution_ = other.resolution_;
-  origin_x_ = other.origin_x_;
-  origin_y_ = other.origin_y_;
-  default_value_ = other.default_value_;
+  copyGeometry(other);
   view_ = other.view_;
   count_ = other.count_;
   owned_ = std::move(other.owned_);

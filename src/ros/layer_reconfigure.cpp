@@ -12,20 +12,6 @@ using costmap_layers::ParamValue;
 
 namespace
 {
-const char* typeName(ParamValue::Type t)
-{
-  switch (t)
-  {
-    case ParamValue::Type::Bool:
-      return "bool";
-    case ParamValue::Type::Int:
-      return "int";
-    case ParamValue::Type::Double:
-      return "double";
-    default:
-      return "str";
-  }
-}
 
 double clampLimit(double v)
 {
@@ -42,6 +28,21 @@ dynamic_reconfigure::GroupState defaultGroup()
   return g;
 }
 }  // namespace
+
+const char* reconfigureTypeName(ParamValue::Type t)
+{
+  switch (t)
+  {
+    case ParamValue::Type::Bool:
+      return "bool";
+    case ParamValue::Type::Int:
+      return "int";
+    case ParamValue::Type::Double:
+      return "double";
+    default:
+      return "str";
+  }
+}
 
 LayerReconfigure::LayerReconfigure(ros::NodeHandle layer_nh, std::shared_ptr<costmap_layers::Layer> layer,
                                    ParamValue params, RunLocked run_locked)
@@ -116,7 +117,7 @@ dynamic_reconfigure::ConfigDescription LayerReconfigure::describe(const std::vec
   {
     dynamic_reconfigure::ParamDescription p;
     p.name = s.name;
-    p.type = typeName(s.type);
+    p.type = reconfigureTypeName(s.type);
     p.level = 0;
     p.description = s.choices.empty() ? s.name
                                       : s.name + " (one of: " +

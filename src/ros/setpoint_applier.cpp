@@ -1,5 +1,7 @@
 #include "costmap_layers/ros/setpoint_applier.hpp"
 
+#include "costmap_layers/ros/layer_reconfigure.hpp"
+
 #include <dynamic_reconfigure/Reconfigure.h>
 #include <ros/topic.h>
 
@@ -39,21 +41,6 @@ bool sameValue(const ParamValue& a, const ParamValue& b)
   if (a.type() == ParamValue::Type::Bool) return a.asBool() == b.asBool();
   if (a.type() == ParamValue::Type::String) return a.asString() == b.asString();
   return false;
-}
-
-const char* typeWord(ParamValue::Type t)
-{
-  switch (t)
-  {
-    case ParamValue::Type::Bool:
-      return "bool";
-    case ParamValue::Type::Int:
-      return "int";
-    case ParamValue::Type::Double:
-      return "double";
-    default:
-      return "str";
-  }
 }
 
 std::string show(const Setpoint& s)
@@ -156,7 +143,7 @@ std::string SetpointApplier::checkAgainst(const Setpoint& s, const dynamic_recon
       if (p.name == s.parameter) found = &p;
     }
   if (!found) return "the server has no parameter '" + s.parameter + "' (it has: " + names + ")";
-  const std::string want = typeWord(s.value.type());
+  const std::string want = reconfigureTypeName(s.value.type());
   if (found->type != want)
     return "the server's '" + s.parameter + "' is of type " + found->type + ", the value is of type " + want +
            (found->type == "double" && want == "int" ? " (write 1.0, not 1)" : "");

@@ -129,6 +129,8 @@ public:
   static void walkLine(ActionType&& at, int x0, int y0, int x1, int y1);
 
 private:
+  /// Size, resolution, origin and default value of other (not the cells).
+  void copyGeometry(const Costmap2D& other);
   template <class ActionType>
   static void bresenham(ActionType& at, unsigned int abs_da, unsigned int abs_db, int error_b, int offset_a,
                         int offset_b, unsigned int offset, unsigned int max_length);

@@ -18,6 +18,9 @@
 
 namespace costmap_layers_ros
 {
+/// dynamic_reconfigure's name of a parameter type: "bool", "int", "double" or "str".
+const char* reconfigureTypeName(costmap_layers::ParamValue::Type t);
+
 class LayerReconfigure
 {
 public:
