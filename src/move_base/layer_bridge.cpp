@@ -138,16 +138,15 @@ void LayerBridge::updateBounds(double robot_x, double robot_y, double robot_yaw,
 void LayerBridge::updateCosts(costmap_2d::Costmap2D& master_grid, int min_i, int min_j, int max_i, int max_j)
 {
   if (!core_->enabled()) return;
-  costmap_layers::Costmap2D& master = host_->getCostmap();
-  if (master.data() != master_grid.getCharMap() || master.getSizeInCellsX() != master_grid.getSizeInCellsX() ||
-      master.getSizeInCellsY() != master_grid.getSizeInCellsY())
+  if (&master_grid != layered_costmap_->getCostmap())
   {
     // Not the grid this plugin belongs to (costmap_2d always passes its own): refuse rather than write
-    // through a view of other memory.
+    // into memory the view does not describe.
     ROS_ERROR_THROTTLE(5.0, "%s: updateCosts on a grid that is not the costmap's own master, skipped", name_.c_str());
     return;
   }
-  core_->updateCosts(master, min_i, min_j, max_i, max_j);
+  viewMaster();  // the master may have been resized since updateBounds
+  core_->updateCosts(host_->getCostmap(), min_i, min_j, max_i, max_j);
 }
 
 void LayerBridge::matchSize()
