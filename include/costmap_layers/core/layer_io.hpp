@@ -88,8 +88,8 @@ enum class OutputKind
 {
   MaxSpeed,    ///< costmap_layers/MaxSpeed, latched: the speed limit in force [m/s] (0 = none)
   SpeedLimit,  ///< costmap_layers/Nav2SpeedLimit (Nav2's SpeedLimit fields): percentage + speed_limit
-  ZoneState,    ///< std_msgs/UInt8, latched: the id of the zone state in force (Nav2's state event)
-  Setpoints,    ///< parameters of other nodes to set through their dynamic_reconfigure servers (no topic)
+  ZoneState,   ///< std_msgs/UInt8, latched: the id of the zone state in force (Nav2's state event)
+  Setpoints,   ///< parameters of other nodes to set through their dynamic_reconfigure servers (no topic)
   BinaryState  ///< std_msgs/Bool, latched: a BinaryFilter's state (OutputEvent::state)
 };
 
@@ -123,7 +123,7 @@ struct OutputEvent
   /// name, for messages).
   std::vector<Setpoint> setpoints;
   std::string label;
-  bool state = false;       ///< BinaryState only
+  bool state = false;  ///< BinaryState only
 };
 using OutputListener = std::function<void(const OutputEvent&)>;
 }  // namespace costmap_layers
