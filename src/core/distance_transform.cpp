@@ -20,12 +20,13 @@ namespace dt
 /// Widest vector of any target, in bytes: the padding on both sides of a row.
 constexpr int kMaxLanes = 64;
 /// Up to this reach the row pass works in the cost domain with 16-entry byte tables: per column offset,
-/// kTablesPerOffset(reach) tables of 15 vertical distances each (and a 0 in entry 15).
+/// tablesPerOffset(reach) tables of 16 vertical distances each.
 constexpr int kMaxCostDomainReach = 59;
-/// Tables per column offset: vertical distances 15 k .. 15 k + 14 in table k.
+/// Tables per column offset: vertical distances 16 k .. 16 k + 15 in table k, for distances up to
+/// reach + 1 (the saturated "far", which costs 0).
 constexpr int tablesPerOffset(int reach)
 {
-  return (reach + 15) / 15;
+  return (reach + 1) / 16 + 1;
 }
 /// Up to this reach vertical distances are bytes and squared distances 16 bits.
 constexpr int kMaxBandedReach = 254;
@@ -52,6 +53,8 @@ struct Job
   uint16_t* sq;    ///< reach > kMaxCostDomainReach: squared vertical distances, row_stride entries
   uint16_t* acc;   ///< reach > kMaxCostDomainReach: one block of squared distances
   uint8_t* costs;  ///< reach > kMaxCostDomainReach: one block of costs
+  uint8_t* bands;  ///< cost domain, more than one table per offset: the row's vertical distances by table
+                   ///< (tablesPerOffset(cap) rows of row_stride bytes, padded as the stripe rows)
 };
 }  // namespace dt
 }  // namespace costmap_layers
@@ -170,60 +173,89 @@ HWY_INLINE bool anyNear(D d, const uint8_t* g, int cap, uint8_t far)
   return !hn::AllTrue(d, hn::Eq(near, hn::Set(d, far)));
 }
 
-/// One 16-entry table lookup (indices 0..15) of each lane.
+/// One 16-entry table lookup of each lane; an index with its top bit set gives 0.
 template <class D, class V>
 HWY_INLINE V lookup16(D d, const uint8_t* table, V idx)
 {
 #if HWY_TARGET == HWY_SCALAR
-  return hn::Set(d, table[hn::GetLane(idx)]);
+  const uint8_t i = hn::GetLane(idx);
+  return hn::Set(d, i >= 0x80 ? uint8_t{0} : table[i & 15]);
 #else
-  return hn::TableLookupBytes(hn::LoadDup128(d, table), idx);
+  return hn::TableLookupBytesOr0(hn::LoadDup128(d, table), idx);
 #endif
 }
 
-/// The cost of vertical distances v at column offset dx, from the K tables of that offset: table k
-/// holds the costs of v = 15 k + j in entry j < 15 and 0 in entry 15. Lane v takes the maximum over
-/// the tables of entry min(v -sat 15 k, 15): exactly its cost from table v / 15, 0 from the tables
-/// below it (entry 15), and from the tables above it entry 0, the cost of a larger distance, which is
-/// no higher (the costs do not increase with the distance).
-template <int K, class D, class V>
-HWY_INLINE V offsetCost(D d, const uint8_t* tables, int dx, V v)
+/// Splits vertical distances into the K tables' indices: band k of v is v - 16 k where v is in
+/// [16 k, 16 k + 15], else 0x80 (which looks up 0). The minimum of two sides' bands k is the band k of
+/// the nearer side when it is in band k, else of the farther one, whose cost is no higher: so the
+/// maximum over k of the bands' costs is the cost of the nearer side.
+HWY_INLINE void splitBands(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRICT bands, int from, int to,
+                           std::ptrdiff_t band_stride, int K)
+{
+  const hn::ScalableTag<uint8_t> d;
+  const int N = static_cast<int>(hn::Lanes(d));
+  const auto fifteen = hn::Set(d, 15), none = hn::Set(d, 0x80);
+  for (int k = 0; k < K; ++k)
+  {
+    uint8_t* out = bands + k * band_stride;
+    const auto base = hn::Set(d, static_cast<uint8_t>(16 * k));
+    for (int x = from; x < to; x += N)
+    {
+      const auto v = hn::LoadU(d, g + x);
+      const auto rel = hn::Sub(v, base);
+      const auto in_band = hn::And(hn::Eq(hn::Max(v, base), v), hn::Eq(hn::Min(rel, fifteen), rel));
+      hn::StoreU(hn::IfThenElse(in_band, rel, none), d, out + x);
+    }
+  }
+}
+
+/// The cost of the nearer side at column offset dx (the K tables of that offset; K = 1 reads the
+/// vertical distances themselves, which are then at most 15).
+template <int K, class D>
+HWY_INLINE hn::Vec<D> offsetCost(D d, const uint8_t* tables, const uint8_t* g, const uint8_t* bands,
+                                 std::ptrdiff_t band_stride, int dx)
 {
   const uint8_t* t = tables + 16 * K * dx;
-  if (K == 1) return lookup16(d, t, v);  // v <= reach + 1 <= 15
-  const auto fifteen = hn::Set(d, 15);
-  auto c = lookup16(d, t, hn::Min(v, fifteen));
+  if (K == 1) return lookup16(d, t, hn::Min(hn::LoadU(d, g - dx), hn::LoadU(d, g + dx)));
+  auto c = lookup16(d, t, hn::Min(hn::LoadU(d, bands - dx), hn::LoadU(d, bands + dx)));
   for (int k = 1; k < K; ++k)
-    c = hn::Max(
-        c, lookup16(d, t + 16 * k, hn::Min(hn::SaturatedSub(v, hn::Set(d, static_cast<uint8_t>(15 * k))), fifteen)));
+  {
+    const uint8_t* b = bands + k * band_stride;
+    c = hn::Max(c, lookup16(d, t + 16 * k, hn::Min(hn::LoadU(d, b - dx), hn::LoadU(d, b + dx))));
+  }
   return c;
 }
 
 /// Row pass in the cost domain (reach <= kMaxCostDomainReach): c = max over dx of
-/// cost(dx^2 + min(g[x - dx], g[x + dx])^2), merged into out. g is readable on [-pad, n + pad).
+/// cost(dx^2 + min(g[x - dx], g[x + dx])^2), merged into out. g (and bands, for K > 1) is readable on
+/// [-pad, n + pad).
 template <int K>
-HWY_INLINE void rowPassCost8(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRICT out, int n, const dt::Job& j)
+HWY_INLINE void rowPassCost8(const uint8_t* HWY_RESTRICT g, const uint8_t* bands, uint8_t* HWY_RESTRICT out, int n,
+                             const dt::Job& j)
 {
   const hn::ScalableTag<uint8_t> d;
   const int N = static_cast<int>(hn::Lanes(d));
   const int cap = j.cap;
   const uint8_t far = static_cast<uint8_t>(cap + 1);
   const uint8_t* tables = j.offset_tables;
+  const std::ptrdiff_t bs = j.row_stride;
+  if (K > 1) splitBands(g, const_cast<uint8_t*>(bands), -cap, n + cap + N, bs, K);
   for (int x = 0; x < n; x += N)
   {
     const uint8_t* gx = g + x;
     if (!anyNear(d, gx, cap, far)) continue;
+    const uint8_t* bx = bands + x;
     // Two accumulators: two shorter dependency chains of maxima.
-    auto c0 = offsetCost<K>(d, tables, 0, hn::LoadU(d, gx));
+    auto c0 = offsetCost<K>(d, tables, gx, bx, bs, 0);
     auto c1 = hn::Zero(d);
     int dx = 1;
     for (; dx < cap; dx += 2)
     {
-      c1 = hn::Max(c1, offsetCost<K>(d, tables, dx, hn::Min(hn::LoadU(d, gx - dx), hn::LoadU(d, gx + dx))));
+      c1 = hn::Max(c1, offsetCost<K>(d, tables, gx, bx, bs, dx));
       const int e = dx + 1;
-      c0 = hn::Max(c0, offsetCost<K>(d, tables, e, hn::Min(hn::LoadU(d, gx - e), hn::LoadU(d, gx + e))));
-      // No further offset gives more than the cost of (e + 1)^2 (its entry 0): once every lane has
-      // that much, stop.
+      c0 = hn::Max(c0, offsetCost<K>(d, tables, gx, bx, bs, e));
+      // No further offset gives more than the cost of (e + 1)^2 (entry 0 of its first table): once
+      // every lane has that much, stop.
       if (K > 1 && (dx & 3) == 3 && e < cap)
       {
         const auto c = hn::Max(c0, c1);
@@ -235,8 +267,7 @@ HWY_INLINE void rowPassCost8(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRIC
         }
       }
     }
-    if (dx == cap)
-      c1 = hn::Max(c1, offsetCost<K>(d, tables, dx, hn::Min(hn::LoadU(d, gx - dx), hn::LoadU(d, gx + dx))));
+    if (dx == cap) c1 = hn::Max(c1, offsetCost<K>(d, tables, gx, bx, bs, dx));
     mergeStore(d, hn::Max(c0, c1), out + x, std::min(N, n - x), j.rule);
   }
 }
@@ -384,7 +415,7 @@ void runJob(const dt::Job& j)
       else
         out = j.target + y * j.target_stride + win.x0;
       if (K > 0)
-        rowPassCost8<(K > 0 ? K : 1)>(gr + j.pad, out, n, j);
+        rowPassCost8<(K > 0 ? K : 1)>(gr + j.pad, j.bands + j.pad, out, n, j);
       else
         rowPassSq16(gr + j.pad, out, n, j);
       if (j.sink != nullptr) (*j.sink)(y, j.out_row);
@@ -482,9 +513,9 @@ DistanceCosts::DistanceCosts(int64_t max_cells, const std::function<uint8_t(uint
     offset_tables_.assign(static_cast<std::size_t>(16 * k_count * (reach_ + 1)), 0);
     for (int64_t dx = 0; dx <= reach_; ++dx)
       for (int64_t k = 0; k < k_count; ++k)
-        for (int64_t j = 0; j < 15; ++j)
+        for (int64_t j = 0; j < 16; ++j)
         {
-          const int64_t v = 15 * k + j;
+          const int64_t v = 16 * k + j;
           offset_tables_[static_cast<std::size_t>(16 * (k_count * dx + k) + j)] =
               at(static_cast<uint64_t>(dx * dx + v * v));
         }
@@ -503,6 +534,7 @@ uint8_t DistanceCosts::at(uint64_t d2) const
 struct DistanceTransformScratch::Buffers
 {
   std::vector<uint8_t> rows;  // stripe rows (+ alignment)
+  std::vector<uint8_t> bands;
   std::vector<uint8_t> run, up, out_row, costs;
   std::vector<uint16_t> sq, acc;
   std::vector<const uint8_t*> src_rows;
@@ -575,6 +607,12 @@ void runBand(const Call& c, int b0, int b1, DistanceTransformScratch::Buffers& b
   grow(b.up, static_cast<std::size_t>(cw));
   j.run = b.run.data();
   j.up = b.up.data();
+  if (cap <= dt::kMaxCostDomainReach && dt::tablesPerOffset(cap) > 1)
+  {
+    grow(b.bands,
+         static_cast<std::size_t>(dt::tablesPerOffset(cap)) * static_cast<std::size_t>(j.row_stride) + dt::kMaxLanes);
+    j.bands = b.bands.data();
+  }
   if (cap > dt::kMaxCostDomainReach)
   {
     grow(b.sq, static_cast<std::size_t>(j.row_stride + dt::kMaxLanes));

@@ -131,8 +131,11 @@ void LayeredCostmap::updateMap(double robot_x, double robot_y, double robot_yaw)
   yn = std::min(static_cast<int>(primary_.getSizeInCellsY()), yn + 1);
   if (xn <= x0 || yn <= y0) return;
 
-  primary_.resetMap(static_cast<unsigned>(x0), static_cast<unsigned>(y0), static_cast<unsigned>(xn),
-                    static_cast<unsigned>(yn));
+  // The window starts from the default value, unless the first layer writes all of it anyway.
+  const auto first = std::find_if(plugins_.begin(), plugins_.end(), [](const auto& l) { return l->enabled(); });
+  if (first == plugins_.end() || !(*first)->overwritesWindow(primary_, x0, y0, xn, yn))
+    primary_.resetMap(static_cast<unsigned>(x0), static_cast<unsigned>(y0), static_cast<unsigned>(xn),
+                      static_cast<unsigned>(yn));
   for (const auto& layer : plugins_)
   {
     if (layer->enabled()) layer->updateCosts(primary_, x0, y0, xn, yn);

@@ -339,6 +339,14 @@ void StaticLayer::updateBounds(double, double, double, double* min_x, double* mi
   }
 }
 
+bool StaticLayer::overwritesWindow(const Costmap2D& master_grid, int min_i, int min_j, int max_i, int max_j) const
+{
+  (void)min_i, (void)min_j, (void)max_i, (void)max_j;  // the copy covers the whole master
+  return map_received_ && enabled_ && !layered_costmap_->isRolling() && !config_.use_maximum &&
+         costmap_.getSizeInCellsX() == master_grid.getSizeInCellsX() &&
+         costmap_.getSizeInCellsY() == master_grid.getSizeInCellsY();
+}
+
 void StaticLayer::updateCosts(Costmap2D& master_grid, int min_i, int min_j, int max_i, int max_j)
 {
   if (!map_received_ || !enabled_) return;

@@ -201,13 +201,13 @@ TEST_P(Engine, SweepRadiiAndResolutionsEqualBruteForce)
       }
 }
 
-// The switches between the engine's paths: reach 14 / 15 / 29 / 30 / 44 / 45 (one to four tables per
-// offset in the cost domain), 59 / 60 (cost domain / 16-bit) and 254 / 255 (16-bit /
-// envelope), a flat cost so that the reach is exactly the cap.
+// The switches between the engine's paths: reach 14 / 15 / 30 / 31 / 46 / 47 (one to four tables per
+// offset in the cost domain: bands of 16 vertical distances up to reach + 1), 59 / 60 (cost domain /
+// 16-bit) and 254 / 255 (16-bit / envelope), a flat cost so that the reach is exactly the cap.
 TEST_P(Engine, PathBoundariesEqualBruteForce)
 {
   std::mt19937 rng(seed(21));
-  for (const int64_t cap : {0, 1, 2, 13, 14, 15, 16, 29, 30, 44, 45, 59, 60, 253, 254, 255, 300})
+  for (const int64_t cap : {0, 1, 2, 13, 14, 15, 16, 29, 30, 31, 32, 44, 45, 46, 47, 48, 59, 60, 253, 254, 255, 300})
   {
     const int w = cap > 100 ? 300 : 97, h = cap > 100 ? 260 : 61;
     const auto grid = randomGrid(rng, static_cast<std::size_t>(w) * h, cap > 100 ? 0.00005 : 0.01);

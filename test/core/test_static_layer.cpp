@@ -238,6 +238,41 @@ TEST(StaticLayer, UseMaximum)
   }
 }
 
+// The host skips resetting the window when the first layer is a static layer that overwrites it all
+// (costmap_2d's true overwrite): the master then holds exactly the map, whatever it held before; when
+// the static layer does not overwrite (use_maximum, disabled, no map yet, not first), the window is
+// reset to the default value first, as always.
+TEST(StaticLayer, FirstOverwritingLayerMakesTheResetNeedless)
+{
+  for (int variant = 0; variant < 4; ++variant)
+  {
+    const bool use_max = variant == 1, disabled = variant == 2, no_map = variant == 3;
+    Rig rig(params({{"use_maximum", ParamValue::makeBool(use_max)}}), false, false);
+    OccupancyGridData m = makeMap(10, 10, 1.0, 0.0, 0.0);
+    setCell(m, 2, 3, 100);
+    if (!no_map) rig.publish(m);
+    rig.update();
+    if (disabled) rig.layer->setEnabled(false);
+    // Scribble over the master, then ask for a whole redraw.
+    Costmap2D& master = rig.lc.getCostmap();
+    for (unsigned y = 0; y < master.getSizeInCellsY(); ++y)
+      for (unsigned x = 0; x < master.getSizeInCellsX(); ++x)
+        master.setCost(x, y, 77);
+    rig.lc.requestFullUpdate();
+    rig.update();
+    const std::string what = "variant " + std::to_string(variant);
+    ASSERT_FALSE(rig.lc.getUpdatedBounds().empty()) << what;
+    for (unsigned y = 0; y < 10; ++y)
+      for (unsigned x = 0; x < 10; ++x)
+      {
+        const uint8_t expected = (!no_map && !disabled && x == 2 && y == 3) ? LETHAL_OBSTACLE : FREE_SPACE;
+        ASSERT_EQ(rig.at(x, y), expected) << what << " cell " << x << "," << y;
+      }
+    const bool overwrites = rig.layer->overwritesWindow(master, 0, 0, 10, 10);
+    EXPECT_EQ(overwrites, variant == 0) << what;
+  }
+}
+
 TEST(StaticLayer, NewMapReplacesOldOneAndFirstMapOnly)
 {
   for (bool first_only : {false, true})

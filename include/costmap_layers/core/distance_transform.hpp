@@ -10,10 +10,10 @@
 //    rows (the grid is read forward, once, plus reach rows of lookahead per stripe);
 //  - a row pass per row: the lower envelope of the parabolas dx^2 + g(x + dx)^2 over the columns
 //    within reach, as a min-plus over the column offsets -- in the cost domain, one to four 16-entry
-//    byte lookups per offset, for a reach up to 59 cells (cost(min d2) = max cost since the table does
-//    not increase), in 16-bit squared distances up to 254 cells, and with the scalar envelope of
-//    Meijster, Roerdink and Hesselink beyond; blocks of cells with no source within reach are skipped,
-//    and a block stops early once no further offset can raise any of its costs;
+//    byte lookups per offset (the row's vertical distances split once into bands of 16), for a reach
+//    up to 59 cells (cost(min d2) = max cost since the table does not increase), in 16-bit squared distances up to 254
+//    cells, and with the scalar envelope of Meijster, Roerdink and Hesselink beyond; blocks of cells with no source
+//    within reach are skipped, and a block stops early once no further offset can raise any of its costs;
 //  - the cost table lookup and the merge rule.
 // The SIMD kernels are written once with Highway and compiled for every target Highway attains
 // (simd_targets.hpp lists and switches them); the dispatcher is Highway's.
@@ -61,9 +61,9 @@ public:
   /// The cost at squared distance d2 (0 beyond the reach).
   uint8_t at(uint64_t d2) const;
 
-  /// For the engine (reach <= 59): per column offset dx in [0, reach], ceil((reach + 1) / 15) tables of
-  /// 16 bytes, table k holding the costs of dx^2 + v^2 for v = 15 k .. 15 k + 14 and 0; and (reach <=
-  /// 254) the cost of every 16-bit squared distance.
+  /// For the engine (reach <= 59): per column offset dx in [0, reach], (reach + 1) / 16 + 1 tables of
+  /// 16 bytes, table k holding the costs of dx^2 + v^2 for v = 16 k .. 16 k + 15; and (reach <= 254)
+  /// the cost of every 16-bit squared distance.
   const uint8_t* offsetTables() const { return offset_tables_.data(); }
   const uint8_t* table16() const { return table16_.data(); }
 

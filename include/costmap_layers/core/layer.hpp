@@ -55,6 +55,14 @@ public:
                             double* max_x, double* max_y) = 0;
   /// Writes into master inside [min_i, max_i) x [min_j, max_j) [cells].
   virtual void updateCosts(Costmap2D& master_grid, int min_i, int min_j, int max_i, int max_j) = 0;
+  /// Whether the next updateCosts() with this window writes every cell of it without reading master
+  /// (the host then skips resetting the window before the first layer). Asked on the update thread,
+  /// right before updateCosts(). The default: no.
+  virtual bool overwritesWindow(const Costmap2D& master_grid, int min_i, int min_j, int max_i, int max_j) const
+  {
+    (void)master_grid, (void)min_i, (void)min_j, (void)max_i, (void)max_j;
+    return false;
+  }
   /// Called when the master grid's size, resolution or origin changed.
   virtual void matchSize() {}
   /// Called when LayeredCostmap::setFootprint() changed the footprint.

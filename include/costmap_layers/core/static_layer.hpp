@@ -46,6 +46,9 @@ public:
   void updateBounds(double robot_x, double robot_y, double robot_yaw, double* min_x, double* min_y, double* max_x,
                     double* max_y) override;
   void updateCosts(Costmap2D& master_grid, int min_i, int min_j, int max_i, int max_j) override;
+  /// True when the map is in, the costmap does not roll and use_maximum is off: updateCosts() then
+  /// copies its own grid (of the master's size) over the whole window, as costmap_2d's true overwrite.
+  bool overwritesWindow(const Costmap2D& master_grid, int min_i, int min_j, int max_i, int max_j) const override;
   /// Not rolling: follows the master (keeping the map when the geometry is unchanged). Rolling: the own
   /// grid is the map's and stays.
   void matchSize() override;
