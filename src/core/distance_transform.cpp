@@ -48,13 +48,14 @@ struct Job
   uint8_t* out_row;         ///< sink mode: one window row
   uint8_t* rows;            ///< stripe rows, row_stride bytes each; window column 0 at offset pad
   int row_stride, pad, stripe;
-  uint8_t* run;    ///< band width
-  uint8_t* up;     ///< band width
-  uint16_t* sq;    ///< reach > kMaxCostDomainReach: squared vertical distances, row_stride entries
-  uint16_t* acc;   ///< reach > kMaxCostDomainReach: one block of squared distances
-  uint8_t* costs;  ///< reach > kMaxCostDomainReach: one block of costs
-  uint8_t* bands;  ///< cost domain, more than one table per offset: the row's vertical distances by table
-                   ///< (tablesPerOffset(cap) rows of row_stride bytes, padded as the stripe rows)
+  uint8_t* run;             ///< band width
+  uint8_t* up;              ///< band width
+  uint16_t* sq;             ///< reach > kMaxCostDomainReach: squared vertical distances, row_stride entries
+  uint16_t* acc;            ///< reach > kMaxCostDomainReach: one block of squared distances
+  uint8_t* costs;           ///< reach > kMaxCostDomainReach: one block of costs
+  const uint16_t* squares;  ///< 16-bit path: dx^2 eight times for each dx in [0, cap]
+  uint8_t* bands;           ///< cost domain, more than one table per offset: the row's vertical distances by table
+                            ///< (tablesPerOffset(cap) rows of row_stride bytes, padded as the stripe rows)
 };
 }  // namespace dt
 }  // namespace costmap_layers
@@ -239,12 +240,20 @@ HWY_INLINE void rowPassCost8(const uint8_t* HWY_RESTRICT g, const uint8_t* bands
   const uint8_t far = static_cast<uint8_t>(cap + 1);
   const uint8_t* tables = j.offset_tables;
   const std::ptrdiff_t bs = j.row_stride;
+  const auto special = hn::Set(d, j.rule.special);
   if (K > 1) splitBands(g, const_cast<uint8_t*>(bands), -cap, n + cap + N, bs, K);
   for (int x = 0; x < n; x += N)
   {
     const uint8_t* gx = g + x;
     if (!anyNear(d, gx, cap, far)) continue;
     const uint8_t* bx = bands + x;
+    // What the merge keeps whatever the cost: a cell ends at max(old, cost), so old is a floor for
+    // the stop below; a special cell only takes a cost from special_threshold on. (The last, partial
+    // block of a row takes no floor.)
+    const bool whole = x + N <= n;
+    const auto old = whole ? hn::LoadU(d, out + x) : hn::Zero(d);
+    const auto is_special = whole ? hn::Eq(old, special) : hn::FirstN(d, 0);
+    const auto floor = hn::IfThenZeroElse(is_special, old);
     // Two accumulators: two shorter dependency chains of maxima.
     auto c0 = offsetCost<K>(d, tables, gx, bx, bs, 0);
     auto c1 = hn::Zero(d);
@@ -255,12 +264,15 @@ HWY_INLINE void rowPassCost8(const uint8_t* HWY_RESTRICT g, const uint8_t* bands
       const int e = dx + 1;
       c0 = hn::Max(c0, offsetCost<K>(d, tables, gx, bx, bs, e));
       // No further offset gives more than the cost of (e + 1)^2 (entry 0 of its first table): once
-      // every lane has that much, stop.
-      if (K > 1 && (dx & 3) == 3 && e < cap)
+      // every lane has that much (or its floor does; or, for a special cell, once that cost is below
+      // special_threshold), stop.
+      if ((dx & 3) == 3 && e < cap)
       {
-        const auto c = hn::Max(c0, c1);
-        const auto bound = hn::Set(d, tables[16 * K * (e + 1)]);
-        if (hn::AllTrue(d, hn::Eq(hn::Max(c, bound), c)))
+        const uint8_t top = tables[16 * K * (e + 1)];
+        const auto kept = hn::Max(hn::Max(c0, c1), floor);
+        auto done = hn::Eq(hn::Max(kept, hn::Set(d, top)), kept);
+        if (top < j.rule.special_threshold) done = hn::Or(done, is_special);
+        if (hn::AllTrue(d, done))
         {
           dx = cap + 1;
           break;
@@ -292,7 +304,10 @@ HWY_INLINE void rowPassSq16(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRICT
   const uint16_t far_sq = static_cast<uint16_t>(far * far);
   const uint8_t* table = j.table16;
   uint16_t* HWY_RESTRICT acc_buf = j.acc;
+  // dx^2 in every lane: a load (a broadcast from a register would compete with the arithmetic).
+  auto square = [&](int dx) { return hn::LoadDup128(d16, j.squares + 8 * dx); };
   uint8_t* HWY_RESTRICT cost_buf = j.costs;
+  const auto special = hn::Set(d16, j.rule.special);
   for (int x = 0; x < n; x += N)
   {
     // Skip a block with no source within reach (a whole byte vector of blocks at a time would need
@@ -308,28 +323,36 @@ HWY_INLINE void rowPassSq16(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRICT
       }
       if (hn::AllTrue(d16, hn::Eq(near, hn::Set(d16, far_sq)))) continue;
     }
+    // The merge's floor, as in rowPassCost8 (the last, partial block takes none).
+    const bool whole = x + N <= n;
+    const auto old = hn::PromoteTo(d16, whole ? hn::LoadU(d8, out + x) : hn::Zero(d8));
+    const auto is_special = whole ? hn::Eq(old, special) : hn::FirstN(d16, 0);
+    const auto floor = hn::IfThenZeroElse(is_special, old);
     auto a0 = hn::LoadU(d16, sx);
     auto a1 = a0;
     int dx = 1;
     for (; dx + 1 <= cap; dx += 2)
     {
       const auto m0 = hn::Min(hn::LoadU(d16, sx - dx), hn::LoadU(d16, sx + dx));
-      a0 = hn::Min(a0, hn::SaturatedAdd(m0, hn::Set(d16, static_cast<uint16_t>(dx * dx))));
+      a0 = hn::Min(a0, hn::SaturatedAdd(m0, square(dx)));
       const int e = dx + 1;
       const auto m1 = hn::Min(hn::LoadU(d16, sx - e), hn::LoadU(d16, sx + e));
-      a1 = hn::Min(a1, hn::SaturatedAdd(m1, hn::Set(d16, static_cast<uint16_t>(e * e))));
-      // Every further offset adds more than (e + 1)^2 - 1 >= e^2: once no lane exceeds that, stop.
+      a1 = hn::Min(a1, hn::SaturatedAdd(m1, square(e)));
+      // Every further offset adds at least (e + 1)^2 > e^2, so costs at most top: once each lane has
+      // its distance (at most e^2), or a floor of top, or (special) top is below special_threshold, stop.
       if ((dx & 7) == 7)
       {
         const auto a = hn::Min(a0, a1);
-        const auto bound = hn::Set(d16, static_cast<uint16_t>(e * e));
-        if (hn::AllTrue(d16, hn::Eq(hn::Min(a, bound), a))) break;
+        const uint8_t top = table[(e + 1) * (e + 1)];
+        auto done = hn::Or(hn::Eq(hn::Min(a, square(e)), a), hn::Eq(hn::Max(floor, hn::Set(d16, top)), floor));
+        if (top < j.rule.special_threshold) done = hn::Or(done, is_special);
+        if (hn::AllTrue(d16, done)) break;
       }
     }
     if (dx == cap)
     {
       const auto m0 = hn::Min(hn::LoadU(d16, sx - dx), hn::LoadU(d16, sx + dx));
-      a0 = hn::Min(a0, hn::SaturatedAdd(m0, hn::Set(d16, static_cast<uint16_t>(dx * dx))));
+      a0 = hn::Min(a0, hn::SaturatedAdd(m0, square(dx)));
     }
     hn::StoreU(hn::Min(a0, a1), d16, acc_buf);
     for (int i = 0; i < N; ++i)
@@ -536,7 +559,7 @@ struct DistanceTransformScratch::Buffers
   std::vector<uint8_t> rows;  // stripe rows (+ alignment)
   std::vector<uint8_t> bands;
   std::vector<uint8_t> run, up, out_row, costs;
-  std::vector<uint16_t> sq, acc;
+  std::vector<uint16_t> sq, acc, squares;
   std::vector<const uint8_t*> src_rows;
   std::vector<uint8_t> snapshot;  // other bands' rows (threads)
   std::vector<uint32_t> exact;    // the envelope path: vertical distances of the padded window
@@ -619,6 +642,10 @@ void runBand(const Call& c, int b0, int b1, DistanceTransformScratch::Buffers& b
     grow(b.acc, static_cast<std::size_t>(dt::kMaxLanes));
     grow(b.costs, static_cast<std::size_t>(dt::kMaxLanes));
     j.sq = b.sq.data();
+    grow(b.squares, static_cast<std::size_t>(8 * (cap + 1)));
+    for (int dx = 0; dx <= cap; ++dx)
+      std::fill_n(b.squares.begin() + 8 * dx, 8, static_cast<uint16_t>(dx * dx));
+    j.squares = b.squares.data();
     j.acc = b.acc.data();
     j.costs = b.costs.data();
   }
