@@ -266,7 +266,8 @@ HWY_INLINE void rowPassCost8(const uint8_t* HWY_RESTRICT g, const uint8_t* bands
       // No further offset gives more than the cost of (e + 1)^2 (entry 0 of its first table): once
       // every lane has that much (or its floor does; or, for a special cell, once that cost is below
       // special_threshold), stop.
-      if ((dx & 3) == 3 && e < cap)
+      // (With one table the reach is at most 14: checking costs more than it saves.)
+      if (K > 1 && (dx & 3) == 3 && e < cap)
       {
         const uint8_t top = tables[16 * K * (e + 1)];
         const auto kept = hn::Max(hn::Max(c0, c1), floor);
