@@ -11,9 +11,12 @@
 //  - a row pass per row: the lower envelope of the parabolas dx^2 + g(x + dx)^2 over the columns
 //    within reach, as a min-plus over the column offsets -- in the cost domain, one to four 16-entry
 //    byte lookups per offset (the row's vertical distances split once into bands of 16), for a reach
-//    up to 59 cells (cost(min d2) = max cost since the table does not increase), in 16-bit squared distances up to 254
-//    cells, and with the scalar envelope of Meijster, Roerdink and Hesselink beyond; blocks of cells with no source
-//    within reach are skipped, and a block stops early once no further offset can raise any of its costs;
+//    up to 59 cells (cost(min d2) = max cost since the table does not increase), in 16-bit squared
+//    distances up to 254 cells, and with the scalar envelope of Meijster, Roerdink and Hesselink
+//    beyond. Blocks of cells with no source within reach are skipped, and a block stops early once no
+//    further offset can change any of its results: a cell's cost is final, or (merging) what the cell
+//    holds already is at least what any further offset could give, or a special cell can no longer
+//    reach special_threshold;
 //  - the cost table lookup and the merge rule.
 // The SIMD kernels are written once with Highway and compiled for every target Highway attains
 // (simd_targets.hpp lists and switches them); the dispatcher is Highway's.
