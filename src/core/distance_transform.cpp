@@ -355,13 +355,31 @@ HWY_INLINE void rowPassSq16(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRICT
       const auto m0 = hn::Min(hn::LoadU(d16, sx - dx), hn::LoadU(d16, sx + dx));
       a0 = hn::Min(a0, hn::SaturatedAdd(m0, square(dx)));
     }
+    const int len = std::min(N, n - x);
+    uint8_t* o = out + x;
+#if HWY_TARGET == HWY_SCALAR
     hn::StoreU(hn::Min(a0, a1), d16, acc_buf);
     for (int i = 0; i < N; ++i)
       cost_buf[i] = table[acc_buf[i]];
-    const int len = std::min(N, n - x);
-    uint8_t* o = out + x;
+    const auto costs = hn::LoadU(d8, cost_buf);
+#else
+    // The costs by two gathers of 32-bit words at byte offsets d2 of the table (its low byte is the
+    // cost; the table has 3 bytes of slack past its end).
+    const hn::Half<decltype(d16)> dh;
+    const hn::Rebind<uint32_t, decltype(dh)> d32;
+    const hn::RebindToSigned<decltype(d32)> di32;
+    const hn::Half<decltype(d8)> d8h;
+    const auto a = hn::Min(a0, a1);
+    const auto* words = reinterpret_cast<const uint32_t*>(table);
+    const auto low_byte = hn::Set(d32, 0xFF);
+    const auto lo = hn::GatherOffset(d32, words, hn::BitCast(di32, hn::PromoteTo(d32, hn::LowerHalf(dh, a))));
+    const auto hi = hn::GatherOffset(d32, words, hn::BitCast(di32, hn::PromoteTo(d32, hn::UpperHalf(dh, a))));
+    const auto costs = hn::Combine(d8, hn::DemoteTo(d8h, hn::BitCast(di32, hn::And(hi, low_byte))),
+                                   hn::DemoteTo(d8h, hn::BitCast(di32, hn::And(lo, low_byte))));
+    if (len < N) hn::StoreU(costs, d8, cost_buf);
+#endif
     if (len == N)
-      hn::StoreU(mergeRule(d8, hn::LoadU(d8, o), hn::LoadU(d8, cost_buf), j.rule), d8, o);
+      hn::StoreU(mergeRule(d8, hn::LoadU(d8, o), costs, j.rule), d8, o);
     else
       for (int i = 0; i < len; ++i)
       {
@@ -528,7 +546,7 @@ DistanceCosts::DistanceCosts(int64_t max_cells, const std::function<uint8_t(uint
   }
   if (reach_ <= dt::kMaxBandedReach)
   {
-    table16_.assign(65536, 0);
+    table16_.assign(65536 + 3, 0);  // 3 bytes of slack: the engine gathers 32-bit words
     std::copy(table_.begin(), table_.end(), table16_.begin());
   }
   if (reach_ <= dt::kMaxCostDomainReach)
