@@ -47,7 +47,7 @@ BinaryFilterConfig parseBinaryFilterConfig(const ParamReader& params);
 /// state away from default_state.
 bool binaryState(int v, double base, double multiplier, double flip_threshold, bool default_state);
 
-class BinaryFilter : public CostmapFilter
+class BinaryFilter : public OutputFilter
 {
 public:
   const BinaryFilterConfig& config() const { return config_; }
@@ -60,13 +60,6 @@ protected:
   /// Changes default_state, flip_threshold, base and multiplier at run time (not the topic).
   void onReconfigure(const ParamValue& params) override;
   std::vector<ParamSpec> tunableLayerParameters(const ParamValue& params) const override;
-  /// Writes nothing, so a new mask, a switch or a rolling window asks for no redraw of the costmap.
-  bool drawsCosts() const override { return false; }
-  /// Writes nothing: the binary filter acts through its output only.
-  void process(Costmap2D&, const CellWindow&, const OccupancyGridData&, const GridSampler&, double, double,
-               double) override
-  {
-  }
   void processPose(const OccupancyGridData& mask, const Transform2D& to_mask, double robot_x, double robot_y,
                    double robot_yaw) override;
   /// Switched off or without a mask: default_state.

@@ -155,7 +155,7 @@ struct SpeedLimitIssue
 SpeedLimitTable buildSpeedLimitTable(const SpeedLimitsData& limits, const SpeedFilterConfig& config,
                                      std::vector<SpeedLimitIssue>* issues);
 
-class SpeedFilter : public CostmapFilter
+class SpeedFilter : public OutputFilter
 {
 public:
   const SpeedFilterConfig& config() const { return config_; }
@@ -191,13 +191,6 @@ protected:
   /// mask_mode cannot change); the last features message is re-evaluated.
   void onReconfigure(const ParamValue& params) override;
   std::vector<ParamSpec> tunableLayerParameters(const ParamValue& params) const override;
-  /// Writes nothing, so a new mask (or a switch) asks for no redraw of the costmap.
-  bool drawsCosts() const override { return false; }
-  /// Writes nothing: the speed filter acts through its MaxSpeed output only.
-  void process(Costmap2D&, const CellWindow&, const OccupancyGridData&, const GridSampler&, double, double,
-               double) override
-  {
-  }
   void processPose(const OccupancyGridData& mask, const Transform2D& to_mask, double robot_x, double robot_y,
                    double robot_yaw) override;
   /// Switched off or without a mask: no zone limits the robot, so default_max_speed is in force.

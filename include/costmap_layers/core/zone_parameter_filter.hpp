@@ -81,7 +81,7 @@ int zoneStateFor(std::optional<int> value, int current, const ZoneParameterConfi
 /// The name of state `id` ("nominal" for 0, "" when there is none).
 std::string zoneStateName(const ZoneParameterConfig& config, int id);
 
-class ZoneParameterFilter : public CostmapFilter
+class ZoneParameterFilter : public OutputFilter
 {
 public:
   const ZoneParameterConfig& config() const { return config_; }
@@ -94,13 +94,6 @@ protected:
   void onInitializeFilter(const ParamReader& params) override;
   FilterFamily filterFamily() const override { return FilterFamily::ZoneParameter; }
   void onFilterInfo(const FilterInfoData& info) override;
-  /// Writes nothing, so a new mask, a switch or a rolling window asks for no redraw of the costmap.
-  bool drawsCosts() const override { return false; }
-  /// Writes nothing: the filter acts through its setpoints.
-  void process(Costmap2D&, const CellWindow&, const OccupancyGridData&, const GridSampler&, double, double,
-               double) override
-  {
-  }
   void processPose(const OccupancyGridData& mask, const Transform2D& to_mask, double robot_x, double robot_y,
                    double robot_yaw) override;
   /// Switched off or without a mask: no zone holds, so the nominal defaults are in force.
