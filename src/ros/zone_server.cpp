@@ -4,6 +4,7 @@
 #include <visualization_msgs/InteractiveMarkerControl.h>
 #include <visualization_msgs/Marker.h>
 
+#include <climits>
 #include <cmath>
 #include <stdexcept>
 
@@ -247,7 +248,8 @@ void ZoneServer::onFeedback(const visualization_msgs::InteractiveMarkerFeedbackC
   const std::vector<ZonePoint> old_handles = costmap_layers::zoneHandles(*before);
   const std::string& frame = zones_.layout().frame_id;
   InputError error;
-  if (!f->header.frame_id.empty() && f->header.frame_id != frame)
+  // RViz stamps feedback with the marker's frame: a pose in no frame, or another, cannot be placed.
+  if (f->header.frame_id != frame)
     error = InputError::of("feedback/header.frame_id", "marker feedback for " + f->marker_name + " is in frame '" +
                                                            f->header.frame_id.substr(0, 64) + "', the zones are in '" +
                                                            frame + "'");
@@ -326,10 +328,29 @@ bool ZoneServer::onRemove(costmap_layers::RemoveZoneShape::Request& req, costmap
   return true;
 }
 
+namespace
+{
+/// Why a requested file name cannot be used ("" when it can): no path is longer than PATH_MAX, and a
+/// peer's megabyte name must not come back whole in the answer and the log.
+std::string badFilename(const std::string& name)
+{
+  if (name.size() <= static_cast<std::size_t>(PATH_MAX)) return "";
+  return "filename '" + name.substr(0, 64) + "...' has " + std::to_string(name.size()) + " characters, more than " +
+         std::to_string(PATH_MAX) + " (PATH_MAX)";
+}
+}  // namespace
+
 bool ZoneServer::onSave(costmap_layers::SaveZones::Request& req, costmap_layers::SaveZones::Response& res)
 {
   std::lock_guard<std::mutex> lock(mutex_);
   const std::string path = req.filename.empty() ? options_.yaml_filename : req.filename;
+  if (const std::string why = badFilename(path); !why.empty())
+  {
+    res.success = false;
+    res.message = why;
+    refuse("save", InputError::of("save/filename", why));
+    return true;
+  }
   try
   {
     costmap_layers::io::saveZoneFile(path, zones_.layout());
@@ -352,14 +373,17 @@ bool ZoneServer::onLoad(costmap_layers::LoadZones::Request& req, costmap_layers:
   std::lock_guard<std::mutex> lock(mutex_);
   const std::string path = req.filename.empty() ? options_.yaml_filename : req.filename;
   InputError error;
-  try
-  {
-    error = zones_.replace(costmap_layers::io::loadZoneFile(path));
-  }
-  catch (const std::exception& e)
-  {
-    error = InputError::of("load", e.what());
-  }
+  if (const std::string why = badFilename(path); !why.empty())
+    error = InputError::of("load/filename", why);
+  else
+    try
+    {
+      error = zones_.replace(costmap_layers::io::loadZoneFile(path));
+    }
+    catch (const std::exception& e)
+    {
+      error = InputError::of("load", e.what());
+    }
   res.success = error.ok();
   res.message = error.ok() ? "loaded " + path : error.message;
   if (!error.ok())
