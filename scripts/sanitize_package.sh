@@ -6,6 +6,9 @@
 #   SANITIZE=thread scripts/sanitize_package.sh TSan: the node-level rostests, with the node's
 #                                               callbacks on spinner threads while its update loop runs
 #   ROSTESTS="hostile filters" ...              TSan: only these rostests
+#   ROSTESTS="zone_params zone_server" scripts/sanitize_package.sh
+#                                               ASan + UBSan: these rostests (their nodes instrumented)
+#                                               in place of the unit tests
 # Either run fails when a test fails or when a sanitizer reports anything that test/tsan.supp does
 # not suppress. The reports are kept in build_<kind>/reports/.
 set -euo pipefail
@@ -34,7 +37,7 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:log_path=$REPORTS/ubsan
 export LSAN_OPTIONS="suppressions=$ROOT/test/lsan.supp"
 export TSAN_OPTIONS="suppressions=$ROOT/test/tsan.supp:print_suppressions=1:second_deadlock_stack=1:history_size=4:log_path=$REPORTS/tsan"
 
-if [ "$KIND" = asan ]; then
+if [ "$KIND" = asan ] && [ -z "${ROSTESTS:-}" ]; then
   tests_regex='gtest_test_(core|io|ros)$'
 else
   names="${ROSTESTS:-hostile filters sensors speed_limiter reconfigure plugin_loading}"
