@@ -9,6 +9,8 @@
 #   ROSTESTS="zone_params zone_server" scripts/sanitize_package.sh
 #                                               ASan + UBSan: these rostests (their nodes instrumented)
 #                                               in place of the unit tests
+#   TARGETS="costmap_node costmap_layers_plugins zone_server" ...
+#                                               build only these programs (for the rostests chosen)
 # Either run fails when a test fails or when a sanitizer reports anything that test/tsan.supp does
 # not suppress. The reports are kept in build_<kind>/reports/.
 set -euo pipefail
@@ -24,9 +26,22 @@ BUILD_BASE="$ROOT/build_$KIND"
 INSTALL_BASE="$ROOT/install_$KIND"
 REPORTS="$BUILD_BASE/reports"
 cd "$ROOT"
+# TARGETS="costmap_node zone_server ...": build only these (and the messages the Python tests import) in
+# place of the whole package, for rostests that run only those programs; the rostests run from the
+# build's devel space, so nothing is installed then.
+targets=()
+if [ -n "${TARGETS:-}" ]; then
+  read -r -a targets <<< "$TARGETS costmap_layers_generate_messages"
+  target_args=(--cmake-target "${targets[0]}")
+else
+  target_args=()
+fi
 colcon --log-base "$ROOT/log" build --base-paths "$ROOT" --build-base "$BUILD_BASE" --install-base "$INSTALL_BASE" \
-  --event-handlers console_cohesion- --cmake-args -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  --event-handlers console_cohesion- "${target_args[@]}" --cmake-args -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCOSTMAP_LAYERS_SANITIZE="$SAN" -DCATKIN_ENABLE_TESTING=ON
+if [ "${#targets[@]}" -gt 1 ]; then
+  make -C "$BUILD_BASE/costmap_layers" -j2 "${targets[@]:1}"
+fi
 rm -rf "$REPORTS" "$BUILD_BASE/costmap_layers/test_results"
 mkdir -p "$REPORTS"
 export ROS_HOME="$BUILD_BASE/ros_home"
