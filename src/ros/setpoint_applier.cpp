@@ -50,6 +50,17 @@ std::chrono::steady_clock::time_point after(std::chrono::steady_clock::time_poin
   return t + std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(seconds));
 }
 
+/// A server's text, at most 64 characters of it: a hostile server's megabyte name or value must not
+/// become a megabyte log line.
+std::string clip(const std::string& text)
+{
+  constexpr std::size_t kMax = 64;
+  return text.size() <= kMax ? text : text.substr(0, kMax) + "... (" + std::to_string(text.size()) + " characters)";
+}
+
+/// How many of a server's parameter names an error lists.
+constexpr std::size_t kListed = 20;
+
 std::string show(const Setpoint& s)
 {
   return s.node + " " + s.parameter + " = " + s.value.toString();
@@ -173,16 +184,18 @@ std::string SetpointApplier::checkAgainst(const Setpoint& s, const dynamic_recon
 {
   const dynamic_reconfigure::ParamDescription* found = nullptr;
   std::string names;
+  std::size_t count = 0;
   for (const auto& g : d.groups)
     for (const auto& p : g.parameters)
     {
-      names += (names.empty() ? "" : ", ") + p.name;
+      if (count++ < kListed) names += (names.empty() ? "" : ", ") + clip(p.name);
       if (p.name == s.parameter) found = &p;
     }
+  if (count > kListed) names += " and " + std::to_string(count - kListed) + " more";
   if (!found) return "the server has no parameter '" + s.parameter + "' (it has: " + names + ")";
   const std::string want = reconfigureTypeName(s.value.type());
   if (found->type != want)
-    return "the server's '" + s.parameter + "' is of type " + found->type + ", the value is of type " + want +
+    return "the server's '" + s.parameter + "' is of type " + clip(found->type) + ", the value is of type " + want +
            (found->type == "double" && want == "int" ? " (write 1.0, not 1)" : "");
   if (s.value.isNumber())
   {
@@ -202,7 +215,7 @@ std::string SetpointApplier::checkAnswer(const Setpoint& s, const dynamic_reconf
 {
   const ParamValue got = find(answer, s.parameter);
   if (got.isNull()) return "the server's answer has no parameter '" + s.parameter + "' (unknown to it)";
-  if (!sameValue(got, s.value)) return "the server refused it and holds " + got.toString();
+  if (!sameValue(got, s.value)) return "the server refused it and holds " + clip(got.toString());
   return "";
 }
 
@@ -274,7 +287,11 @@ bool SetpointApplier::call(const std::string& service, const std::vector<Setpoin
   if (!link) return false;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (stop_) return false;
+    if (stop_)
+    {
+      link->getConnection()->drop(ros::Connection::Destructing);  // roscpp keeps the link till it drops
+      return false;
+    }
     calling_ = to_send;
     calling_service_ = service;
     call_started_ = std::chrono::steady_clock::now();

@@ -63,3 +63,37 @@ TEST(SetpointApplier, AStuckFirstNodeDoesNotStarveTheOthers)
   }
   EXPECT_EQ(applied, (std::vector<std::string>{"/stuck", "/planner", "/costmap", "/stuck", "/planner", "/costmap"}));
 }
+
+TEST(SetpointApplier, AHostileServersNamesAndValuesAreQuotedBriefly)
+{
+  // A description of 100 000 parameters, none the one wanted: 20 are named, the rest counted.
+  dynamic_reconfigure::ConfigDescription d;
+  d.groups.resize(1);
+  for (int k = 0; k < 100000; ++k)
+  {
+    dynamic_reconfigure::ParamDescription p;
+    p.name = "p" + std::to_string(k);
+    p.type = "double";
+    d.groups[0].parameters.push_back(p);
+  }
+  const std::string missing = SetpointApplier::checkAgainst(sp("/n", "max_vel_x", 1.0), d);
+  EXPECT_LT(missing.size(), 400u) << missing.substr(0, 400);
+  EXPECT_NE(missing.find("p18, p19 and 99980 more"), std::string::npos) << missing.substr(0, 400);
+  // Its max_vel_x declared with a type name of a million characters.
+  dynamic_reconfigure::ParamDescription odd;
+  odd.name = "max_vel_x";
+  odd.type = std::string(1000000, 't');
+  d.groups[0].parameters.push_back(odd);
+  const std::string type = SetpointApplier::checkAgainst(sp("/n", "max_vel_x", 1.0), d);
+  EXPECT_LT(type.size(), 300u) << type.substr(0, 300);
+  EXPECT_NE(type.find("(1000000 characters)"), std::string::npos) << type.substr(0, 300);
+  // An answer holding a string of a million characters where the number was sent (quoted: 1000002).
+  dynamic_reconfigure::Config answer;
+  dynamic_reconfigure::StrParameter big;
+  big.name = "max_vel_x";
+  big.value = std::string(1000000, 'v');
+  answer.strs.push_back(big);
+  const std::string refused = SetpointApplier::checkAnswer(sp("/n", "max_vel_x", 1.0), answer);
+  EXPECT_LT(refused.size(), 300u) << refused.substr(0, 300);
+  EXPECT_NE(refused.find("(1000002 characters)"), std::string::npos) << refused.substr(0, 300);
+}
