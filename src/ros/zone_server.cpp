@@ -8,6 +8,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "costmap_layers/core/limits.hpp"
 #include "costmap_layers/io/zone_file.hpp"
 #include "costmap_layers/ros/node_params.hpp"
 
@@ -219,15 +220,29 @@ void ZoneServer::rebuildMarkers()
   if (!markers_) return;
   markers_->clear();
   const ZoneLayout& l = zones_.layout();
+  std::size_t offered = 0, left_out = 0;
   for (const auto& s : l.shapes)
   {
     markers_->insert(outlineMarker(l.frame_id, s));
     const auto handles = costmap_layers::zoneHandles(s);
+    // Whole shapes only, in file order, up to the limit: a shape has all its handles or none.
+    if (offered + handles.size() > costmap_layers::limits::kMaxZoneHandles)
+    {
+      left_out += handles.size();
+      continue;
+    }
+    offered += handles.size();
     for (std::size_t k = 0; k < handles.size(); ++k)
       markers_->insert(handleMarker(l.frame_id, handleName(s, k), handles[k]),
                        [this](const visualization_msgs::InteractiveMarkerFeedbackConstPtr& f) { onFeedback(f); });
   }
   markers_->applyChanges();
+  if (left_out > 0)
+    log_->log(costmap_layers::Severity::Warn, node_ + "/markers",
+              node_ + ": " + std::to_string(left_out) +
+                  " handle(s) of the later shapes are not offered in RViz: at most " +
+                  std::to_string(costmap_layers::limits::kMaxZoneHandles) +
+                  " handles, whole shapes in file order (edit those shapes through ~set_shape)");
 }
 
 void ZoneServer::refuse(const std::string& what, const InputError& error)

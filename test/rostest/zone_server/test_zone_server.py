@@ -20,7 +20,7 @@ from costmap_layers.srv import LoadZones, RemoveZoneShape, SaveZones, SetZoneSha
 from geometry_msgs.msg import Point
 from nav_msgs.msg import OccupancyGrid
 from rosgraph_msgs.msg import Log
-from visualization_msgs.msg import InteractiveMarkerFeedback
+from visualization_msgs.msg import InteractiveMarkerFeedback, InteractiveMarkerInit
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from grid_watch import logged_with_key  # noqa: E402
@@ -99,7 +99,7 @@ class ZoneServerTest(unittest.TestCase):
         cls.log_cond = threading.Condition()
 
         def on_log(m):
-            if m.name == "/zone_server" and m.level >= Log.ERROR:
+            if m.name == "/zone_server" and m.level >= Log.WARN:
                 with cls.log_cond:
                     cls.logs.append(m.msg)
                     cls.log_cond.notify_all()
@@ -278,6 +278,45 @@ class ZoneServerTest(unittest.TestCase):
         self.assertEqual(self.mask.count, count, "a refused request republished the mask")
         self.assertEqual(list(self.mask.msg.data), with_square)
         self.assertTrue(self.remove_shape("hostile_sq").success)
+        self.assertTrue(self.mask.wait(lambda m: list(m.data) == before, 20.0))
+
+    def test_handles_are_capped(self):
+        """Ten shapes of 1000 vertices: handles are offered for whole shapes in order up to 10 000
+        (limits::kMaxZoneHandles), the rest is left out with a keyed warning; removed at the end."""
+        self.assertTrue(self.mask.wait(lambda m: True, 30.0))
+        before = list(self.mask.msg.data)
+        inits = []
+        cond = threading.Condition()
+
+        def on_init(m):
+            with cond:
+                inits.append(set(mk.name for mk in m.markers))
+                cond.notify_all()
+
+        def handles(names):
+            return sorted(h for h in names if "/" in h)
+        sub = rospy.Subscriber("/zone_server/update_full", InteractiveMarkerInit, on_init)
+        with cond:
+            self.assertTrue(cond.wait_for(lambda: inits, 30.0), "no update_full")
+            handles_before = len(handles(inits[-1]))
+        names = ["big%d" % k for k in range(10)]
+        for k, name in enumerate(names):
+            ring = [Point(-30.0 + 2.0 * k + 0.5 * math.cos(2 * math.pi * v / 1000),
+                          10.0 + 0.5 * math.sin(2 * math.pi * v / 1000), 0) for v in range(1000)]
+            res = self.set_shape(ZoneShape(name=name, type="polygon", value=20, fill=True, points=ring))
+            self.assertTrue(res.success, res.message)
+        offered = (10000 - handles_before) // 1000  # whole shapes, in order, after those already there
+        self.assertLess(offered, len(names))
+        with cond:  # the markers after the last shape came: its outline is drawn, with or without handles
+            self.assertTrue(cond.wait_for(lambda: names[-1] in inits[-1], 30.0), "no update_full with big9")
+            last = handles(inits[-1])
+        self.assertIn("big%d/999" % (offered - 1), last)
+        self.assertFalse([h for h in last if h.startswith("big%d/" % offered)], "a shape past the limit has handles")
+        self.assertLessEqual(len(last), 10000)
+        self.assertTrue(self.wait_logged_with("/zone_server/markers", ["10000"], 20.0), "no keyed warning")
+        sub.unregister()
+        for name in names:
+            self.assertTrue(self.remove_shape(name).success)
         self.assertTrue(self.mask.wait(lambda m: list(m.data) == before, 20.0))
 
 
