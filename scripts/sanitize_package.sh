@@ -6,6 +6,11 @@
 #   SANITIZE=thread scripts/sanitize_package.sh TSan: the node-level rostests, with the node's
 #                                               callbacks on spinner threads while its update loop runs
 #   ROSTESTS="hostile filters" ...              TSan: only these rostests
+#   ROSTESTS="zone_params zone_server" scripts/sanitize_package.sh
+#                                               ASan + UBSan: these rostests (their nodes instrumented)
+#                                               in place of the unit tests
+#   TARGETS="costmap_node costmap_layers_plugins zone_server" ...
+#                                               build only these programs (for the rostests chosen)
 # Either run fails when a test fails or when a sanitizer reports anything that test/tsan.supp does
 # not suppress. The reports are kept in build_<kind>/reports/.
 set -euo pipefail
@@ -21,9 +26,22 @@ BUILD_BASE="$ROOT/build_$KIND"
 INSTALL_BASE="$ROOT/install_$KIND"
 REPORTS="$BUILD_BASE/reports"
 cd "$ROOT"
+# TARGETS="costmap_node zone_server ...": build only these (and the messages the Python tests import) in
+# place of the whole package, for rostests that run only those programs; the rostests run from the
+# build's devel space, so nothing is installed then.
+targets=()
+if [ -n "${TARGETS:-}" ]; then
+  read -r -a targets <<< "$TARGETS costmap_layers_generate_messages"
+  target_args=(--cmake-target "${targets[0]}")
+else
+  target_args=()
+fi
 colcon --log-base "$ROOT/log" build --base-paths "$ROOT" --build-base "$BUILD_BASE" --install-base "$INSTALL_BASE" \
-  --event-handlers console_cohesion- --cmake-args -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  --event-handlers console_cohesion- "${target_args[@]}" --cmake-args -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCOSTMAP_LAYERS_SANITIZE="$SAN" -DCATKIN_ENABLE_TESTING=ON
+if [ "${#targets[@]}" -gt 1 ]; then
+  make -C "$BUILD_BASE/costmap_layers" -j2 "${targets[@]:1}"
+fi
 rm -rf "$REPORTS" "$BUILD_BASE/costmap_layers/test_results"
 mkdir -p "$REPORTS"
 export ROS_HOME="$BUILD_BASE/ros_home"
@@ -34,7 +52,7 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:log_path=$REPORTS/ubsan
 export LSAN_OPTIONS="suppressions=$ROOT/test/lsan.supp"
 export TSAN_OPTIONS="suppressions=$ROOT/test/tsan.supp:print_suppressions=1:second_deadlock_stack=1:history_size=4:log_path=$REPORTS/tsan"
 
-if [ "$KIND" = asan ]; then
+if [ "$KIND" = asan ] && [ -z "${ROSTESTS:-}" ]; then
   tests_regex='gtest_test_(core|io|ros)$'
 else
   names="${ROSTESTS:-hostile filters sensors speed_limiter reconfigure plugin_loading}"

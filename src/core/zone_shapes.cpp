@@ -131,6 +131,18 @@ void bounds(const ZoneShape& s, double& x0, double& y0, double& x1, double& y1)
   }
 }
 
+/// The cell visits drawing a shape takes at resolution r, an upper bound (limits::kMaxZoneRasterWork):
+/// its bounding box in cells (one more on every side, as the cell ranges are widened), plus rows times
+/// vertices for a polygon. In double: the counts reach 1e22 for shapes the extent check refuses later.
+double rasterWork(const ZoneShape& s, double r)
+{
+  double x0, y0, x1, y1;
+  bounds(s, x0, y0, x1, y1);
+  const double cols = std::floor(x1 / r) - std::floor(x0 / r) + 3.0;
+  const double rows = std::floor(y1 / r) - std::floor(y0 / r) + 3.0;
+  return cols * rows + (s.type == ZoneShapeType::Polygon ? rows * static_cast<double>(s.points.size()) : 0.0);
+}
+
 /// Writes one shape's claimed cells into values with the overlay rule; claimed marks cells already set.
 class Painter
 {
@@ -194,7 +206,13 @@ void fillPolygon(Painter& pt, const std::vector<ZonePoint>& p)
 {
   std::vector<double> xs;
   const std::size_t n = p.size();
-  for (int64_t j = 0; j < pt.height(); ++j)
+  // Only the rows of the polygon's bounding box have crossings (rasterWork() counts these rows).
+  double y_lo = std::numeric_limits<double>::infinity(), y_hi = -y_lo;
+  for (const auto& q : p)
+    y_lo = std::min(y_lo, q.y), y_hi = std::max(y_hi, q.y);
+  int64_t j0, j1;
+  pt.cellRange(y_lo, y_hi, pt.y0(0), pt.height(), j0, j1);
+  for (int64_t j = j0; j <= j1; ++j)
   {
     const double y = pt.cy(j);
     xs.clear();
@@ -354,9 +372,14 @@ bool pointInZonePolygon(const std::vector<ZonePoint>& p, double x, double y)
 
 InputError validateShape(const ZoneShape& s)
 {
-  if (s.name.empty() || s.name.size() > 64)
-    return InputError::of(where(s) + "/name",
-                          where(s) + ": a shape name has 1..64 characters (got " + std::to_string(s.name.size()) + ")");
+  // A bad name never goes into the key or the message whole: a peer's megabyte name would become a
+  // megabyte log line and a megabyte entry of the log's throttle table.
+  if (s.name.empty())
+    return InputError::of("shapes/(unnamed)/name", "shapes/(unnamed): a shape name has 1..64 characters (got 0)");
+  if (s.name.size() > 64)
+    return InputError::of("shapes/(bad name)/name", "shape name '" + s.name.substr(0, 64) +
+                                                        "...': a shape name has 1..64 characters (got " +
+                                                        std::to_string(s.name.size()) + ")");
   for (const char c : s.name)
     if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.'))
       return InputError::of("shapes/(bad name)/name", "shape name '" + s.name.substr(0, 64) +
@@ -434,6 +457,16 @@ InputError validateLayout(const ZoneLayout& layout)
   {
     return InputError::of("extent", e.what());
   }
+  double work = 0.0;
+  for (const auto& s : layout.shapes)
+    work += rasterWork(s, layout.resolution);
+  if (work > limits::kMaxZoneRasterWork)
+    return InputError::of("extent", "drawing these " + std::to_string(layout.shapes.size()) + " shapes at " +
+                                        num(layout.resolution) + " m/cell takes about " + num(work) +
+                                        " cell visits (their bounding boxes, and rows times vertices of each "
+                                        "polygon), more than the " +
+                                        num(limits::kMaxZoneRasterWork) +
+                                        " allowed (use a coarser resolution, or fewer large shapes)");
   return InputError::none();
 }
 

@@ -4,9 +4,12 @@
 #include <visualization_msgs/InteractiveMarkerControl.h>
 #include <visualization_msgs/Marker.h>
 
+#include <climits>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
+#include "costmap_layers/core/limits.hpp"
 #include "costmap_layers/io/zone_file.hpp"
 #include "costmap_layers/ros/node_params.hpp"
 
@@ -193,9 +196,13 @@ ZoneServer::ZoneServer(ros::NodeHandle nh, ros::NodeHandle pnh, Options options)
   remove_srv_ = pnh_.advertiseService("remove_shape", &ZoneServer::onRemove, this);
   save_srv_ = pnh_.advertiseService("save", &ZoneServer::onSave, this);
   load_srv_ = pnh_.advertiseService("load", &ZoneServer::onLoad, this);
-  std::lock_guard<std::mutex> lock(mutex_);
-  publish();
-  rebuildMarkers();
+  costmap_layers::ZoneLayout drawn;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    publish();
+    drawn = zones_.layout();
+  }
+  rebuildMarkers(drawn);
 }
 
 void ZoneServer::publish()
@@ -213,20 +220,43 @@ void ZoneServer::publish()
       node_.c_str());
 }
 
-void ZoneServer::rebuildMarkers()
+void ZoneServer::rebuildMarkers(const ZoneLayout& l)
 {
   if (!markers_) return;
   markers_->clear();
-  const ZoneLayout& l = zones_.layout();
+  std::size_t offered = 0, left_out = 0;
   for (const auto& s : l.shapes)
   {
     markers_->insert(outlineMarker(l.frame_id, s));
     const auto handles = costmap_layers::zoneHandles(s);
+    // Whole shapes only, in file order, up to the limit: a shape has all its handles or none.
+    if (offered + handles.size() > costmap_layers::limits::kMaxZoneHandles)
+    {
+      left_out += handles.size();
+      continue;
+    }
+    offered += handles.size();
     for (std::size_t k = 0; k < handles.size(); ++k)
       markers_->insert(handleMarker(l.frame_id, handleName(s, k), handles[k]),
                        [this](const visualization_msgs::InteractiveMarkerFeedbackConstPtr& f) { onFeedback(f); });
   }
   markers_->applyChanges();
+  if (left_out > 0)
+    log_->log(costmap_layers::Severity::Warn, node_ + "/markers",
+              node_ + ": " + std::to_string(left_out) +
+                  " handle(s) of the later shapes are not offered in RViz: at most " +
+                  std::to_string(costmap_layers::limits::kMaxZoneHandles) +
+                  " handles, whole shapes in file order (edit those shapes through ~set_shape)");
+}
+
+bool ZoneServer::redraw(std::unique_lock<std::mutex>& lock)
+{
+  // The marker server calls onFeedback holding its own lock, and onFeedback takes mutex_: so mutex_ is
+  // never held while calling into the marker server, or two callback threads could deadlock.
+  const ZoneLayout drawn = zones_.layout();
+  lock.unlock();
+  rebuildMarkers(drawn);
+  return true;
 }
 
 void ZoneServer::refuse(const std::string& what, const InputError& error)
@@ -238,57 +268,69 @@ void ZoneServer::refuse(const std::string& what, const InputError& error)
 void ZoneServer::onFeedback(const visualization_msgs::InteractiveMarkerFeedbackConstPtr& f)
 {
   if (f->event_type != visualization_msgs::InteractiveMarkerFeedback::POSE_UPDATE) return;
-  std::lock_guard<std::mutex> lock(mutex_);
   std::string shape;
   std::size_t index = 0;
   if (!parseHandleName(f->marker_name, &shape, &index)) return;
-  const costmap_layers::ZoneShape* before = zones_.find(shape);
-  if (!before) return;
-  const std::vector<ZonePoint> old_handles = costmap_layers::zoneHandles(*before);
-  const std::string& frame = zones_.layout().frame_id;
-  InputError error;
-  if (!f->header.frame_id.empty() && f->header.frame_id != frame)
-    error = InputError::of("feedback/header.frame_id", "marker feedback for " + f->marker_name + " is in frame '" +
-                                                           f->header.frame_id.substr(0, 64) + "', the zones are in '" +
-                                                           frame + "'");
-  else
-    error = zones_.moveHandle(shape, index, f->pose.position.x, f->pose.position.y);
-  if (!error.ok())
+  // Decided under mutex_, drawn after it is released (see redraw()): the handle put back, or this
+  // shape's outline and its other handles (a circle's radius handle follows its centre); the dragged
+  // handle itself is where the user holds it.
+  std::optional<ZonePoint> put_back;
+  std::optional<costmap_layers::ZoneShape> moved;
+  std::string frame;
   {
-    refuse("moving " + f->marker_name + " to (" + std::to_string(f->pose.position.x) + ", " +
-               std::to_string(f->pose.position.y) + ")",
-           error);
-    if (markers_ && index < old_handles.size())
+    std::lock_guard<std::mutex> lock(mutex_);
+    const costmap_layers::ZoneShape* before = zones_.find(shape);
+    if (!before) return;
+    const std::vector<ZonePoint> old_handles = costmap_layers::zoneHandles(*before);
+    frame = zones_.layout().frame_id;
+    InputError error;
+    // RViz stamps feedback with the marker's frame: a pose in no frame, or another, cannot be placed.
+    if (f->header.frame_id != frame)
+      error = InputError::of("feedback/header.frame_id", "marker feedback for " + f->marker_name + " is in frame '" +
+                                                             f->header.frame_id.substr(0, 64) +
+                                                             "', the zones are in '" + frame + "'");
+    else
+      error = zones_.moveHandle(shape, index, f->pose.position.x, f->pose.position.y);
+    if (!error.ok())
     {
-      geometry_msgs::Pose back;
-      back.position = toPoint(old_handles[index]);
-      back.orientation.w = 1.0;
-      markers_->setPose(f->marker_name, back);
-      markers_->applyChanges();
+      refuse("moving " + f->marker_name + " to (" + std::to_string(f->pose.position.x) + ", " +
+                 std::to_string(f->pose.position.y) + ")",
+             error);
+      if (index < old_handles.size()) put_back = old_handles[index];
     }
+    else
+    {
+      publish();
+      moved = *zones_.find(shape);
+    }
+  }
+  if (!markers_) return;
+  if (put_back)
+  {
+    geometry_msgs::Pose back;
+    back.position = toPoint(*put_back);
+    back.orientation.w = 1.0;
+    markers_->setPose(f->marker_name, back);
+    markers_->applyChanges();
     return;
   }
-  publish();
-  if (!markers_) return;
-  // Redraw the outline and the other handles of this shape (a circle's radius handle follows its centre);
-  // the dragged handle itself is where the user holds it.
-  const costmap_layers::ZoneShape* now = zones_.find(shape);
-  markers_->insert(outlineMarker(frame, *now));
-  const auto handles = costmap_layers::zoneHandles(*now);
+  if (!moved) return;
+  markers_->insert(outlineMarker(frame, *moved));
+  const auto handles = costmap_layers::zoneHandles(*moved);
   for (std::size_t k = 0; k < handles.size(); ++k)
     if (k != index)
     {
       geometry_msgs::Pose p;
       p.position = toPoint(handles[k]);
       p.orientation.w = 1.0;
-      markers_->setPose(handleName(*now, k), p);
+      markers_->setPose(handleName(*moved, k), p);
     }
   markers_->applyChanges();
 }
 
 bool ZoneServer::onSet(costmap_layers::SetZoneShape::Request& req, costmap_layers::SetZoneShape::Response& res)
 {
-  std::lock_guard<std::mutex> lock(mutex_);
+  std::unique_lock<std::mutex> lock(mutex_);
   InputError error;
   try
   {
@@ -306,13 +348,12 @@ bool ZoneServer::onSet(costmap_layers::SetZoneShape::Request& req, costmap_layer
     return true;
   }
   publish();
-  rebuildMarkers();
-  return true;
+  return redraw(lock);
 }
 
 bool ZoneServer::onRemove(costmap_layers::RemoveZoneShape::Request& req, costmap_layers::RemoveZoneShape::Response& res)
 {
-  std::lock_guard<std::mutex> lock(mutex_);
+  std::unique_lock<std::mutex> lock(mutex_);
   const InputError error = zones_.remove(req.name);
   res.success = error.ok();
   res.message = error.ok() ? "shape '" + req.name + "' removed" : error.message;
@@ -322,14 +363,32 @@ bool ZoneServer::onRemove(costmap_layers::RemoveZoneShape::Request& req, costmap
     return true;
   }
   publish();
-  rebuildMarkers();
-  return true;
+  return redraw(lock);
 }
+
+namespace
+{
+/// Why a requested file name cannot be used ("" when it can): no path is longer than PATH_MAX, and a
+/// peer's megabyte name must not come back whole in the answer and the log.
+std::string badFilename(const std::string& name)
+{
+  if (name.size() <= static_cast<std::size_t>(PATH_MAX)) return "";
+  return "filename '" + name.substr(0, 64) + "...' has " + std::to_string(name.size()) + " characters, more than " +
+         std::to_string(PATH_MAX) + " (PATH_MAX)";
+}
+}  // namespace
 
 bool ZoneServer::onSave(costmap_layers::SaveZones::Request& req, costmap_layers::SaveZones::Response& res)
 {
   std::lock_guard<std::mutex> lock(mutex_);
   const std::string path = req.filename.empty() ? options_.yaml_filename : req.filename;
+  if (const std::string why = badFilename(path); !why.empty())
+  {
+    res.success = false;
+    res.message = why;
+    refuse("save", InputError::of("save/filename", why));
+    return true;
+  }
   try
   {
     costmap_layers::io::saveZoneFile(path, zones_.layout());
@@ -349,17 +408,20 @@ bool ZoneServer::onSave(costmap_layers::SaveZones::Request& req, costmap_layers:
 
 bool ZoneServer::onLoad(costmap_layers::LoadZones::Request& req, costmap_layers::LoadZones::Response& res)
 {
-  std::lock_guard<std::mutex> lock(mutex_);
+  std::unique_lock<std::mutex> lock(mutex_);
   const std::string path = req.filename.empty() ? options_.yaml_filename : req.filename;
   InputError error;
-  try
-  {
-    error = zones_.replace(costmap_layers::io::loadZoneFile(path));
-  }
-  catch (const std::exception& e)
-  {
-    error = InputError::of("load", e.what());
-  }
+  if (const std::string why = badFilename(path); !why.empty())
+    error = InputError::of("load/filename", why);
+  else
+    try
+    {
+      error = zones_.replace(costmap_layers::io::loadZoneFile(path));
+    }
+    catch (const std::exception& e)
+    {
+      error = InputError::of("load", e.what());
+    }
   res.success = error.ok();
   res.message = error.ok() ? "loaded " + path : error.message;
   if (!error.ok())
@@ -368,7 +430,6 @@ bool ZoneServer::onLoad(costmap_layers::LoadZones::Request& req, costmap_layers:
     return true;
   }
   publish();
-  rebuildMarkers();
-  return true;
+  return redraw(lock);
 }
 }  // namespace costmap_layers_ros

@@ -316,6 +316,55 @@ TEST(ZoneShapes, HugeExtentIsRefusedBeforeAnyAllocation)
   EXPECT_EQ(validateLayout(l).field, "extent");
 }
 
+TEST(ZoneShapes, AHugeBadNameStaysOutOfTheKeyAndTheMessage)
+{
+  // A peer's name of a million characters: the key is fixed and the message short, so neither the log
+  // line nor the log's throttle table grows with it.
+  const ZoneShape s = polygon(std::string(1000000, 'x'), {{0, 0}, {1, 0}, {1, 1}});
+  const InputError e = validateShape(s);
+  EXPECT_EQ(e.field, "shapes/(bad name)/name");
+  EXPECT_LT(e.message.size(), 200u) << e.message.substr(0, 200);
+  EXPECT_NE(e.message.find("1000000"), std::string::npos) << e.message;
+}
+
+TEST(ZoneShapes, LayoutsTooSlowToDrawAreRefused)
+{
+  // Circles of radius 4000 m at 0.5 m/cell: each bounding box spans floor(8000) - floor(-8000) + 3 =
+  // 16003 cells a side, 256 096 009 cells. Three take 768 288 027 visits (allowed), four
+  // 1 024 384 036, more than limits::kMaxZoneRasterWork = 1e9; each grid is within kMaxGridCells.
+  std::vector<ZoneShape> circles;
+  for (int k = 0; k < 3; ++k)
+    circles.push_back(circle("c" + std::to_string(k), 0, 0, 4000.0));
+  EXPECT_TRUE(validateLayout(layout(circles, 0.5)).ok());
+  circles.push_back(circle("c3", 0, 0, 4000.0));
+  const InputError e = validateLayout(layout(circles, 0.5));
+  EXPECT_EQ(e.field, "extent");
+  EXPECT_NE(e.message.find("cell visits"), std::string::npos) << e.message;
+
+  // One polygon of 1000 vertices, 1 m wide and 400 km tall, at 0.05 m/cell: 8e6 rows of 23 cells
+  // (1.8e8 cells, a grid within kMaxGridCells), but each row seeks its crossings among 1000 edges:
+  // 8e9 visits. Its right side holds 998 vertices on the line x = 1.
+  std::vector<ZonePoint> comb;
+  for (int k = 0; k < 998; ++k)
+    comb.push_back({1.0, 4e5 * k / 997.0});
+  comb.push_back({0.0, 4e5});
+  comb.push_back({0.0, 0.0});
+  const ZoneShape tall = polygon("tall", comb);
+  ASSERT_EQ(tall.points.size(), 1000u);
+  EXPECT_TRUE(validateShape(tall).ok()) << validateShape(tall).message;
+  const ZoneLayout l = layout({tall}, 0.05);
+  EXPECT_NO_THROW(zoneGridExtent(l));
+  EXPECT_EQ(validateLayout(l).field, "extent");
+  EXPECT_THROW(rasterizeZones(l), std::invalid_argument);
+  // The same polygon 4 km tall: 8e4 rows, 8e7 visits, drawn.
+  std::vector<ZonePoint> small;
+  for (int k = 0; k < 998; ++k)
+    small.push_back({1.0, 4e3 * k / 997.0});
+  small.push_back({0.0, 4e3});
+  small.push_back({0.0, 0.0});
+  EXPECT_TRUE(validateLayout(layout({polygon("small", small)}, 0.05)).ok());
+}
+
 TEST(ZoneShapes, LayoutChecks)
 {
   ZoneLayout l = layout({polygon("a", kRect), polygon("a", kRect)});

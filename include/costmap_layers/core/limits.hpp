@@ -54,6 +54,16 @@ constexpr double kMaxFrequency = 1e3;
 /// by hand (a few shapes of a few dozen vertices) times a thousand.
 constexpr std::size_t kMaxZoneShapes = 1000;
 constexpr std::size_t kMaxZoneVertices = 1000;
+/// Zones: the most cell visits drawing one layout may take, summed over its shapes: each shape's
+/// bounding box in cells, plus its rows times its vertices for a polygon (a row's crossings are
+/// sought among all its edges). kMaxGridCells alone does not bound it: 1000 circles each covering a
+/// 4e8-cell grid, or one 1000-vertex polygon over a grid of 1e8 rows, would take minutes and hold
+/// zone_server's only thread. 1e9 visits take one to a few seconds.
+constexpr double kMaxZoneRasterWork = 1e9;
+/// zone_server: the most handles (interactive markers) it offers in RViz, whole shapes in file order.
+/// Each costs about a kilobyte in the marker server and its latched update_full; kMaxZoneShapes shapes
+/// of kMaxZoneVertices vertices would be a million handles (gigabytes), rebuilt on every edit.
+constexpr std::size_t kMaxZoneHandles = 10000;
 /// Poses of one path: 200 000 poses is a 5 km plan at navfn's 2.5 cm spacing. Bigger paths are
 /// refused (each cycle may walk the whole path to find the robot on it).
 constexpr std::size_t kMaxPathPoses = 200'000;

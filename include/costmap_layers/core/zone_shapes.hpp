@@ -93,8 +93,9 @@ struct ZoneGridExtent
 InputError validateShape(const ZoneShape& shape);
 
 /// Checks the layout: resolution in [kMinResolution, kMaxResolution], default_value in -1..100, frame
-/// not empty, at most limits::kMaxZoneShapes shapes, unique names, every shape valid, and the extent
-/// within limits::kMaxGridCells.
+/// not empty, at most limits::kMaxZoneShapes shapes, unique names, every shape valid, the extent
+/// within limits::kMaxGridCells, and the work of drawing it (each shape's bounding box in cells, plus
+/// rows times vertices for a polygon) within limits::kMaxZoneRasterWork (field "extent" for both).
 InputError validateLayout(const ZoneLayout& layout);
 
 /// The extent of a layout (file comment). Throws std::invalid_argument when it exceeds

@@ -2,7 +2,7 @@
 // dynamic_reconfigure servers, on a worker thread of its own: the costmap's update thread only hands a
 // set over and never waits for a server.
 //
-// Per set, node by node (in the order the set names them):
+// Per node of a set:
 //  1. the node's description (<node>/parameter_descriptions, latched) is read, waiting up to the
 //     timeout: a setpoint whose parameter the server does not declare, whose value has another type
 //     than the declared one, or a number outside the declared [min, max] is refused here and not sent
@@ -12,20 +12,31 @@
 //  3. the configuration the server sends back is compared with each value sent: a parameter missing
 //     from it, or holding another value (a server that refused it), is a failed set.
 // Every failure is logged as an error naming the node, the parameter and the value, with the stable
-// key <layer namespace>/setpoint/<node>/<parameter> (the node without its leading '/'); a call that has
-// no answer within the timeout is reported too while it still waits. A set handed over while another
-// is being applied waits; a newer one replaces it (sets are complete, so only the newest matters).
+// key <layer namespace>/setpoint/<node>/<parameter> (the node without its leading '/').
+//
+// A server that accepts the call and never answers: roscpp's calls have no timeout, so the call goes
+// through a connection of the applier's own, which a watchdog drops once the call has waited longer
+// than the timeout (reported as "no answer ... within"); the worker then goes on. A server that
+// vanishes mid-call ends the call at once ("the call ... failed").
+//
+// Sets are complete (every parameter the layer ever sets, with the value that must hold now), so only
+// the newest matters: a set handed over replaces the one held, and every node it names is marked to be
+// applied again; a node's values are read from the newest set when its turn comes. The nodes take
+// turns round-robin, so a node whose server keeps timing out delays the others by one timeout per
+// turn and never starves them. Memory is one set and one flag per node, however fast sets come.
+// The destructor interrupts every wait (description, service, call) and joins within about 0.1 s.
 #pragma once
 
 #include <dynamic_reconfigure/Config.h>
 #include <dynamic_reconfigure/ConfigDescription.h>
+#include <dynamic_reconfigure/Reconfigure.h>
 #include <ros/ros.h>
+#include <ros/service_server_link.h>
 
 #include <chrono>
 #include <condition_variable>
 #include <memory>
 #include <mutex>
-#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -42,7 +53,7 @@ public:
   /// @param key_prefix  the layer's namespace, e.g. "/costmap_node/zone_filter"
   /// @param timeout     [s] the longest wait for a description, a service and an answer
   SetpointApplier(ros::NodeHandle nh, std::string key_prefix, double timeout, std::shared_ptr<ThrottledLog> log);
-  /// Stops the worker; a call in progress ends when roscpp shuts down.
+  /// Stops the worker: interrupts its waits and drops the call in progress, then joins it.
   ~SetpointApplier();
   SetpointApplier(const SetpointApplier&) = delete;
   SetpointApplier& operator=(const SetpointApplier&) = delete;
@@ -58,28 +69,49 @@ public:
   static std::string checkAnswer(const costmap_layers::Setpoint& s, const dynamic_reconfigure::Config& answer);
   /// The stable key of a setpoint's errors.
   std::string keyOf(const costmap_layers::Setpoint& s) const;
+  /// The nodes a set names, in the order it first names them.
+  static std::vector<std::string> nodesOf(const std::vector<costmap_layers::Setpoint>& set);
+  /// The node to apply next: the first node of `order` after `last` (wrapping round; from the start
+  /// when `last` is not in `order`) that is in `due`; "" when none is.
+  static std::string nextNode(const std::vector<std::string>& order, const std::vector<std::string>& due,
+                              const std::string& last);
 
 private:
   void run();
   void applyNode(const std::string& node, const std::vector<costmap_layers::Setpoint>& setpoints,
                  const std::string& label);
   void fail(const costmap_layers::Setpoint& s, const std::string& why);
-  void watch(const ros::SteadyTimerEvent&);
+  /// The watchdog thread: drops a call that waited longer than the timeout.
+  void watchCalls();
+  bool stopping();
+  /// The node's description, waiting up to the timeout; null on a timeout or a stop.
+  dynamic_reconfigure::ConfigDescriptionConstPtr waitForDescription(const std::string& topic);
+  /// Whether the service exists, waiting up to the timeout; false on a timeout or a stop.
+  bool waitForService(const std::string& service);
+  /// The call through a connection the watchdog and the destructor can drop. @return false when it
+  /// failed, was dropped (then *abandoned is true) or its answer does not deserialise.
+  bool call(const std::string& service, const std::vector<costmap_layers::Setpoint>& to_send,
+            dynamic_reconfigure::Reconfigure& srv, bool* abandoned);
 
   ros::NodeHandle nh_;
   std::string key_prefix_;
   double timeout_;
   std::shared_ptr<ThrottledLog> log_;
   std::mutex mutex_;
-  std::condition_variable wake_;
+  std::condition_variable wake_;        ///< the worker: a set came, or stop
+  std::condition_variable watch_wake_;  ///< the watchdog: a call started, or stop
+  // Guarded by mutex_:
   bool stop_ = false;
-  std::optional<std::pair<std::vector<costmap_layers::Setpoint>, std::string>> pending_;  ///< guarded by mutex_
-  // The call in progress, for the watchdog (guarded by mutex_).
+  std::vector<costmap_layers::Setpoint> latest_;  ///< the newest set
+  std::string latest_label_;
+  std::vector<std::string> due_;  ///< nodes of latest_ not applied since it came
+  std::string last_node_;         ///< the node applied last (round-robin)
+  // The call in progress, for the watchdog:
   std::vector<costmap_layers::Setpoint> calling_;
   std::string calling_service_;
   std::chrono::steady_clock::time_point call_started_;
-  bool call_reported_ = false;
-  ros::SteadyTimer watchdog_;
+  ros::ServiceServerLinkPtr link_;  ///< dropped to end the call
   std::thread worker_;
+  std::thread watchdog_;
 };
 }  // namespace costmap_layers_ros

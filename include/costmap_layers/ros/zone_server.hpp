@@ -63,9 +63,14 @@ public:
   ZoneServer(ros::NodeHandle nh, ros::NodeHandle pnh, Options options);
 
 private:
-  /// Publishes the mask of the shapes in force and (with markers) redraws the handles. Lock held.
+  /// Publishes the mask of the shapes in force. mutex_ held.
   void publish();
-  void rebuildMarkers();
+  /// Redraws every outline and handle of layout l. mutex_ not held: the marker server calls
+  /// onFeedback holding its own lock, and onFeedback takes mutex_, so the opposite order is never taken.
+  void rebuildMarkers(const costmap_layers::ZoneLayout& l);
+  /// Takes a copy of the shapes in force, releases the lock and redraws them; returns true (a service's
+  /// answer was set).
+  bool redraw(std::unique_lock<std::mutex>& lock);
   void onFeedback(const visualization_msgs::InteractiveMarkerFeedbackConstPtr& feedback);
   bool onSet(costmap_layers::SetZoneShape::Request& req, costmap_layers::SetZoneShape::Response& res);
   bool onRemove(costmap_layers::RemoveZoneShape::Request& req, costmap_layers::RemoveZoneShape::Response& res);

@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """SpeedFilter's path lookahead through real topics: with a plan on /move_base/NavfnROS/plan and
 odometry at 2 m/s (braking distance 2^2 / (2 * 0.5) = 4 m), /max_speed drops to the zone's 0.3 m/s
-about 4 m before the zone's boundary (x = 10 m), not at it; a path with a NaN is refused (the last
-good one stays)."""
+about 4 m before the zone's boundary (x = 10 m), not at it; a path with a NaN, 10^6 poses, no frame
+or an old stamp, and odometry with NaN or infinity, are refused by their keys (the last good path
+stays)."""
 import os
 import sys
 import threading
@@ -123,6 +124,47 @@ class SpeedLookaheadTest(unittest.TestCase):
         with cond:
             self.assertTrue(cond.wait_for(lambda: logged_with_key(logs, key, "poses[42].pose.position"), 10.0),
                             "no error keyed %s for the NaN path" % key)
+        self.assertTrue(robot.move_to(first + 0.05, 2.0, cycles=5))
+        with cond:
+            self.assertEqual(speeds, [1.0, 0.3])
+
+        # More hostile paths, each refused by its key with the last good path staying. Each lies behind
+        # the robot (x <= 2.9 m): taken, it would put the zone out of sight and lift the limit to 1.0.
+        def behind():
+            p = make_path()
+            p.poses = p.poses[:20]
+            return p
+
+        def refused(msg, key, *values):
+            path_pub.publish(msg)
+            with cond:
+                self.assertTrue(cond.wait_for(lambda: logged_with_key(logs, key, *values), 30.0),
+                                "no error keyed %s" % key)
+
+        huge = behind()
+        huge.poses = huge.poses[:1] * 1000000  # 10^6 poses, 72 MB
+        refused(huge, "/costmap_node/speed_filter/path/poses", "1000000")
+        no_frame = behind()
+        no_frame.header.frame_id = ""
+        no_frame.poses[3].pose.orientation.w = 0.0  # a zero quaternion: orientations play no part
+        refused(no_frame, "/costmap_node/speed_filter/path/header.frame_id")
+        old = behind()
+        old.header.stamp = rospy.Time(1)  # older than the path in force
+        refused(old, "/costmap_node/speed_filter/path/header.stamp")
+        # Odometry with a NaN speed or an infinite turn rate: refused by key.
+        for field, key in [("x", "linear"), ("z", "angular")]:
+            o = Odometry()
+            o.header.stamp = rospy.Time.now()
+            o.header.frame_id = "odom"
+            o.child_frame_id = "base_link"
+            if field == "x":
+                o.twist.twist.linear.x = float("nan")
+            else:
+                o.twist.twist.angular.z = float("inf")
+            odom_pub.publish(o)
+            with cond:
+                self.assertTrue(cond.wait_for(lambda: logged_with_key(
+                    logs, "/costmap_node/speed_filter/odom/twist.twist." + key), 30.0), "no odom/%s error" % key)
         self.assertTrue(robot.move_to(first + 0.05, 2.0, cycles=5))
         with cond:
             self.assertEqual(speeds, [1.0, 0.3])

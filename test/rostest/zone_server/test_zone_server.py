@@ -20,7 +20,7 @@ from costmap_layers.srv import LoadZones, RemoveZoneShape, SaveZones, SetZoneSha
 from geometry_msgs.msg import Point
 from nav_msgs.msg import OccupancyGrid
 from rosgraph_msgs.msg import Log
-from visualization_msgs.msg import InteractiveMarkerFeedback
+from visualization_msgs.msg import InteractiveMarkerFeedback, InteractiveMarkerInit
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from grid_watch import logged_with_key  # noqa: E402
@@ -99,7 +99,7 @@ class ZoneServerTest(unittest.TestCase):
         cls.log_cond = threading.Condition()
 
         def on_log(m):
-            if m.name == "/zone_server" and m.level >= Log.ERROR:
+            if m.name == "/zone_server" and m.level >= Log.WARN:
                 with cls.log_cond:
                     cls.logs.append(m.msg)
                     cls.log_cond.notify_all()
@@ -199,6 +199,125 @@ class ZoneServerTest(unittest.TestCase):
         self.assertTrue(self.mask.wait(lambda m: 55 in m.data, 20.0))
         self.assertTrue(self.remove_shape("extra").success)
         self.assertTrue(self.mask.wait(lambda m: 55 not in m.data and list(m.data) == list(before.data), 20.0))
+
+    def wait_logged_with(self, key, values, timeout):
+        deadline = rospy.Time.now() + rospy.Duration(timeout)
+        with self.log_cond:
+            while not logged_with_key(self.logs, key, *values) and not rospy.is_shutdown() \
+                    and rospy.Time.now() < deadline:
+                self.log_cond.wait(0.2)
+            return logged_with_key(self.logs, key, *values)
+
+    def test_hostile_requests_are_refused_briefly(self):
+        """Huge arrays, huge names, NaN and infinity, feedback in no frame: each refused with a short
+        answer or a keyed error, the mask unchanged; the test's own square is removed at the end."""
+        self.assertTrue(self.mask.wait(lambda m: True, 30.0))
+        before = list(self.mask.msg.data)
+        square = ZoneShape(name="hostile_sq", type="polygon", value=77, fill=True,
+                           points=[Point(-2.0, -2.0, 0), Point(-1.0, -2.0, 0), Point(-1.0, -1.0, 0),
+                                   Point(-2.0, -1.0, 0)])
+        res = self.set_shape(square)
+        self.assertTrue(res.success, res.message)
+        self.assertTrue(self.mask.wait(lambda m: 77 in m.data, 20.0))
+        with_square = list(self.mask.msg.data)
+        count = self.mask.count
+
+        # 10^6 vertices: refused by count.
+        many = ZoneShape(name="many", type="polygon", value=10, fill=True,
+                         points=[Point(math.cos(k * 1e-6), math.sin(k * 1e-6), 0) for k in range(1000000)])
+        res = self.set_shape(many)
+        self.assertFalse(res.success)
+        self.assertIn("at most 1000 points", res.message)
+        # A name of 10^6 characters: refused; neither the answer nor the key carries it whole.
+        res = self.set_shape(ZoneShape(name="n" * 1000000, type="circle", value=10, center=Point(0, 0, 0), radius=1.0))
+        self.assertFalse(res.success)
+        self.assertLess(len(res.message), 300)
+        self.assertTrue(self.wait_logged_with("/zone_server/shapes/(bad name)/name", ["1000000"], 20.0),
+                        "the huge name was not reported by its fixed key")
+        self.assertTrue(all(len(m) < 1000 for m in self.logs), "a log line carries the huge name")
+        # NaN and infinity in every number.
+        for shape in [ZoneShape(name="c", type="circle", value=10, center=Point(0, float("inf"), 0), radius=1.0),
+                      ZoneShape(name="c", type="circle", value=10, center=Point(0, 0, 0), radius=float("nan")),
+                      ZoneShape(name="c", type="circle", value=10, center=Point(0, 0, 0), radius=float("inf")),
+                      ZoneShape(name="p", type="polygon", value=10,
+                                points=[Point(0, 0, 0), Point(float("nan"), 0, 0), Point(1, 1, 0)])]:
+            res = self.set_shape(shape)
+            self.assertFalse(res.success, "accepted %s" % shape)
+        # A polygon of 1000 vertices 400 km tall at 0.1 m/cell: a grid within the cell limit, but
+        # 4e9 crossing searches to draw: refused at once instead of holding the server for minutes.
+        tall = [Point(1.0, 4e5 * k / 997.0, 0) for k in range(998)] + [Point(0.0, 4e5, 0), Point(0.0, 0.0, 0)]
+        res = self.set_shape(ZoneShape(name="tall", type="polygon", value=10, fill=True, points=tall))
+        self.assertFalse(res.success)
+        self.assertIn("cell visits", res.message)
+        # File names longer than any path: refused, answered briefly.
+        long_name = "/tmp/" + "f" * 100000
+        for call in (self.save, rospy.ServiceProxy("/zone_server/load", LoadZones)):
+            res = call(long_name)
+            self.assertFalse(res.success)
+            self.assertLess(len(res.message), 300)
+        # Marker feedback: a drag of the square's vertex 2 to a valid place, but in no frame; then to a
+        # NaN position. Each refused by its key; the mask is still the one with the square.
+        f = InteractiveMarkerFeedback()
+        f.client_id = "/test_zone_server"
+        f.marker_name = "hostile_sq/2"
+        f.event_type = InteractiveMarkerFeedback.POSE_UPDATE
+        f.pose.position.x, f.pose.position.y = -0.5, -0.5
+        f.pose.orientation.w = 1.0
+        f.header.frame_id = ""
+        self.feedback.publish(f)
+        self.assertTrue(self.wait_logged("/zone_server/feedback/header.frame_id", 20.0),
+                        "feedback in no frame was not refused")
+        # A NaN position, stamped far in the future with a zero quaternion (neither plays a part).
+        f.header.frame_id = "map"
+        f.header.stamp = rospy.Time(2 ** 31)
+        f.pose.position.x = float("nan")
+        f.pose.orientation.w = 0.0
+        self.feedback.publish(f)
+        self.assertTrue(self.wait_logged_with("/zone_server/shapes/hostile_sq/points", ["nan"], 20.0),
+                        "the NaN drag was not refused")
+        self.assertEqual(self.mask.count, count, "a refused request republished the mask")
+        self.assertEqual(list(self.mask.msg.data), with_square)
+        self.assertTrue(self.remove_shape("hostile_sq").success)
+        self.assertTrue(self.mask.wait(lambda m: list(m.data) == before, 20.0))
+
+    def test_handles_are_capped(self):
+        """Ten shapes of 1000 vertices: handles are offered for whole shapes in order up to 10 000
+        (limits::kMaxZoneHandles), the rest is left out with a keyed warning; removed at the end."""
+        self.assertTrue(self.mask.wait(lambda m: True, 30.0))
+        before = list(self.mask.msg.data)
+        inits = []
+        cond = threading.Condition()
+
+        def on_init(m):
+            with cond:
+                inits.append(set(mk.name for mk in m.markers))
+                cond.notify_all()
+
+        def handles(names):
+            return sorted(h for h in names if "/" in h)
+        sub = rospy.Subscriber("/zone_server/update_full", InteractiveMarkerInit, on_init)
+        with cond:
+            self.assertTrue(cond.wait_for(lambda: inits, 30.0), "no update_full")
+            handles_before = len(handles(inits[-1]))
+        names = ["big%d" % k for k in range(10)]
+        for k, name in enumerate(names):
+            ring = [Point(-30.0 + 2.0 * k + 0.5 * math.cos(2 * math.pi * v / 1000),
+                          10.0 + 0.5 * math.sin(2 * math.pi * v / 1000), 0) for v in range(1000)]
+            res = self.set_shape(ZoneShape(name=name, type="polygon", value=20, fill=True, points=ring))
+            self.assertTrue(res.success, res.message)
+        offered = (10000 - handles_before) // 1000  # whole shapes, in order, after those already there
+        self.assertLess(offered, len(names))
+        with cond:  # the markers after the last shape came: its outline is drawn, with or without handles
+            self.assertTrue(cond.wait_for(lambda: names[-1] in inits[-1], 30.0), "no update_full with big9")
+            last = handles(inits[-1])
+        self.assertIn("big%d/999" % (offered - 1), last)
+        self.assertFalse([h for h in last if h.startswith("big%d/" % offered)], "a shape past the limit has handles")
+        self.assertLessEqual(len(last), 10000)
+        self.assertTrue(self.wait_logged_with("/zone_server/markers", ["10000"], 20.0), "no keyed warning")
+        sub.unregister()
+        for name in names:
+            self.assertTrue(self.remove_shape(name).success)
+        self.assertTrue(self.mask.wait(lambda m: list(m.data) == before, 20.0))
 
 
 if __name__ == "__main__":

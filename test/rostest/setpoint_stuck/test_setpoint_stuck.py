@@ -1,0 +1,176 @@
+#!/usr/bin/env python3
+"""ZoneParameterFilter's setpoints against hostile dynamic_reconfigure servers. /stuck_server accepts
+the call and never answers; /vanishing_server exits in the middle of the call; /good_server answers.
+The set names the stuck server first. The costmap (started here, as /costmap_stuck) must keep
+updating while a call hangs, report the stuck and the vanished server by their stable keys, still
+apply /good_server's values (every new set too, only the newest mattering), and exit promptly on
+SIGINT while a call hangs."""
+import os
+import signal
+import subprocess
+import sys
+import threading
+import time
+import unittest
+
+import roslib.packages
+import rospy
+import rostest
+import tf2_ros
+from geometry_msgs.msg import TransformStamped
+from nav_msgs.msg import OccupancyGrid
+from rosgraph_msgs.msg import Log
+from std_msgs.msg import UInt8
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.dirname(HERE))
+sys.path.insert(0, HERE)
+from grid_watch import CycleWatcher, logged_with_key  # noqa: E402
+from servers import Server  # noqa: E402
+
+NODE = "/costmap_stuck"
+KEY = NODE + "/zone_filter/setpoint/"
+# Mask cells of 1 m along x (robot at y = 0.5): 0 | 1 slow | 0
+MASK = [0, 1, 0]
+
+
+class Latest:
+    """Every message on a topic, with a wait on a condition."""
+
+    def __init__(self, topic, cls):
+        self.cond = threading.Condition()
+        self.msgs = []
+        rospy.Subscriber(topic, cls, self.on_msg)
+
+    def on_msg(self, m):
+        with self.cond:
+            self.msgs.append(m)
+            self.cond.notify_all()
+
+    def wait(self, predicate, timeout):
+        deadline = rospy.Time.now() + rospy.Duration(timeout)
+        with self.cond:
+            while not (self.msgs and predicate(self.msgs[-1])) and not rospy.is_shutdown() \
+                    and rospy.Time.now() < deadline:
+                self.cond.wait(0.2)
+            return bool(self.msgs) and predicate(self.msgs[-1])
+
+
+class SetpointStuckTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node("test_setpoint_stuck")
+        cls.logs = []
+        cls.log_cond = threading.Condition()
+
+        def on_log(m):
+            if m.name == NODE and m.level >= Log.ERROR:
+                with cls.log_cond:
+                    cls.logs.append(m.msg)
+                    cls.log_cond.notify_all()
+        rospy.Subscriber("/rosout", Log, on_log)
+        cls.stuck = Server("stuck_server", answer=False)
+        cls.good = Server("good_server", answer=True)
+        cls.vanishing = subprocess.Popen([sys.executable, os.path.join(HERE, "vanishing_server.py")])
+        rospy.wait_for_service("/vanishing_server/set_parameters", timeout=60)
+        cls.state = Latest("/stuck_zone_state", UInt8)
+        cls.cycles = CycleWatcher(NODE)
+        mask = OccupancyGrid()
+        mask.header.frame_id = "map"
+        mask.info.resolution = 1.0
+        mask.info.width = len(MASK)
+        mask.info.height = 1
+        mask.info.origin.orientation.w = 1.0
+        mask.data = MASK
+        cls.mask_pub = rospy.Publisher("/stuck_zone_mask", OccupancyGrid, queue_size=1, latch=True)
+        cls.mask_pub.publish(mask)
+        cls.x = 0.5
+        cls.tf = tf2_ros.TransformBroadcaster()
+        cls.stop = False
+        cls.thread = threading.Thread(target=cls.publish_pose)
+        cls.thread.daemon = True
+        cls.thread.start()
+        node = roslib.packages.find_node("costmap_layers", "costmap_node")
+        cls.node = subprocess.Popen([node[0], "__name:=costmap_stuck"])
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.stop = True
+        cls.stuck.release()
+        for proc in (cls.node, cls.vanishing):
+            if proc.poll() is None:
+                proc.kill()
+                proc.wait()
+
+    @classmethod
+    def publish_pose(cls):
+        rate = rospy.Rate(20)
+        while not rospy.is_shutdown() and not cls.stop:
+            t = TransformStamped()
+            t.header.stamp = rospy.Time.now()
+            t.header.frame_id = "map"
+            t.child_frame_id = "base_link"
+            t.transform.translation.x = cls.x
+            t.transform.translation.y = 0.5
+            t.transform.rotation.w = 1.0
+            cls.tf.sendTransform(t)
+            rate.sleep()
+
+    def wait_logged(self, key, values, timeout):
+        deadline = rospy.Time.now() + rospy.Duration(timeout)
+        with self.log_cond:
+            while not logged_with_key(self.logs, key, *values) and not rospy.is_shutdown() \
+                    and rospy.Time.now() < deadline:
+                self.log_cond.wait(0.2)
+            return logged_with_key(self.logs, key, *values)
+
+    def go(self, x, state):
+        type(self).x = x
+        self.assertTrue(self.state.wait(lambda m: m.data == state, 20.0),
+                        "no state %d at x = %.1f" % (state, x))
+
+    def test_stuck_and_vanishing_servers(self):
+        # The first set (nominal defaults): the call to /stuck_server hangs ...
+        self.assertTrue(self.stuck.wait(lambda s: len(s.received) >= 1, 60.0), "/stuck_server was never called")
+        # ... while the costmap keeps updating and publishing.
+        self.assertTrue(self.cycles.wait(5, 30.0), "the costmap stopped updating while a call hung")
+        # The hanging call is reported by its key, and abandoned: /good_server, named after it, gets its
+        # value; /vanishing_server's exit in the middle of its call is reported by its key.
+        self.assertTrue(self.wait_logged(KEY + "stuck_server/max_vel_x", ["/stuck_server/set_parameters"], 30.0),
+                        "the server that never answers was not reported: %s" % self.logs)
+        self.assertTrue(self.wait_logged(KEY + "vanishing_server/max_vel_x", ["/vanishing_server/set_parameters"],
+                                         30.0), "the server that vanished mid-call was not reported: %s" % self.logs)
+        self.assertEqual(self.vanishing.wait(timeout=30), 0)
+        self.assertTrue(self.good.wait(lambda s: s.value == 0.8, 30.0),
+                        "/good_server never got max_vel_x 0.8 behind the stuck server: %s" % self.good.received)
+
+        # Zone changes faster than the stuck server's timeouts: only the newest set matters, and
+        # /good_server ends with the newest value.
+        sets = 1
+        for x, state in [(1.5, 1), (0.5, 0), (1.5, 1), (0.5, 0), (1.5, 1)]:
+            self.go(x, state)
+            sets += 1
+        self.assertTrue(self.good.wait(lambda s: s.value == 0.3, 60.0),
+                        "/good_server never got the newest max_vel_x 0.3: %s" % self.good.received)
+        self.assertLessEqual(len(self.good.received), sets, "more calls than sets: %s" % self.good.received)
+        self.assertTrue(self.cycles.wait(5, 30.0), "the costmap stopped updating")
+
+        # SIGINT while a call to /stuck_server hangs: the node exits promptly (roslaunch would wait
+        # 15 s before escalating to SIGTERM).
+        calls = len(self.stuck.received)
+        self.go(0.5, 0)
+        self.assertTrue(self.stuck.wait(lambda s: len(s.received) > calls, 30.0), "/stuck_server not called again")
+        start = time.monotonic()
+        self.node.send_signal(signal.SIGINT)
+        try:
+            rc = self.node.wait(timeout=10.0)
+        except subprocess.TimeoutExpired:
+            self.fail("costmap_node did not exit within 10 s of SIGINT while a call hung")
+        took = time.monotonic() - start
+        print("costmap_node exited %.2f s after SIGINT" % took)
+        self.assertEqual(rc, 0)
+        self.assertLess(took, 5.0, "costmap_node took %.1f s to exit on SIGINT" % took)
+
+
+if __name__ == "__main__":
+    rostest.rosrun("costmap_layers", "setpoint_stuck", SetpointStuckTest)
