@@ -218,6 +218,7 @@ class ZoneServerTest(unittest.TestCase):
                                    Point(-2.0, -1.0, 0)])
         res = self.set_shape(square)
         self.assertTrue(res.success, res.message)
+        self.addCleanup(self.remove_shape, "hostile_sq")  # gone even when a check fails: no order dependence
         self.assertTrue(self.mask.wait(lambda m: 77 in m.data, 20.0))
         with_square = list(self.mask.msg.data)
         count = self.mask.count
@@ -305,6 +306,7 @@ class ZoneServerTest(unittest.TestCase):
                           10.0 + 0.5 * math.sin(2 * math.pi * v / 1000), 0) for v in range(1000)]
             res = self.set_shape(ZoneShape(name=name, type="polygon", value=20, fill=True, points=ring))
             self.assertTrue(res.success, res.message)
+            self.addCleanup(self.remove_shape, name)  # gone even when a check fails: no order dependence
         offered = (10000 - handles_before) // 1000  # whole shapes, in order, after those already there
         self.assertLess(offered, len(names))
         with cond:  # the markers after the last shape came: its outline is drawn, with or without handles
