@@ -246,7 +246,7 @@ HWY_INLINE void rowPassCost8(const uint8_t* HWY_RESTRICT g, const uint8_t* bands
   {
     const uint8_t* gx = g + x;
     if (!anyNear(d, gx, cap, far)) continue;
-    const uint8_t* bx = bands + x;
+    const uint8_t* bx = K > 1 ? bands + x : nullptr;  // (one table reads g itself)
     // What the merge keeps whatever the cost: a cell ends at max(old, cost), so old is a floor for
     // the stop below; a special cell only takes a cost from special_threshold on. (The last, partial
     // block of a row takes no floor.)
@@ -457,7 +457,7 @@ void runJob(const dt::Job& j)
       else
         out = j.target + y * j.target_stride + win.x0;
       if (K > 0)
-        rowPassCost8<(K > 0 ? K : 1)>(gr + j.pad, j.bands + j.pad, out, n, j);
+        rowPassCost8<(K > 0 ? K : 1)>(gr + j.pad, K > 1 ? j.bands + j.pad : nullptr, out, n, j);
       else
         rowPassSq16(gr + j.pad, out, n, j);
       if (j.sink != nullptr) (*j.sink)(y, j.out_row);
