@@ -104,3 +104,29 @@ def logged_with_key(lines, key, *values):
     pats = [re.compile(r"(?<![\w.])" + re.escape(v) + r"(?![\w])") for v in values]
     tag = "[" + key + "]"
     return [m for m in lines if m.rstrip().endswith(tag) and all(p.search(m) for p in pats)]
+
+
+class ErrorLog:
+    """Collects the error lines (and worse) one node writes to /rosout, and waits, as they arrive (no
+    fixed sleep), for one that carries a key and values (logged_with_key)."""
+
+    def __init__(self, node):
+        from rosgraph_msgs.msg import Log
+        self.node, self.error = node, Log.ERROR
+        self.lines = []
+        self.cond = threading.Condition()
+        rospy.Subscriber("/rosout", Log, self._on_log)
+
+    def _on_log(self, m):
+        if m.name == self.node and m.level >= self.error:
+            with self.cond:
+                self.lines.append(m.msg)
+                self.cond.notify_all()
+
+    def wait(self, key, values, timeout):
+        deadline = rospy.Time.now() + rospy.Duration(timeout)
+        with self.cond:
+            while not logged_with_key(self.lines, key, *values) and not rospy.is_shutdown() \
+                    and rospy.Time.now() < deadline:
+                self.cond.wait(0.2)
+            return logged_with_key(self.lines, key, *values)

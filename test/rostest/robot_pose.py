@@ -42,6 +42,11 @@ class RobotPose:
             self.cycles += 1
             self.cond.notify_all()
 
+    def place(self, x, y, yaw=0.0):
+        """Puts the robot at (x, y, yaw) without waiting (the caller waits on what the pose changes)."""
+        with self.lock:
+            self.pose = (x, y, yaw)
+
     def move_to(self, x, y, yaw=0.0, cycles=2, timeout=20.0):
         """Puts the robot at (x, y, yaw); returns once the node ran `cycles` cycles there (False on timeout).
         The footprint's centroid is the robot's position for the symmetric footprints the tests use."""

@@ -16,16 +16,14 @@ import unittest
 import roslib.packages
 import rospy
 import rostest
-import tf2_ros
-from geometry_msgs.msg import TransformStamped
 from nav_msgs.msg import OccupancyGrid
-from rosgraph_msgs.msg import Log
 from std_msgs.msg import UInt8
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
 sys.path.insert(0, HERE)
-from grid_watch import CycleWatcher, logged_with_key  # noqa: E402
+from grid_watch import CycleWatcher, ErrorLog  # noqa: E402
+from robot_pose import RobotPose  # noqa: E402
 from servers import Server  # noqa: E402
 
 NODE = "/costmap_stuck"
@@ -60,15 +58,7 @@ class SetpointStuckTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node("test_setpoint_stuck")
-        cls.logs = []
-        cls.log_cond = threading.Condition()
-
-        def on_log(m):
-            if m.name == NODE and m.level >= Log.ERROR:
-                with cls.log_cond:
-                    cls.logs.append(m.msg)
-                    cls.log_cond.notify_all()
-        rospy.Subscriber("/rosout", Log, on_log)
+        cls.log = ErrorLog(NODE)
         cls.stuck = Server("stuck_server", answer=False)
         cls.good = Server("good_server", answer=True)
         cls.vanishing = subprocess.Popen([sys.executable, os.path.join(HERE, "vanishing_server.py")])
@@ -84,48 +74,20 @@ class SetpointStuckTest(unittest.TestCase):
         mask.data = MASK
         cls.mask_pub = rospy.Publisher("/stuck_zone_mask", OccupancyGrid, queue_size=1, latch=True)
         cls.mask_pub.publish(mask)
-        cls.x = 0.5
-        cls.tf = tf2_ros.TransformBroadcaster()
-        cls.stop = False
-        cls.thread = threading.Thread(target=cls.publish_pose)
-        cls.thread.daemon = True
-        cls.thread.start()
+        cls.robot = RobotPose(NODE, 0.5, 0.5)
         node = roslib.packages.find_node("costmap_layers", "costmap_node")
         cls.node = subprocess.Popen([node[0], "__name:=costmap_stuck"])
 
     @classmethod
     def tearDownClass(cls):
-        cls.stop = True
         cls.stuck.release()
         for proc in (cls.node, cls.vanishing):
             if proc.poll() is None:
                 proc.kill()
                 proc.wait()
 
-    @classmethod
-    def publish_pose(cls):
-        rate = rospy.Rate(20)
-        while not rospy.is_shutdown() and not cls.stop:
-            t = TransformStamped()
-            t.header.stamp = rospy.Time.now()
-            t.header.frame_id = "map"
-            t.child_frame_id = "base_link"
-            t.transform.translation.x = cls.x
-            t.transform.translation.y = 0.5
-            t.transform.rotation.w = 1.0
-            cls.tf.sendTransform(t)
-            rate.sleep()
-
-    def wait_logged(self, key, values, timeout):
-        deadline = rospy.Time.now() + rospy.Duration(timeout)
-        with self.log_cond:
-            while not logged_with_key(self.logs, key, *values) and not rospy.is_shutdown() \
-                    and rospy.Time.now() < deadline:
-                self.log_cond.wait(0.2)
-            return logged_with_key(self.logs, key, *values)
-
     def go(self, x, state):
-        type(self).x = x
+        self.robot.place(x, 0.5)
         self.assertTrue(self.state.wait(lambda m: m.data == state, 20.0),
                         "no state %d at x = %.1f" % (state, x))
 
@@ -136,10 +98,10 @@ class SetpointStuckTest(unittest.TestCase):
         self.assertTrue(self.cycles.wait(5, 30.0), "the costmap stopped updating while a call hung")
         # The hanging call is reported by its key, and abandoned: /good_server, named after it, gets its
         # value; /vanishing_server's exit in the middle of its call is reported by its key.
-        self.assertTrue(self.wait_logged(KEY + "stuck_server/max_vel_x", ["/stuck_server/set_parameters"], 30.0),
-                        "the server that never answers was not reported: %s" % self.logs)
-        self.assertTrue(self.wait_logged(KEY + "vanishing_server/max_vel_x", ["/vanishing_server/set_parameters"],
-                                         30.0), "the server that vanished mid-call was not reported: %s" % self.logs)
+        self.assertTrue(self.log.wait(KEY + "stuck_server/max_vel_x", ["/stuck_server/set_parameters"], 30.0),
+                        "the server that never answers was not reported: %s" % self.log.lines)
+        self.assertTrue(self.log.wait(KEY + "vanishing_server/max_vel_x", ["/vanishing_server/set_parameters"],
+                                         30.0), "the server that vanished mid-call was not reported: %s" % self.log.lines)
         self.assertEqual(self.vanishing.wait(timeout=30), 0)
         self.assertTrue(self.good.wait(lambda s: s.value == 0.8, 30.0),
                         "/good_server never got max_vel_x 0.8 behind the stuck server: %s" % self.good.received)

@@ -6,7 +6,6 @@ a generated server has), sees max_vel_x set on entering and restored on leaving;
 InflationLayer (its real dynamic_reconfigure server) gets inflation_radius 1.0 in the crowded zone
 and 0.55 again outside; a value out of /fake_planner's range is refused, reported by its stable key,
 and never sent; a node that does not exist and a parameter the server does not have are reported."""
-import math
 import os
 import sys
 import threading
@@ -14,17 +13,15 @@ import unittest
 
 import rospy
 import rostest
-import tf2_ros
 from dynamic_reconfigure.msg import (Config, ConfigDescription, DoubleParameter, Group, GroupState,
                                      ParamDescription)
 from dynamic_reconfigure.srv import Reconfigure, ReconfigureResponse
-from geometry_msgs.msg import TransformStamped
 from nav_msgs.msg import OccupancyGrid
-from rosgraph_msgs.msg import Log
 from std_msgs.msg import UInt8
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from grid_watch import logged_with_key  # noqa: E402
+from grid_watch import ErrorLog  # noqa: E402
+from robot_pose import RobotPose  # noqa: E402
 
 # Mask cells of 1 m along x (robot at y = 0.5): 0 | 1 slow | 2 crowded | 0 | 3 too_fast | 0
 MASK = [0, 1, 2, 0, 3, 0]
@@ -105,15 +102,7 @@ class ZoneParamsTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node("test_zone_params")
-        cls.logs = []
-        cls.log_cond = threading.Condition()
-
-        def on_log(m):
-            if m.name == "/costmap_node" and m.level >= Log.ERROR:
-                with cls.log_cond:
-                    cls.logs.append(m.msg)
-                    cls.log_cond.notify_all()
-        rospy.Subscriber("/rosout", Log, on_log)
+        cls.log = ErrorLog("/costmap_node")
         cls.planner = FakePlanner()
         cls.state = Latest("/zone_state", UInt8)
         cls.inflation = Latest("/costmap_node/inflation_layer/parameter_updates", Config)
@@ -126,37 +115,10 @@ class ZoneParamsTest(unittest.TestCase):
         mask.data = MASK
         cls.mask_pub = rospy.Publisher("/zone_mask", OccupancyGrid, queue_size=1, latch=True)
         cls.mask_pub.publish(mask)
-        cls.x = 0.5
-        cls.tf = tf2_ros.TransformBroadcaster()
-        cls.stop = False
-        cls.thread = threading.Thread(target=cls.publish_pose)
-        cls.thread.daemon = True
-        cls.thread.start()
-
-    @classmethod
-    def publish_pose(cls):
-        rate = rospy.Rate(20)
-        while not rospy.is_shutdown() and not cls.stop:
-            t = TransformStamped()
-            t.header.stamp = rospy.Time.now()
-            t.header.frame_id = "map"
-            t.child_frame_id = "base_link"
-            t.transform.translation.x = cls.x
-            t.transform.translation.y = 0.5
-            t.transform.rotation.w = 1.0
-            cls.tf.sendTransform(t)
-            rate.sleep()
-
-    def wait_logged(self, key, values, timeout):
-        deadline = rospy.Time.now() + rospy.Duration(timeout)
-        with self.log_cond:
-            while not logged_with_key(self.logs, key, *values) and not rospy.is_shutdown() \
-                    and rospy.Time.now() < deadline:
-                self.log_cond.wait(0.2)
-            return logged_with_key(self.logs, key, *values)
+        cls.robot = RobotPose("/costmap_node", 0.5, 0.5)
 
     def go(self, x, state):
-        type(self).x = x
+        self.robot.place(x, 0.5)
         self.assertTrue(self.state.wait(lambda m: m.data == state, 20.0),
                         "no state %d at x = %.1f (last: %s)" % (state, x, self.state.msg))
 
@@ -180,17 +142,17 @@ class ZoneParamsTest(unittest.TestCase):
         # too_fast: 5.0 is outside /fake_planner's [0, 2]: refused, reported by key, never sent.
         self.go(4.5, 3)
         key = "/costmap_node/zone_filter/setpoint/fake_planner/max_vel_x"
-        self.assertTrue(self.wait_logged(key, ["5"], 20.0), "the refused max_vel_x 5.0 was not reported")
+        self.assertTrue(self.log.wait(key, ["5"], 20.0), "the refused max_vel_x 5.0 was not reported")
         self.go(5.5, 0)
         self.assertTrue(self.planner.wait_value(0.8, 20.0))
         self.assertNotIn(5.0, self.planner.received)
         self.assertAlmostEqual(self.planner.value, 0.8)
 
     def test_missing_node_and_unknown_parameter_are_reported(self):
-        self.assertTrue(self.wait_logged("/costmap_node/ghost_filter/setpoint/no_such_node/speed",
+        self.assertTrue(self.log.wait("/costmap_node/ghost_filter/setpoint/no_such_node/speed",
                                          ["/no_such_node"], 60.0),
                         "a setpoint for a node that does not exist was not reported")
-        self.assertTrue(self.wait_logged("/costmap_node/ghost_filter/setpoint/fake_planner/no_such_param",
+        self.assertTrue(self.log.wait("/costmap_node/ghost_filter/setpoint/fake_planner/no_such_param",
                                          ["no_such_param"], 60.0),
                         "a setpoint for a parameter the server does not have was not reported")
 
