@@ -3,24 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
 
+#include "costmap_layers/core/input_error.hpp"
 #include "costmap_layers/core/limits.hpp"
 #include "costmap_layers/core/param_reader.hpp"
 #include "costmap_layers/core/stamp_order.hpp"
 
 namespace costmap_layers
 {
-namespace
-{
-std::string num(double v)
-{
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-}  // namespace
-
 SpeedFilterConfig parseSpeedFilterConfig(const ParamReader& params)
 {
   SpeedFilterConfig c;
@@ -41,12 +31,13 @@ SpeedFilterConfig parseSpeedFilterConfig(const ParamReader& params)
   c.max_decel = params.getDouble("max_decel", c.max_decel, -1e3, 1e3);
   if (c.max_decel > 0.0)
     params.fail("max_decel",
-                "is positive (" + num(c.max_decel) +
+                "is positive (" + valueText(c.max_decel) +
                     "): as in Nav2 a deceleration is negative [m/s^2], e.g. -0.5 (0 means always max_lookahead)");
   c.min_lookahead = params.getDouble("min_lookahead", c.min_lookahead, 0.0, limits::kMaxDistance);
   c.max_lookahead = params.getDouble("max_lookahead", c.max_lookahead, 0.0, limits::kMaxDistance);
   if (c.max_lookahead < c.min_lookahead)
-    params.fail("max_lookahead", "(" + num(c.max_lookahead) + " m) is below min_lookahead (" + num(c.min_lookahead) +
+    params.fail("max_lookahead", "(" + valueText(c.max_lookahead) + " m) is below min_lookahead (" +
+                                     valueText(c.min_lookahead) +
                                      " m): the lookahead is clamped to [min_lookahead, max_lookahead]");
   c.path_topic = params.getString("path_topic", c.path_topic);
   c.odom_topic = params.getString("odom_topic", c.odom_topic);
@@ -100,7 +91,7 @@ SpeedLimitTable buildSpeedLimitTable(const SpeedLimitsData& limits, const SpeedF
   {
     const SpeedLimitEntry& e = limits.limits[k];
     const std::string what = "limits[" + std::to_string(k) + "] (area_id " + std::to_string(e.area_id) +
-                             ", max_speed " + num(e.max_speed) + ")";
+                             ", max_speed " + valueText(e.max_speed) + ")";
     if (e.area_id < 1 || e.area_id > static_cast<uint32_t>(SpeedLimitTable::kMaxAreaId))
     {
       issue(true, k, e.area_id, what + " dropped: area ids must be in 1..100 (mask cell values)");
@@ -221,16 +212,16 @@ std::optional<double> SpeedFilter::currentSpeed()
   {
     context_->report(Severity::Error, "odom/missing",
                      name_ + ": no odometry yet on " + config_.odom_topic + ": looking max_lookahead (" +
-                         num(config_.max_lookahead) + " m) ahead");
+                         valueText(config_.max_lookahead) + " m) ahead");
     return std::nullopt;
   }
   const double age = secondsBetween(newest, now);
   if (age > config_.odom_timeout)
   {
     context_->report(Severity::Error, "odom/stale",
-                     name_ + ": the newest odometry on " + config_.odom_topic + " is " + num(age) +
-                         " s old, more than odom_timeout (" + num(config_.odom_timeout) +
-                         " s): looking max_lookahead (" + num(config_.max_lookahead) + " m) ahead");
+                     name_ + ": the newest odometry on " + config_.odom_topic + " is " + valueText(age) +
+                         " s old, more than odom_timeout (" + valueText(config_.odom_timeout) +
+                         " s): looking max_lookahead (" + valueText(config_.max_lookahead) + " m) ahead");
     return std::nullopt;
   }
   return std::fabs(sum / static_cast<double>(n));
@@ -377,11 +368,11 @@ SpeedFilter::Publication SpeedFilter::fromNav2Limit(double speed_limit) const
 std::string SpeedFilter::describe(const Publication& p) const
 {
   std::string text = "publishing ";
-  text += p.max_speed ? "max_speed " + num(*p.max_speed) + " m/s" + (*p.max_speed == 0.0 ? " (no limit)" : "") +
+  text += p.max_speed ? "max_speed " + valueText(*p.max_speed) + " m/s" + (*p.max_speed == 0.0 ? " (no limit)" : "") +
                             " on " + config_.max_speed_topic
                       : "nothing on " + config_.max_speed_topic + " (a percentage, and default_max_speed is 0)";
   if (!config_.speed_limit_topic.empty())
-    text += " and speed_limit " + num(p.speed_limit) + (p.percentage ? " %" : " m/s") +
+    text += " and speed_limit " + valueText(p.speed_limit) + (p.percentage ? " %" : " m/s") +
             (p.speed_limit == 0.0 ? " (no limit)" : "") + " on " + config_.speed_limit_topic;
   return text;
 }
@@ -446,8 +437,8 @@ SpeedFilter::Publication SpeedFilter::limitForValue(int8_t v, const SpeedLimitTa
   const Nav2SpeedLimit limit = nav2SpeedLimit(v, base, multiplier, percent);
   const Publication p = fromNav2Limit(limit.speed_limit);
   if (limit.out_of_range)
-    warnValueOnce(v, "mask value " + std::to_string(v) + " gives base + multiplier * v = " + num(base) + " + " +
-                         num(multiplier) + " * " + std::to_string(v) + " = " + num(limit.computed) +
+    warnValueOnce(v, "mask value " + std::to_string(v) + " gives base + multiplier * v = " + valueText(base) + " + " +
+                         valueText(multiplier) + " * " + std::to_string(v) + " = " + valueText(limit.computed) +
                          (percent ? " %, outside [0, 100]" : " m/s, below 0") + " (Nav2's rule: no limit); " +
                          describe(p) + " there");
   return p;

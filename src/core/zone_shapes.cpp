@@ -14,13 +14,6 @@ namespace costmap_layers
 {
 namespace
 {
-std::string num(double v)
-{
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
 /// 17 significant digits: every double reads back to itself.
 std::string exact(double v)
 {
@@ -75,8 +68,9 @@ InputError validatePolygon(const ZoneShape& s)
                                   " points (got " + std::to_string(p.size()) + ")");
   for (std::size_t k = 0; k < p.size(); ++k)
     if (!finiteCoordinate(p[k].x) || !finiteCoordinate(p[k].y))
-      return InputError::of(at, where(s) + ": point " + std::to_string(k) + " (" + num(p[k].x) + ", " + num(p[k].y) +
-                                    ") must be finite and within " + num(limits::kMaxCoordinate) + " m");
+      return InputError::of(at, where(s) + ": point " + std::to_string(k) + " (" + valueText(p[k].x) + ", " +
+                                    valueText(p[k].y) + ") must be finite and within " +
+                                    valueText(limits::kMaxCoordinate) + " m");
   const std::size_t n = p.size();
   double area2 = 0.0;
   for (std::size_t k = 0; k < n; ++k)
@@ -85,7 +79,8 @@ InputError validatePolygon(const ZoneShape& s)
     const ZonePoint& b = p[(k + 1) % n];
     if (a.x == b.x && a.y == b.y)
       return InputError::of(at, where(s) + ": points " + std::to_string(k) + " and " + std::to_string((k + 1) % n) +
-                                    " are the same point (" + num(a.x) + ", " + num(a.y) + "): a zero-length edge");
+                                    " are the same point (" + valueText(a.x) + ", " + valueText(a.y) +
+                                    "): a zero-length edge");
     area2 += a.x * b.y - b.x * a.y;
   }
   // Neighbouring edges (k-1, k) and (k, k+1) share vertex k; they must not fold back over each other.
@@ -95,8 +90,8 @@ InputError validatePolygon(const ZoneShape& s)
     const ZonePoint& b = p[k];
     const ZonePoint& c = p[(k + 1) % n];
     if (orient(a, b, c) == 0 && (a.x - b.x) * (c.x - b.x) + (a.y - b.y) * (c.y - b.y) > 0)
-      return InputError::of(at, where(s) + ": the edges at point " + std::to_string(k) + " (" + num(b.x) + ", " +
-                                    num(b.y) + ") fold back over each other (self-intersecting)");
+      return InputError::of(at, where(s) + ": the edges at point " + std::to_string(k) + " (" + valueText(b.x) + ", " +
+                                    valueText(b.y) + ") fold back over each other (self-intersecting)");
   }
   // Any two edges that are not neighbours must not meet.
   for (std::size_t i = 0; i < n; ++i)
@@ -389,12 +384,13 @@ InputError validateShape(const ZoneShape& s)
                           where(s) + ": value must be in -1..100 (got " + std::to_string(s.value) + ")");
   if (s.type == ZoneShapeType::Polygon) return validatePolygon(s);
   if (!finiteCoordinate(s.center.x) || !finiteCoordinate(s.center.y))
-    return InputError::of(where(s) + "/center", where(s) + ": center (" + num(s.center.x) + ", " + num(s.center.y) +
-                                                    ") must be finite and within " + num(limits::kMaxCoordinate) +
-                                                    " m");
+    return InputError::of(where(s) + "/center", where(s) + ": center (" + valueText(s.center.x) + ", " +
+                                                    valueText(s.center.y) + ") must be finite and within " +
+                                                    valueText(limits::kMaxCoordinate) + " m");
   if (!std::isfinite(s.radius) || s.radius <= 0.0 || s.radius > limits::kMaxCoordinate)
     return InputError::of(where(s) + "/radius", where(s) + ": radius must be finite, > 0 and at most " +
-                                                    num(limits::kMaxCoordinate) + " m (got " + num(s.radius) + ")");
+                                                    valueText(limits::kMaxCoordinate) + " m (got " +
+                                                    valueText(s.radius) + ")");
   return InputError::none();
 }
 
@@ -415,8 +411,8 @@ ZoneGridExtent zoneGridExtent(const ZoneLayout& layout)
   const int64_t j0 = static_cast<int64_t>(std::floor(y0 / r)) - 1, j1 = static_cast<int64_t>(std::floor(y1 / r)) + 1;
   const uint64_t w = static_cast<uint64_t>(i1 - i0 + 1), h = static_cast<uint64_t>(j1 - j0 + 1);
   if (w > limits::kMaxGridCells || h > limits::kMaxGridCells || w * h > limits::kMaxGridCells)
-    throw std::invalid_argument("the shapes span " + num(x1 - x0) + " m x " + num(y1 - y0) + " m: at " + num(r) +
-                                " m/cell that is " + std::to_string(w) + " x " + std::to_string(h) +
+    throw std::invalid_argument("the shapes span " + valueText(x1 - x0) + " m x " + valueText(y1 - y0) + " m: at " +
+                                valueText(r) + " m/cell that is " + std::to_string(w) + " x " + std::to_string(h) +
                                 " cells, more than the " + std::to_string(limits::kMaxGridCells) +
                                 " cells a mask may have (use a coarser resolution or smaller shapes)");
   e.origin_x = static_cast<double>(i0) * r;
@@ -430,9 +426,9 @@ InputError validateLayout(const ZoneLayout& layout)
 {
   if (!std::isfinite(layout.resolution) || layout.resolution < limits::kMinResolution ||
       layout.resolution > limits::kMaxResolution)
-    return InputError::of("resolution", "resolution must be in [" + num(limits::kMinResolution) + ", " +
-                                            num(limits::kMaxResolution) + "] m/cell (got " + num(layout.resolution) +
-                                            ")");
+    return InputError::of("resolution", "resolution must be in [" + valueText(limits::kMinResolution) + ", " +
+                                            valueText(limits::kMaxResolution) + "] m/cell (got " +
+                                            valueText(layout.resolution) + ")");
   if (layout.default_value < -1 || layout.default_value > 100)
     return InputError::of("default_value",
                           "default_value must be in -1..100 (got " + std::to_string(layout.default_value) + ")");
@@ -462,10 +458,10 @@ InputError validateLayout(const ZoneLayout& layout)
     work += rasterWork(s, layout.resolution);
   if (work > limits::kMaxZoneRasterWork)
     return InputError::of("extent", "drawing these " + std::to_string(layout.shapes.size()) + " shapes at " +
-                                        num(layout.resolution) + " m/cell takes about " + num(work) +
+                                        valueText(layout.resolution) + " m/cell takes about " + valueText(work) +
                                         " cell visits (their bounding boxes, and rows times vertices of each "
                                         "polygon), more than the " +
-                                        num(limits::kMaxZoneRasterWork) +
+                                        valueText(limits::kMaxZoneRasterWork) +
                                         " allowed (use a coarser resolution, or fewer large shapes)");
   return InputError::none();
 }

@@ -15,4 +15,7 @@ struct InputError
   static InputError none() { return {}; }
   static InputError of(std::string field, std::string message) { return {std::move(field), std::move(message)}; }
 };
+
+/// A number as an error message shows it: the stream's default form (0.3, 1e+300, nan, inf).
+std::string valueText(double value);
 }  // namespace costmap_layers
