@@ -44,6 +44,45 @@ const char* reconfigureTypeName(ParamValue::Type t)
   }
 }
 
+void addToConfig(dynamic_reconfigure::Config& config, const std::string& name, const ParamValue& value)
+{
+  switch (value.type())
+  {
+    case ParamValue::Type::Bool:
+    {
+      dynamic_reconfigure::BoolParameter p;
+      p.name = name;
+      p.value = value.asBool();
+      config.bools.push_back(p);
+      break;
+    }
+    case ParamValue::Type::Int:
+    {
+      dynamic_reconfigure::IntParameter p;
+      p.name = name;
+      p.value = static_cast<int32_t>(value.asInt());
+      config.ints.push_back(p);
+      break;
+    }
+    case ParamValue::Type::Double:
+    {
+      dynamic_reconfigure::DoubleParameter p;
+      p.name = name;
+      p.value = value.asDouble();
+      config.doubles.push_back(p);
+      break;
+    }
+    default:
+    {
+      dynamic_reconfigure::StrParameter p;
+      p.name = name;
+      p.value = value.asString();
+      config.strs.push_back(p);
+      break;
+    }
+  }
+}
+
 LayerReconfigure::LayerReconfigure(ros::NodeHandle layer_nh, std::shared_ptr<costmap_layers::Layer> layer,
                                    ParamValue params, RunLocked run_locked)
     : nh_(std::move(layer_nh)), layer_(std::move(layer)), params_(std::move(params)), run_locked_(std::move(run_locked))
@@ -63,41 +102,26 @@ dynamic_reconfigure::Config LayerReconfigure::toConfig(const std::vector<ParamSp
   for (const auto& s : specs)
   {
     const ParamValue& v = use_defaults ? s.default_value : s.value;
+    // The value itself, or (which < 0 / > 0) the type's lower / upper bound as the description gives it.
     switch (s.type)
     {
       case ParamValue::Type::Bool:
-      {
-        dynamic_reconfigure::BoolParameter p;
-        p.name = s.name;
-        p.value = which < 0 ? false : (which > 0 ? true : v.asBool());
-        c.bools.push_back(p);
+        addToConfig(c, s.name, ParamValue::makeBool(which < 0 ? false : (which > 0 ? true : v.asBool())));
         break;
-      }
       case ParamValue::Type::Int:
-      {
-        dynamic_reconfigure::IntParameter p;
-        p.name = s.name;
-        p.value =
-            which < 0 ? static_cast<int>(s.min) : (which > 0 ? static_cast<int>(s.max) : static_cast<int>(v.asInt()));
-        c.ints.push_back(p);
+        addToConfig(
+            c, s.name,
+            ParamValue::makeInt(which < 0 ? static_cast<int>(s.min)
+                                          : (which > 0 ? static_cast<int>(s.max) : static_cast<int>(v.asInt()))));
         break;
-      }
       case ParamValue::Type::Double:
-      {
-        dynamic_reconfigure::DoubleParameter p;
-        p.name = s.name;
-        p.value = which < 0 ? clampLimit(s.min) : (which > 0 ? clampLimit(s.max) : v.asDouble());
-        c.doubles.push_back(p);
+        addToConfig(
+            c, s.name,
+            ParamValue::makeDouble(which < 0 ? clampLimit(s.min) : (which > 0 ? clampLimit(s.max) : v.asDouble())));
         break;
-      }
       default:
-      {
-        dynamic_reconfigure::StrParameter p;
-        p.name = s.name;
-        p.value = which != 0 ? std::string() : v.asString();
-        c.strs.push_back(p);
+        addToConfig(c, s.name, ParamValue::makeString(which != 0 ? std::string() : v.asString()));
         break;
-      }
     }
   }
   c.groups.push_back(defaultGroup());

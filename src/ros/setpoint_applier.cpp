@@ -142,41 +142,7 @@ dynamic_reconfigure::Config SetpointApplier::request(const std::vector<Setpoint>
 {
   dynamic_reconfigure::Config c;
   for (const auto& s : setpoints)
-    switch (s.value.type())
-    {
-      case ParamValue::Type::Bool:
-      {
-        dynamic_reconfigure::BoolParameter p;
-        p.name = s.parameter;
-        p.value = s.value.asBool();
-        c.bools.push_back(p);
-        break;
-      }
-      case ParamValue::Type::Int:
-      {
-        dynamic_reconfigure::IntParameter p;
-        p.name = s.parameter;
-        p.value = static_cast<int32_t>(s.value.asInt());
-        c.ints.push_back(p);
-        break;
-      }
-      case ParamValue::Type::Double:
-      {
-        dynamic_reconfigure::DoubleParameter p;
-        p.name = s.parameter;
-        p.value = s.value.asDouble();
-        c.doubles.push_back(p);
-        break;
-      }
-      default:
-      {
-        dynamic_reconfigure::StrParameter p;
-        p.name = s.parameter;
-        p.value = s.value.asString();
-        c.strs.push_back(p);
-        break;
-      }
-    }
+    addToConfig(c, s.parameter, s.value);
   return c;
 }
 

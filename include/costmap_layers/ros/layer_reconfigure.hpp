@@ -20,6 +20,9 @@ namespace costmap_layers_ros
 {
 /// dynamic_reconfigure's name of a parameter type: "bool", "int", "double" or "str".
 const char* reconfigureTypeName(costmap_layers::ParamValue::Type t);
+/// Adds name = value to the config, in the list of value's type (bools, ints, doubles, or strs for any
+/// other type).
+void addToConfig(dynamic_reconfigure::Config& config, const std::string& name, const costmap_layers::ParamValue& value);
 
 class LayerReconfigure
 {
