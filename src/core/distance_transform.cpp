@@ -228,10 +228,10 @@ HWY_INLINE hn::Vec<D> offsetCost(D d, const uint8_t* tables, const uint8_t* g, c
 }
 
 /// Row pass in the cost domain (reach <= kMaxCostDomainReach): c = max over dx of
-/// cost(dx^2 + min(g[x - dx], g[x + dx])^2), merged into out. g (and bands, for K > 1) is readable on
-/// [-pad, n + pad).
+/// cost(dx^2 + min(g[x - dx], g[x + dx])^2), merged into out. g is readable on [-pad, n + pad); for
+/// K > 1 the row's bands are written into `bands` (K rows of row_stride bytes) first.
 template <int K>
-HWY_INLINE void rowPassCost8(const uint8_t* HWY_RESTRICT g, const uint8_t* bands, uint8_t* HWY_RESTRICT out, int n,
+HWY_INLINE void rowPassCost8(const uint8_t* HWY_RESTRICT g, uint8_t* bands, uint8_t* HWY_RESTRICT out, int n,
                              const dt::Job& j)
 {
   const hn::ScalableTag<uint8_t> d;
@@ -241,7 +241,7 @@ HWY_INLINE void rowPassCost8(const uint8_t* HWY_RESTRICT g, const uint8_t* bands
   const uint8_t* tables = j.offset_tables;
   const std::ptrdiff_t bs = j.row_stride;
   const auto special = hn::Set(d, j.rule.special);
-  if (K > 1) splitBands(g, const_cast<uint8_t*>(bands), -cap, n + cap + N, bs, K);
+  if (K > 1) splitBands(g, bands, -cap, n + cap + N, bs, K);
   for (int x = 0; x < n; x += N)
   {
     const uint8_t* gx = g + x;
