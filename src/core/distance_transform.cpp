@@ -54,9 +54,18 @@ struct Job
   uint16_t* acc;            ///< reach > kMaxCostDomainReach: one block of squared distances
   uint8_t* costs;           ///< reach > kMaxCostDomainReach: one block of costs
   const uint16_t* squares;  ///< 16-bit path: dx^2 eight times for each dx in [0, cap]
-  uint8_t* bands;           ///< cost domain, more than one table per offset: the row's vertical distances by table
-                            ///< (tablesPerOffset(cap) rows of row_stride bytes, padded as the stripe rows)
 };
+
+/// In the cost domain a vertical distance v is stored as v + kBias: the 16-entry byte lookup of table
+/// k at index (v + kBias - 16 k) then reads entry v - 16 k for v in [16 k, 16 k + 15], gives 0 above
+/// (bit 7 set) and an entry of a farther distance below (bit 7 clear, k <= 7): never more than the
+/// cost of v. So the largest of the K lookups is the cost of v, with no split of the row into bands.
+constexpr uint8_t kBias = 112;
+static_assert(kBias + 16 == 128 && kBias >= 16 * (tablesPerOffset(kMaxCostDomainReach) - 1) &&
+                  kBias + kMaxCostDomainReach + 1 <= 255,
+              "a band's own distances must index 0..15 with bit 7 clear, farther ones set bit 7");
+/// Offsets after 0 go in groups of this many; a block may stop after each group.
+constexpr int kGroup = 4;
 }  // namespace dt
 }  // namespace costmap_layers
 #endif
@@ -73,26 +82,27 @@ namespace HWY_NAMESPACE
 {
 namespace hn = hwy::HWY_NAMESPACE;
 
-/// dst[k] = source(src[k]) ? 0 : min(above[k] + 1, far): one step of a vertical sweep.
-/// above may be dst (the rows above the window run in place).
+/// dst[k] = source(src[k]) ? base : min(above[k] + 1, far): one step of a vertical sweep (distances
+/// stored as base + v). above may be dst (the rows above the window run in place).
 HWY_INLINE void verticalStep(const uint8_t* HWY_RESTRICT src, const uint8_t* above, uint8_t* dst, int cw, uint8_t lo,
-                             uint8_t span, uint8_t far)
+                             uint8_t span, uint8_t base, uint8_t far)
 {
   const hn::ScalableTag<uint8_t> d;
   const int N = static_cast<int>(hn::Lanes(d));
   const auto vlo = hn::Set(d, lo), vspan = hn::Set(d, span), vfar = hn::Set(d, far), one = hn::Set(d, 1);
+  const auto vbase = hn::Set(d, base);
   int k = 0;
   for (; k + N <= cw; k += N)
   {
     const auto rel = hn::Sub(hn::LoadU(d, src + k), vlo);
     const auto is_src = hn::Eq(hn::Min(rel, vspan), rel);
     const auto next = hn::Min(hn::SaturatedAdd(hn::LoadU(d, above + k), one), vfar);
-    hn::StoreU(hn::IfThenZeroElse(is_src, next), d, dst + k);
+    hn::StoreU(hn::IfThenElse(is_src, vbase, next), d, dst + k);
   }
   for (; k < cw; ++k)
   {
     const uint8_t r = static_cast<uint8_t>(std::min<int>(above[k] + 1, far));
-    dst[k] = static_cast<uint8_t>(src[k] - lo) <= span ? uint8_t{0} : r;
+    dst[k] = static_cast<uint8_t>(src[k] - lo) <= span ? base : r;
   }
 }
 
@@ -186,67 +196,56 @@ HWY_INLINE V lookup16(D d, const uint8_t* table, V idx)
 #endif
 }
 
-/// Splits vertical distances into the K tables' indices: band k of v is v - 16 k where v is in
-/// [16 k, 16 k + 15], else 0x80 (which looks up 0). The minimum of two sides' bands k is the band k of
-/// the nearer side when it is in band k, else of the farther one, whose cost is no higher: so the
-/// maximum over k of the bands' costs is the cost of the nearer side.
-HWY_INLINE void splitBands(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRICT bands, int from, int to,
-                           std::ptrdiff_t band_stride, int K)
+/// The cost at column offset dx from biased vertical distances (see kBias), by the first KK of the
+/// offset's tables (those past its last non-zero one hold zeros).
+template <int KK, class D>
+HWY_INLINE hn::Vec<D> offsetCost(D d, const uint8_t* t, const uint8_t* gx, int dx)
 {
-  const hn::ScalableTag<uint8_t> d;
-  const int N = static_cast<int>(hn::Lanes(d));
-  const auto fifteen = hn::Set(d, 15), none = hn::Set(d, 0x80);
-  for (int k = 0; k < K; ++k)
-  {
-    uint8_t* out = bands + k * band_stride;
-    const auto base = hn::Set(d, static_cast<uint8_t>(16 * k));
-    for (int x = from; x < to; x += N)
-    {
-      const auto v = hn::LoadU(d, g + x);
-      const auto rel = hn::Sub(v, base);
-      const auto in_band = hn::And(hn::Eq(hn::Max(v, base), v), hn::Eq(hn::Min(rel, fifteen), rel));
-      hn::StoreU(hn::IfThenElse(in_band, rel, none), d, out + x);
-    }
-  }
-}
-
-/// The cost of the nearer side at column offset dx (the K tables of that offset; K = 1 reads the
-/// vertical distances themselves, which are then at most 15).
-template <int K, class D>
-HWY_INLINE hn::Vec<D> offsetCost(D d, const uint8_t* tables, const uint8_t* g, const uint8_t* bands,
-                                 std::ptrdiff_t band_stride, int dx)
-{
-  const uint8_t* t = tables + 16 * K * dx;
-  if (K == 1) return lookup16(d, t, hn::Min(hn::LoadU(d, g - dx), hn::LoadU(d, g + dx)));
-  auto c = lookup16(d, t, hn::Min(hn::LoadU(d, bands - dx), hn::LoadU(d, bands + dx)));
-  for (int k = 1; k < K; ++k)
-  {
-    const uint8_t* b = bands + k * band_stride;
-    c = hn::Max(c, lookup16(d, t + 16 * k, hn::Min(hn::LoadU(d, b - dx), hn::LoadU(d, b + dx))));
-  }
+  const auto m = hn::Min(hn::LoadU(d, gx - dx), hn::LoadU(d, gx + dx));
+  auto c = lookup16(d, t, m);
+  for (int k = 1; k < KK; ++k)
+    c = hn::Max(c, lookup16(d, t + 16 * k, hn::Sub(m, hn::Set(d, static_cast<uint8_t>(16 * k)))));
   return c;
 }
 
+/// Offsets [dx, dx + count) (count <= kGroup) by KK tables each, into two accumulators.
+template <int KK, class D, class V>
+HWY_INLINE void offsetGroup(D d, const uint8_t* tables, std::ptrdiff_t tstride, const uint8_t* gx, int dx, int count,
+                            V& c0, V& c1)
+{
+  const uint8_t* t = tables + tstride * dx;
+  if (count == dt::kGroup)
+  {
+    for (int i = 0; i < dt::kGroup; i += 2)
+    {
+      c1 = hn::Max(c1, offsetCost<KK>(d, t + i * tstride, gx, dx + i));
+      c0 = hn::Max(c0, offsetCost<KK>(d, t + (i + 1) * tstride, gx, dx + i + 1));
+    }
+    return;
+  }
+  for (int i = 0; i < count; ++i)
+    c1 = hn::Max(c1, offsetCost<KK>(d, t + i * tstride, gx, dx + i));
+}
+
 /// Row pass in the cost domain (reach <= kMaxCostDomainReach): c = max over dx of
-/// cost(dx^2 + min(g[x - dx], g[x + dx])^2), merged into out. g is readable on [-pad, n + pad); for
-/// K > 1 the row's bands are written into `bands` (K rows of row_stride bytes) first.
-template <int K>
-HWY_INLINE void rowPassCost8(const uint8_t* HWY_RESTRICT g, uint8_t* bands, uint8_t* HWY_RESTRICT out, int n,
-                             const dt::Job& j)
+/// cost(dx^2 + min(g[x - dx], g[x + dx])^2), merged into out. g holds biased distances and is
+/// readable on [-pad, n + pad). KMAX: tables per offset; group_tables[i]: the tables the offsets of
+/// group i (offsets 1 + kGroup i ...) need, non-increasing, 0 past the last offset with a cost.
+template <int KMAX>
+HWY_INLINE void rowPassCost8(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRICT out, int n, const dt::Job& j,
+                             const uint8_t* group_tables)
 {
   const hn::ScalableTag<uint8_t> d;
   const int N = static_cast<int>(hn::Lanes(d));
   const int cap = j.cap;
-  const uint8_t far = static_cast<uint8_t>(cap + 1);
+  const uint8_t far = static_cast<uint8_t>(dt::kBias + cap + 1);
   const uint8_t* tables = j.offset_tables;
-  const std::ptrdiff_t bs = j.row_stride;
+  const std::ptrdiff_t ts = 16 * KMAX;
   const auto special = hn::Set(d, j.rule.special);
-  if (K > 1) splitBands(g, bands, -cap, n + cap + N, bs, K);
   for (int x = 0; x < n; x += N)
   {
     const uint8_t* gx = g + x;
     if (!anyNear(d, gx, cap, far)) continue;
-    const uint8_t* bx = K > 1 ? bands + x : nullptr;  // (one table reads g itself)
     // What the merge keeps whatever the cost: a cell ends at max(old, cost), so old is a floor for
     // the stop below; a special cell only takes a cost from special_threshold on. (The last, partial
     // block of a row takes no floor.)
@@ -255,32 +254,43 @@ HWY_INLINE void rowPassCost8(const uint8_t* HWY_RESTRICT g, uint8_t* bands, uint
     const auto is_special = whole ? hn::Eq(old, special) : hn::FirstN(d, 0);
     const auto floor = hn::IfThenZeroElse(is_special, old);
     // Two accumulators: two shorter dependency chains of maxima.
-    auto c0 = offsetCost<K>(d, tables, gx, bx, bs, 0);
+    auto c0 = offsetCost<KMAX>(d, tables, gx, 0);
     auto c1 = hn::Zero(d);
-    int dx = 1;
-    for (; dx < cap; dx += 2)
+    for (int i = 0, dx = 1; dx <= cap; ++i, dx += dt::kGroup)
     {
-      c1 = hn::Max(c1, offsetCost<K>(d, tables, gx, bx, bs, dx));
-      const int e = dx + 1;
-      c0 = hn::Max(c0, offsetCost<K>(d, tables, gx, bx, bs, e));
-      // No further offset gives more than the cost of (e + 1)^2 (entry 0 of its first table): once
-      // every lane has that much (or its floor does; or, for a special cell, once that cost is below
-      // special_threshold), stop.
-      // (With one table the reach is at most 14: checking costs more than it saves.)
-      if (K > 1 && (dx & 3) == 3 && e < cap)
+      const int count = std::min(dt::kGroup, cap + 1 - dx);
+      switch (KMAX == 1 ? 1 : group_tables[i])
       {
-        const uint8_t top = tables[16 * K * (e + 1)];
+        case 0:
+          dx = cap + 1;
+          continue;  // no further offset costs anything
+        case 1:
+          offsetGroup<1>(d, tables, ts, gx, dx, count, c0, c1);
+          break;
+        case 2:
+          offsetGroup<(KMAX >= 2 ? 2 : 1)>(d, tables, ts, gx, dx, count, c0, c1);
+          break;
+        case 3:
+          offsetGroup<(KMAX >= 3 ? 3 : 1)>(d, tables, ts, gx, dx, count, c0, c1);
+          break;
+        default:
+          offsetGroup<KMAX>(d, tables, ts, gx, dx, count, c0, c1);
+          break;
+      }
+      // No further offset gives more than the cost of e^2 (entry 0 of its first table), e the first
+      // offset after the group: once every lane has that much (or its floor does; or, for a special
+      // cell, once that cost is below special_threshold), stop. (With one table the reach is at most
+      // 14: checking costs more than it saves.)
+      const int e = dx + dt::kGroup;
+      if (KMAX > 1 && e <= cap)
+      {
+        const uint8_t top = tables[ts * e];
         const auto kept = hn::Max(hn::Max(c0, c1), floor);
         auto done = hn::Eq(hn::Max(kept, hn::Set(d, top)), kept);
         if (top < j.rule.special_threshold) done = hn::Or(done, is_special);
-        if (hn::AllTrue(d, done))
-        {
-          dx = cap + 1;
-          break;
-        }
+        if (hn::AllTrue(d, done)) break;
       }
     }
-    if (dx == cap) c1 = hn::Max(c1, offsetCost<K>(d, tables, gx, bx, bs, dx));
     mergeStore(d, hn::Max(c0, c1), out + x, std::min(N, n - x), j.rule);
   }
 }
@@ -403,8 +413,17 @@ void runJob(const dt::Job& j)
   const int n = win.x1 - win.x0;
   const uint8_t lo = j.source.lo;
   const uint8_t span = static_cast<uint8_t>(j.source.hi - j.source.lo);
-  const uint8_t far = static_cast<uint8_t>(cap + 1);
+  // Distances are stored biased in the cost domain (see kBias).
+  const uint8_t base = K > 0 ? dt::kBias : uint8_t{0};
+  const uint8_t far = static_cast<uint8_t>(base + cap + 1);
   const int band_off = j.pad + (cx0 - win.x0);  // offset of column cx0 in a stripe row
+  // The tables each group of offsets needs: those up to the last with a cost at vertical distance 0
+  // (a larger distance costs no more).
+  uint8_t group_tables[(dt::kMaxCostDomainReach + dt::kGroup - 1) / dt::kGroup + 1] = {};
+  if (K > 0)
+    for (int i = 0, dx = 1; dx <= cap; ++i, dx += dt::kGroup)
+      for (int k = 0; k < K; ++k)
+        if (j.offset_tables[16 * K * dx + 16 * k] > 0) group_tables[i] = static_cast<uint8_t>(k + 1);
   auto src = [&](int y) { return j.src_rows[y - j.ry0]; };
 
   // Columns outside the band stay far in every stripe row.
@@ -414,7 +433,7 @@ void runJob(const dt::Job& j)
   // The rows above the window: the downward distance only.
   std::memset(j.run, far, static_cast<std::size_t>(cw));
   for (int y = j.ry0; y < win.y0; ++y)
-    verticalStep(src(y), j.run, j.run, cw, lo, span, far);
+    verticalStep(src(y), j.run, j.run, cw, lo, span, base, far);
 
   for (int s0 = win.y0; s0 < win.y1; s0 += j.stripe)
   {
@@ -423,7 +442,7 @@ void runJob(const dt::Job& j)
     for (int y = s0; y < s1; ++y)
     {
       uint8_t* dst = j.rows + static_cast<std::size_t>(y - s0) * j.row_stride + band_off;
-      verticalStep(src(y), above, dst, cw, lo, span, far);
+      verticalStep(src(y), above, dst, cw, lo, span, base, far);
       above = dst;
     }
     std::memcpy(j.run, above, static_cast<std::size_t>(cw));
@@ -431,7 +450,7 @@ void runJob(const dt::Job& j)
     std::memset(j.up, far, static_cast<std::size_t>(cw));
     const int top = std::min(ry1, s1 + cap);
     for (int y = s1; y < top; ++y)
-      lookaheadStep(src(y), j.up, cw, lo, span, static_cast<uint8_t>(y - s1), far);
+      lookaheadStep(src(y), j.up, cw, lo, span, static_cast<uint8_t>(base + (y - s1)), far);
     const uint8_t* below = j.up;
     const uint8_t* costed = nullptr;  // sink mode: the band of the row whose costs out_row holds
     for (int y = s1 - 1; y >= s0; --y)
@@ -457,7 +476,7 @@ void runJob(const dt::Job& j)
       else
         out = j.target + y * j.target_stride + win.x0;
       if (K > 0)
-        rowPassCost8<(K > 0 ? K : 1)>(gr + j.pad, K > 1 ? j.bands + j.pad : nullptr, out, n, j);
+        rowPassCost8<(K > 0 ? K : 1)>(gr + j.pad, out, n, j, group_tables);
       else
         rowPassSq16(gr + j.pad, out, n, j);
       if (j.sink != nullptr) (*j.sink)(y, j.out_row);
@@ -576,7 +595,6 @@ uint8_t DistanceCosts::at(uint64_t d2) const
 struct DistanceTransformScratch::Buffers
 {
   std::vector<uint8_t> rows;  // stripe rows (+ alignment)
-  std::vector<uint8_t> bands;
   std::vector<uint8_t> run, up, out_row, costs;
   std::vector<uint16_t> sq, acc, squares;
   std::vector<const uint8_t*> src_rows;
@@ -649,12 +667,6 @@ void runBand(const Call& c, int b0, int b1, DistanceTransformScratch::Buffers& b
   grow(b.up, static_cast<std::size_t>(cw));
   j.run = b.run.data();
   j.up = b.up.data();
-  if (cap <= dt::kMaxCostDomainReach && dt::tablesPerOffset(cap) > 1)
-  {
-    grow(b.bands,
-         static_cast<std::size_t>(dt::tablesPerOffset(cap)) * static_cast<std::size_t>(j.row_stride) + dt::kMaxLanes);
-    j.bands = b.bands.data();
-  }
   if (cap > dt::kMaxCostDomainReach)
   {
     grow(b.sq, static_cast<std::size_t>(j.row_stride + dt::kMaxLanes));

@@ -10,8 +10,9 @@
 //    rows (the grid is read forward, once, plus reach rows of lookahead per stripe);
 //  - a row pass per row: the lower envelope of the parabolas dx^2 + g(x + dx)^2 over the columns
 //    within reach, as a min-plus over the column offsets -- in the cost domain, one to four 16-entry
-//    byte lookups per offset (the row's vertical distances split once into bands of 16), for a reach
-//    up to 59 cells (cost(min d2) = max cost since the table does not increase), in 16-bit squared
+//    byte lookups per offset (as many as the offset has bands of 16 vertical distances with a cost;
+//    distances are stored biased so that each band reads the same row), for a reach up to 59 cells
+//    (cost(min d2) = max cost since the table does not increase), in 16-bit squared
 //    distances up to 254 cells, and with the scalar envelope of Meijster, Roerdink and Hesselink
 //    beyond. Blocks of cells with no source within reach are skipped, and a block stops early once no
 //    further offset can change any of its results: a cell's cost is final, or (merging) what the cell
