@@ -259,11 +259,10 @@ HWY_INLINE void rowPassCost8(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRIC
     for (int i = 0, dx = 1; dx <= cap; ++i, dx += dt::kGroup)
     {
       const int count = std::min(dt::kGroup, cap + 1 - dx);
-      switch (KMAX == 1 ? 1 : group_tables[i])
+      const int tables_needed = KMAX == 1 ? 1 : group_tables[i];
+      if (tables_needed == 0) break;  // no further offset costs anything
+      switch (tables_needed)
       {
-        case 0:
-          dx = cap + 1;
-          continue;  // no further offset costs anything
         case 1:
           offsetGroup<1>(d, tables, ts, gx, dx, count, c0, c1);
           break;
