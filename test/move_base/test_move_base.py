@@ -8,12 +8,14 @@
 Each case waits on arrivals with a deadline, never on a fixed sleep."""
 import math
 import os
+import shlex
 import subprocess
 import sys
 import threading
 import unittest
 
 import dynamic_reconfigure.client
+import roslib.packages
 import rospy
 import rostest
 from costmap_layers.msg import MaxSpeed
@@ -243,7 +245,13 @@ class MoveBaseTest(unittest.TestCase):
             },
             "local_costmap": {"global_frame": "map", "robot_base_frame": "base_link", "plugins": []},
         })
-        proc = subprocess.run(["rosrun", "move_base", "move_base", "__name:=bad_move_base"],
+        # The program itself (not rosrun's shell script), behind the prefix move_base.test puts before
+        # move_base: scripts/sanitize_package.sh sets it to preload the sanitizer runtime for the
+        # instrumented plugins; empty otherwise.
+        prefix = shlex.split(os.environ.get("COSTMAP_LAYERS_MOVE_BASE_PREFIX", ""))
+        program = roslib.packages.find_node("move_base", "move_base")
+        self.assertTrue(program, "move_base not found")
+        proc = subprocess.run(prefix + [program[0], "__name:=bad_move_base"],
                               stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=120, text=True)
         self.assertNotEqual(proc.returncode, 0, "move_base kept running with a negative inflation_radius")
         fatal = [line for line in proc.stdout.splitlines()
