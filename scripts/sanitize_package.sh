@@ -12,11 +12,12 @@
 #   TARGETS="costmap_node costmap_layers_plugins zone_server" ...
 #                                               build only these programs (for the rostests chosen)
 #   ROSTESTS=move_base TARGETS="costmap_node costmap_layers_plugins mask_server costmap_layers_move_base" ...
-#                                               the rostests in test/move_base: move_base from the
+#                                               test/move_base/move_base.test: move_base from the
 #                                               navigation underlay (not instrumented) with the
 #                                               instrumented plugins, the sanitizer runtime preloaded
-# Either run fails when a test fails or when a sanitizer reports anything that test/tsan.supp does
-# not suppress. The reports are kept in build_<kind>/reports/.
+# A ROSTESTS name is a folder of test/rostest/ or a file of test/move_base/ (without .test), exactly.
+# Either run fails when a test fails or when a sanitizer reports anything (leaks included) that
+# test/tsan.supp or test/lsan.supp does not suppress. The reports are kept in build_<kind>/reports/.
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 bash "$ROOT/scripts/install_deps.sh"
