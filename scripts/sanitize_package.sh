@@ -11,21 +11,57 @@
 #                                               in place of the unit tests
 #   TARGETS="costmap_node costmap_layers_plugins zone_server" ...
 #                                               build only these programs (for the rostests chosen)
-# Either run fails when a test fails or when a sanitizer reports anything that test/tsan.supp does
-# not suppress. The reports are kept in build_<kind>/reports/.
+#   ROSTESTS=move_base TARGETS="costmap_node costmap_layers_plugins mask_server costmap_layers_move_base" ...
+#                                               test/move_base/move_base.test: move_base from the
+#                                               navigation underlay (not instrumented) with the
+#                                               instrumented plugins, the sanitizer runtime preloaded
+# A ROSTESTS name is a folder of test/rostest/ or a file of test/move_base/ (without .test), exactly.
+# Either run fails when a test fails or when a sanitizer reports anything (leaks included) that
+# test/tsan.supp or test/lsan.supp does not suppress. The reports are kept in build_<kind>/reports/.
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 bash "$ROOT/scripts/install_deps.sh"
 SAN="${SANITIZE:-address,undefined}"
 case "$SAN" in
-  thread) KIND=tsan ;;
-  address,undefined | address) KIND=asan ;;
+  thread) KIND=tsan; PRELOAD=(tsan) ;;
+  address,undefined) KIND=asan; PRELOAD=(asan ubsan) ;;
+  address) KIND=asan; PRELOAD=(asan) ;;
   *) echo "sanitize_package.sh: SANITIZE must be 'address,undefined' or 'thread', not '$SAN'" >&2; exit 2 ;;
 esac
 BUILD_BASE="$ROOT/build_$KIND"
 INSTALL_BASE="$ROOT/install_$KIND"
 REPORTS="$BUILD_BASE/reports"
+# The tests to run (checked before the build).
+if [ "$KIND" = asan ] && [ -z "${ROSTESTS:-}" ]; then
+  tests_regex='gtest_test_(core|io|ros)$'
+else
+  names="${ROSTESTS:-hostile filters sensors speed_limiter reconfigure plugin_loading}"
+  # Each name is a folder test/rostest/<name> (all its .test files) or a file test/move_base/<name>.test;
+  # catkin names their tests rostest_test_rostest_<name>_<file> and rostest_test_move_base_<file>.
+  alternatives=()
+  for name in $names; do
+    found=0
+    for f in "$ROOT/test/rostest/$name"/*.test "$ROOT/test/move_base/$name.test"; do
+      [ -f "$f" ] || continue
+      found=1
+      rel="${f#"$ROOT/"}"
+      alternatives+=("$(echo "${rel//\//_}" | sed 's/\./\\./g')")
+    done
+    if [ "$found" -eq 0 ]; then
+      echo "sanitize_package.sh: no rostest named '$name' (test/rostest/$name/ or test/move_base/$name.test)" >&2
+      exit 2
+    fi
+  done
+  tests_regex="rostest_($(IFS='|'; echo "${alternatives[*]}"))\$"
+fi
 cd "$ROOT"
+# costmap_2d and move_base (the bridge, its plugins and the move_base rostests) come from the navigation
+# underlay when it is built, as in scripts/build.sh; a build folder configured without it is configured
+# afresh.
+if source_navigation_underlay; then
+  echo "sanitize_package.sh: with the navigation underlay in $(navigation_underlay_dir)"
+fi
+fresh="$(navigation_underlay_configure_args "$BUILD_BASE")"
 # TARGETS="costmap_node zone_server ...": build only these (and the messages the Python tests import) in
 # place of the whole package, for rostests that run only those programs; the rostests run from the
 # build's devel space, so nothing is installed then.
@@ -37,11 +73,12 @@ else
   target_args=()
 fi
 colcon --log-base "$ROOT/log" build --base-paths "$ROOT" --build-base "$BUILD_BASE" --install-base "$INSTALL_BASE" \
-  --event-handlers console_cohesion- "${target_args[@]}" --cmake-args -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  --event-handlers console_cohesion- "${target_args[@]}" $fresh --cmake-args -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCOSTMAP_LAYERS_SANITIZE="$SAN" -DCATKIN_ENABLE_TESTING=ON
 if [ "${#targets[@]}" -gt 1 ]; then
   make -C "$BUILD_BASE/costmap_layers" -j2 "${targets[@]:1}"
 fi
+navigation_underlay_stamp "$BUILD_BASE"
 rm -rf "$REPORTS" "$BUILD_BASE/costmap_layers/test_results"
 mkdir -p "$REPORTS"
 export ROS_HOME="$BUILD_BASE/ros_home"
@@ -50,14 +87,18 @@ export ROS_HOME="$BUILD_BASE/ros_home"
 export ASAN_OPTIONS="detect_leaks=1:log_path=$REPORTS/asan"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:log_path=$REPORTS/ubsan"
 export LSAN_OPTIONS="suppressions=$ROOT/test/lsan.supp"
+# move_base comes from the navigation underlay and is not instrumented: the sanitizer runtime must be
+# loaded before anything else for the instrumented plugins it loads, so the move_base rostests start it
+# with this prefix (their launch-prefix, empty by default). With the runtime preloaded, its interceptors
+# see every allocation of move_base, so leaks and races inside move_base's own libraries can show up;
+# test/lsan.supp and test/tsan.supp name those libraries.
+preload=""
+for rt in "${PRELOAD[@]}"; do
+  preload="$preload${preload:+:}$(gcc -print-file-name="lib$rt.so")"
+done
+export COSTMAP_LAYERS_MOVE_BASE_PREFIX="env LD_PRELOAD=$preload"
 export TSAN_OPTIONS="suppressions=$ROOT/test/tsan.supp:print_suppressions=1:second_deadlock_stack=1:history_size=4:log_path=$REPORTS/tsan"
 
-if [ "$KIND" = asan ] && [ -z "${ROSTESTS:-}" ]; then
-  tests_regex='gtest_test_(core|io|ros)$'
-else
-  names="${ROSTESTS:-hostile filters sensors speed_limiter reconfigure plugin_loading}"
-  tests_regex="rostest_test_rostest_($(echo "$names" | tr ' ' '|'))_"
-fi
 set +e
 colcon --log-base "$ROOT/log" test --base-paths "$ROOT" --build-base "$BUILD_BASE" --install-base "$INSTALL_BASE" \
   --event-handlers console_cohesion+ --return-code-on-test-failure --ctest-args -R "$tests_regex"

@@ -8,22 +8,25 @@
 Each case waits on arrivals with a deadline, never on a fixed sleep."""
 import math
 import os
+import shlex
 import subprocess
 import sys
 import threading
 import unittest
 
 import dynamic_reconfigure.client
+import roslib.packages
 import rospy
 import rostest
 from costmap_layers.msg import MaxSpeed
 from geometry_msgs.msg import PoseStamped
 from nav_msgs.msg import OccupancyGrid
 from nav_msgs.srv import GetPlan
+from rosgraph_msgs.msg import Log
 from std_srvs.srv import Empty, SetBool
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "rostest"))
-from grid_watch import GridWatcher, translate  # noqa: E402
+from grid_watch import GridWatcher, logged_with_key, translate  # noqa: E402
 
 START = (1.0, 1.0)
 GOAL = (5.0, 1.0)
@@ -57,6 +60,16 @@ def room(width, height):
     return g
 
 
+def grid(width, height, resolution, data):
+    g = OccupancyGrid()
+    g.header.frame_id = "map"
+    g.header.stamp = rospy.Time.now()
+    g.info.width, g.info.height, g.info.resolution = width, height, resolution
+    g.info.origin.orientation.w = 1.0
+    g.data = data
+    return g
+
+
 def length(poses):
     return sum(
         math.hypot(b.pose.position.x - a.pose.position.x, b.pose.position.y - a.pose.position.y)
@@ -80,6 +93,24 @@ class MoveBaseTest(unittest.TestCase):
         cls.clear_costmaps = rospy.ServiceProxy("/move_base/clear_costmaps", Empty)
         cls.map_pub = rospy.Publisher("/map", OccupancyGrid, queue_size=1, latch=True)
         cls.toggle = rospy.ServiceProxy("/move_base/global_costmap/keepout/toggle", SetBool)
+        cls.log_cond = threading.Condition()
+        cls.move_base_log = []  # every line move_base writes to /rosout
+        rospy.Subscriber("/rosout", Log, cls._on_log)
+
+    @classmethod
+    def _on_log(cls, msg):
+        if msg.name == "/move_base":
+            with cls.log_cond:
+                cls.move_base_log.append(msg.msg)
+                cls.log_cond.notify_all()
+
+    def wait_logged(self, key, values, timeout):
+        """The lines move_base logged under the stable key with the values, once there (or at the deadline)."""
+        deadline = rospy.Time.now() + rospy.Duration(timeout)
+        with self.log_cond:
+            while not logged_with_key(self.move_base_log, key, *values) and rospy.Time.now() < deadline:
+                self.log_cond.wait(0.2)
+            return logged_with_key(self.move_base_log, key, *values)
 
     @classmethod
     def _on_speed(cls, msg):
@@ -228,6 +259,52 @@ class MoveBaseTest(unittest.TestCase):
         self.assertTrue(self.global_grid.wait_until(lambda g: g.at(*probe) == 0, timeout=30.0))
         self.assert_same_grids(120, 80)
 
+    def test_malformed_maps_and_masks_leave_move_base_costmap_as_it_was(self):
+        # Malformed grids on the map and both mask topics reach the bridged StaticLayer, KeepoutFilter,
+        # SpeedFilter and ZoneParameterFilter inside move_base's process (costmap_node, the twin, gets
+        # them too): each is named under its stable key and dropped, and both costmaps keep the last good
+        # map and masks.
+        self.set_keepout(True)
+        bad = [
+            grid(10, 10, 0.05, [0] * 7),  # truncated data
+            grid(10, 10, 0.05, [0] * 1000),  # oversized data
+            grid(10, 10, 0.0, [0] * 100),  # zero resolution
+            grid(100000, 100000, 0.05, [0] * 16),  # would need 10 G cells
+            grid(0, 10, 0.05, []),  # zero width
+        ]
+        # topic: (subscribing processes, [(key under /move_base/global_costmap/, values)]). The truncated and
+        # the oversized grid share the key ".../data" and its throttle period: either one may be the one
+        # named (a subscriber queue of 1 drops some of a burst).
+        expected = {
+            "/map": (2, [("static/map/data", ()), ("static/map/info.resolution", ("0",)),
+                         ("static/map/info.cells", ("100000x100000",))]),
+            "/keepout_mask": (2, [("keepout/mask/data", ())]),
+            "/speed_mask": (1, [("speed/mask/data", ()), ("zones/mask/data", ())]),  # move_base only
+        }
+        for topic, (processes, keys) in expected.items():
+            pub = rospy.Publisher(topic, OccupancyGrid, queue_size=10)
+            try:
+                # move_base (and the twin) connected before the first message.
+                deadline = rospy.Time.now() + rospy.Duration(30.0)
+                while pub.get_num_connections() < processes and rospy.Time.now() < deadline:
+                    rospy.sleep(0.05)  # polled with a deadline, not a fixed wait
+                self.assertGreaterEqual(pub.get_num_connections(), processes, "subscribers missing on " + topic)
+                for key, values in keys:
+                    logged = []
+                    while not logged and rospy.Time.now() < deadline:
+                        for m in bad:  # again until named: a subscriber queue may drop a message
+                            m.header.stamp = rospy.Time.now()
+                            pub.publish(m)
+                        logged = self.wait_logged("/move_base/global_costmap/" + key, values, timeout=1.0)
+                    self.assertTrue(logged, "move_base logged nothing under [/move_base/global_costmap/%s] with %s;"
+                                    " last lines:\n%s" % (key, values, "\n".join(self.move_base_log[-20:])))
+            finally:
+                pub.unregister()
+        # Still the good state, and still planning on it.
+        self.assert_same_grids(120, 80)
+        self.assertEqual(self.global_grid.at(3.0, 1.0), LETHAL)
+        self.plan(goes_around=True)
+
     def test_a_bad_parameter_stops_move_base_naming_it(self):
         # A second move_base whose bridged inflation layer has a negative radius: like costmap_node, it
         # stops at start-up with a fatal error naming the parameter and the value (rather than planning
@@ -243,7 +320,13 @@ class MoveBaseTest(unittest.TestCase):
             },
             "local_costmap": {"global_frame": "map", "robot_base_frame": "base_link", "plugins": []},
         })
-        proc = subprocess.run(["rosrun", "move_base", "move_base", "__name:=bad_move_base"],
+        # The program itself (not rosrun's shell script), behind the prefix move_base.test puts before
+        # move_base: scripts/sanitize_package.sh sets it to preload the sanitizer runtime for the
+        # instrumented plugins; empty otherwise.
+        prefix = shlex.split(os.environ.get("COSTMAP_LAYERS_MOVE_BASE_PREFIX", ""))
+        program = roslib.packages.find_node("move_base", "move_base")
+        self.assertTrue(program, "move_base not found")
+        proc = subprocess.run(prefix + [program[0], "__name:=bad_move_base"],
                               stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=120, text=True)
         self.assertNotEqual(proc.returncode, 0, "move_base kept running with a negative inflation_radius")
         fatal = [line for line in proc.stdout.splitlines()
