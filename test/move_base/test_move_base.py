@@ -22,11 +22,10 @@ from costmap_layers.msg import MaxSpeed
 from geometry_msgs.msg import PoseStamped
 from nav_msgs.msg import OccupancyGrid
 from nav_msgs.srv import GetPlan
-from rosgraph_msgs.msg import Log
 from std_srvs.srv import Empty, SetBool
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "rostest"))
-from grid_watch import GridWatcher, logged_with_key, translate  # noqa: E402
+from grid_watch import ErrorLog, GridWatcher, translate  # noqa: E402
 
 START = (1.0, 1.0)
 GOAL = (5.0, 1.0)
@@ -93,24 +92,7 @@ class MoveBaseTest(unittest.TestCase):
         cls.clear_costmaps = rospy.ServiceProxy("/move_base/clear_costmaps", Empty)
         cls.map_pub = rospy.Publisher("/map", OccupancyGrid, queue_size=1, latch=True)
         cls.toggle = rospy.ServiceProxy("/move_base/global_costmap/keepout/toggle", SetBool)
-        cls.log_cond = threading.Condition()
-        cls.move_base_log = []  # every line move_base writes to /rosout
-        rospy.Subscriber("/rosout", Log, cls._on_log)
-
-    @classmethod
-    def _on_log(cls, msg):
-        if msg.name == "/move_base":
-            with cls.log_cond:
-                cls.move_base_log.append(msg.msg)
-                cls.log_cond.notify_all()
-
-    def wait_logged(self, key, values, timeout):
-        """The lines move_base logged under the stable key with the values, once there (or at the deadline)."""
-        deadline = rospy.Time.now() + rospy.Duration(timeout)
-        with self.log_cond:
-            while not logged_with_key(self.move_base_log, key, *values) and rospy.Time.now() < deadline:
-                self.log_cond.wait(0.2)
-            return logged_with_key(self.move_base_log, key, *values)
+        cls.move_base_errors = ErrorLog("/move_base")  # the error lines move_base writes to /rosout
 
     @classmethod
     def _on_speed(cls, msg):
@@ -295,9 +277,9 @@ class MoveBaseTest(unittest.TestCase):
                         for m in bad:  # again until named: a subscriber queue may drop a message
                             m.header.stamp = rospy.Time.now()
                             pub.publish(m)
-                        logged = self.wait_logged("/move_base/global_costmap/" + key, values, timeout=1.0)
+                        logged = self.move_base_errors.wait("/move_base/global_costmap/" + key, values, timeout=1.0)
                     self.assertTrue(logged, "move_base logged nothing under [/move_base/global_costmap/%s] with %s;"
-                                    " last lines:\n%s" % (key, values, "\n".join(self.move_base_log[-20:])))
+                                    " last lines:\n%s" % (key, values, "\n".join(self.move_base_errors.lines[-20:])))
             finally:
                 pub.unregister()
         # Still the good state, and still planning on it.
