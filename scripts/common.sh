@@ -27,6 +27,15 @@ navigation_underlay_configure_args() {
   now="$(navigation_underlay_now)"
   [ -f "$build/CMakeCache.txt" ] || return 0  # the first configure sees the environment as it is
   before="$(cat "$build/.navigation_underlay" 2>/dev/null || echo unknown)"
+  # A configure outside these scripts (a plain `cmake .` or `colcon build` in another shell) rewrites
+  # the snapshot without the stamp: trust what the devel space chains to as well.
+  if [ -f "$build/devel/_setup_util.py" ]; then
+    if grep -qF "$(navigation_underlay_dir)/" "$build/devel/_setup_util.py"; then
+      [ "$now" != none ] || before="$(navigation_underlay_dir) (the devel space chains to it)"
+    else
+      [ "$now" = none ] || before="none (the devel space does not chain to it)"
+    fi
+  fi
   if [ "$before" != "$now" ]; then
     echo "build: the navigation underlay changed since $build was configured (was: $before, now: $now):" \
       "configuring afresh" >&2
