@@ -27,6 +27,16 @@ dynamic_reconfigure::GroupState defaultGroup()
   g.parent = 0;
   return g;
 }
+
+/// One typed parameter (BoolParameter, IntParameter, ...) appended to its list of a Config.
+template <class Parameter, class Value>
+void appendParameter(std::vector<Parameter>& list, const std::string& name, Value value)
+{
+  Parameter p;
+  p.name = name;
+  p.value = value;
+  list.push_back(p);
+}
 }  // namespace
 
 const char* reconfigureTypeName(ParamValue::Type t)
@@ -49,37 +59,17 @@ void addToConfig(dynamic_reconfigure::Config& config, const std::string& name, c
   switch (value.type())
   {
     case ParamValue::Type::Bool:
-    {
-      dynamic_reconfigure::BoolParameter p;
-      p.name = name;
-      p.value = value.asBool();
-      config.bools.push_back(p);
+      appendParameter(config.bools, name, value.asBool());
       break;
-    }
     case ParamValue::Type::Int:
-    {
-      dynamic_reconfigure::IntParameter p;
-      p.name = name;
-      p.value = static_cast<int32_t>(value.asInt());
-      config.ints.push_back(p);
+      appendParameter(config.ints, name, static_cast<int32_t>(value.asInt()));
       break;
-    }
     case ParamValue::Type::Double:
-    {
-      dynamic_reconfigure::DoubleParameter p;
-      p.name = name;
-      p.value = value.asDouble();
-      config.doubles.push_back(p);
+      appendParameter(config.doubles, name, value.asDouble());
       break;
-    }
     default:
-    {
-      dynamic_reconfigure::StrParameter p;
-      p.name = name;
-      p.value = value.asString();
-      config.strs.push_back(p);
+      appendParameter(config.strs, name, value.asString());
       break;
-    }
   }
 }
 
