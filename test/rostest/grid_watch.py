@@ -107,12 +107,13 @@ def logged_with_key(lines, key, *values):
 
 
 class ErrorLog:
-    """Collects the error lines (and worse) one node writes to /rosout, and waits, as they arrive (no
-    fixed sleep), for one that carries a key and values (logged_with_key)."""
+    """Collects the error lines (and worse; from `level` on when given, e.g. Log.WARN) one node writes
+    to /rosout, and waits, as they arrive (no fixed sleep), for one that carries a key and values
+    (logged_with_key)."""
 
-    def __init__(self, node):
+    def __init__(self, node, level=None):
         from rosgraph_msgs.msg import Log
-        self.node, self.error = node, Log.ERROR
+        self.node, self.error = node, Log.ERROR if level is None else level
         self.lines = []
         self.cond = threading.Condition()
         rospy.Subscriber("/rosout", Log, self._on_log)
@@ -130,3 +131,42 @@ class ErrorLog:
                     and rospy.Time.now() < deadline:
                 self.cond.wait(0.2)
             return logged_with_key(self.lines, key, *values)
+
+
+class Latest:
+    """The latest message on a topic (and how many came), with a wait on a condition of it."""
+
+    def __init__(self, topic, cls):
+        self.cond = threading.Condition()
+        self.msg = None
+        self.count = 0
+        rospy.Subscriber(topic, cls, self._on_msg)
+
+    def _on_msg(self, m):
+        with self.cond:
+            self.msg = m
+            self.count += 1
+            self.cond.notify_all()
+
+    def wait(self, predicate, timeout):
+        deadline = rospy.Time.now() + rospy.Duration(timeout)
+        with self.cond:
+            while not (self.msg is not None and predicate(self.msg)) and not rospy.is_shutdown() \
+                    and rospy.Time.now() < deadline:
+                self.cond.wait(0.2)
+            return self.msg is not None and predicate(self.msg)
+
+
+def publish_row_mask(topic, values):
+    """Publishes, latched, a mask of one row of 1 m cells in the map frame (values along x from the
+    origin); returns the publisher, which must be kept for the latch to last."""
+    grid = OccupancyGrid()
+    grid.header.frame_id = "map"
+    grid.info.resolution = 1.0
+    grid.info.width = len(values)
+    grid.info.height = 1
+    grid.info.origin.orientation.w = 1.0
+    grid.data = values
+    pub = rospy.Publisher(topic, OccupancyGrid, queue_size=1, latch=True)
+    pub.publish(grid)
+    return pub

@@ -9,22 +9,20 @@ import os
 import signal
 import subprocess
 import sys
-import threading
 import time
 import unittest
 
 import roslib.packages
 import rospy
 import rostest
-from nav_msgs.msg import OccupancyGrid
 from std_msgs.msg import UInt8
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
 sys.path.insert(0, HERE)
-from grid_watch import CycleWatcher, ErrorLog  # noqa: E402
+from fake_reconfigure import FakeServer  # noqa: E402
+from grid_watch import CycleWatcher, ErrorLog, Latest, publish_row_mask  # noqa: E402
 from robot_pose import RobotPose  # noqa: E402
-from servers import Server  # noqa: E402
 
 NODE = "/costmap_stuck"
 KEY = NODE + "/zone_filter/setpoint/"
@@ -32,48 +30,18 @@ KEY = NODE + "/zone_filter/setpoint/"
 MASK = [0, 1, 0]
 
 
-class Latest:
-    """Every message on a topic, with a wait on a condition."""
-
-    def __init__(self, topic, cls):
-        self.cond = threading.Condition()
-        self.msgs = []
-        rospy.Subscriber(topic, cls, self.on_msg)
-
-    def on_msg(self, m):
-        with self.cond:
-            self.msgs.append(m)
-            self.cond.notify_all()
-
-    def wait(self, predicate, timeout):
-        deadline = rospy.Time.now() + rospy.Duration(timeout)
-        with self.cond:
-            while not (self.msgs and predicate(self.msgs[-1])) and not rospy.is_shutdown() \
-                    and rospy.Time.now() < deadline:
-                self.cond.wait(0.2)
-            return bool(self.msgs) and predicate(self.msgs[-1])
-
-
 class SetpointStuckTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node("test_setpoint_stuck")
         cls.log = ErrorLog(NODE)
-        cls.stuck = Server("stuck_server", answer=False)
-        cls.good = Server("good_server", answer=True)
+        cls.stuck = FakeServer("stuck_server", answer=False)
+        cls.good = FakeServer("good_server")
         cls.vanishing = subprocess.Popen([sys.executable, os.path.join(HERE, "vanishing_server.py")])
         rospy.wait_for_service("/vanishing_server/set_parameters", timeout=60)
         cls.state = Latest("/stuck_zone_state", UInt8)
         cls.cycles = CycleWatcher(NODE)
-        mask = OccupancyGrid()
-        mask.header.frame_id = "map"
-        mask.info.resolution = 1.0
-        mask.info.width = len(MASK)
-        mask.info.height = 1
-        mask.info.origin.orientation.w = 1.0
-        mask.data = MASK
-        cls.mask_pub = rospy.Publisher("/stuck_zone_mask", OccupancyGrid, queue_size=1, latch=True)
-        cls.mask_pub.publish(mask)
+        cls.mask_pub = publish_row_mask("/stuck_zone_mask", MASK)
         cls.robot = RobotPose(NODE, 0.5, 0.5)
         node = roslib.packages.find_node("costmap_layers", "costmap_node")
         cls.node = subprocess.Popen([node[0], "__name:=costmap_stuck"])

@@ -8,8 +8,8 @@ import rospy
 from dynamic_reconfigure.msg import ConfigDescription
 from dynamic_reconfigure.srv import Reconfigure
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from servers import description  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from fake_reconfigure import description  # noqa: E402
 
 
 def on_set(_req):

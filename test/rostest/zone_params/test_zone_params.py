@@ -8,87 +8,20 @@ and 0.55 again outside; a value out of /fake_planner's range is refused, reporte
 and never sent; a node that does not exist and a parameter the server does not have are reported."""
 import os
 import sys
-import threading
 import unittest
 
 import rospy
 import rostest
-from dynamic_reconfigure.msg import (Config, ConfigDescription, DoubleParameter, Group, GroupState,
-                                     ParamDescription)
-from dynamic_reconfigure.srv import Reconfigure, ReconfigureResponse
-from nav_msgs.msg import OccupancyGrid
+from dynamic_reconfigure.msg import Config
 from std_msgs.msg import UInt8
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from grid_watch import ErrorLog  # noqa: E402
+from fake_reconfigure import FakeServer  # noqa: E402
+from grid_watch import ErrorLog, Latest, publish_row_mask  # noqa: E402
 from robot_pose import RobotPose  # noqa: E402
 
 # Mask cells of 1 m along x (robot at y = 0.5): 0 | 1 slow | 2 crowded | 0 | 3 too_fast | 0
 MASK = [0, 1, 2, 0, 3, 0]
-
-
-class FakePlanner:
-    """A dynamic_reconfigure server with one double parameter max_vel_x in [0, 2], as a generated
-    server answers: unknown names are not in the answer, out-of-range values are clamped."""
-
-    def __init__(self):
-        self.cond = threading.Condition()
-        self.value = 1.5         # before anyone sets it
-        self.received = []       # every max_vel_x value a request carried
-        self.requests = 0
-        desc = ConfigDescription()
-        group = Group(name="Default", type="", parameters=[], parent=0, id=0)
-        group.parameters.append(ParamDescription(name="max_vel_x", type="double", level=0,
-                                                 description="max_vel_x", edit_method=""))
-        desc.groups.append(group)
-        desc.min = Config(doubles=[DoubleParameter("max_vel_x", 0.0)])
-        desc.max = Config(doubles=[DoubleParameter("max_vel_x", 2.0)])
-        desc.dflt = Config(doubles=[DoubleParameter("max_vel_x", 1.5)])
-        self.desc_pub = rospy.Publisher("/fake_planner/parameter_descriptions", ConfigDescription,
-                                        queue_size=1, latch=True)
-        self.desc_pub.publish(desc)
-        self.srv = rospy.Service("/fake_planner/set_parameters", Reconfigure, self.on_set)
-
-    def on_set(self, req):
-        with self.cond:
-            self.requests += 1
-            for p in req.config.doubles:
-                if p.name == "max_vel_x":
-                    self.received.append(p.value)
-                    self.value = min(2.0, max(0.0, p.value))
-            self.cond.notify_all()
-            answer = Config(doubles=[DoubleParameter("max_vel_x", self.value)],
-                            groups=[GroupState(name="Default", state=True, id=0, parent=0)])
-        return ReconfigureResponse(config=answer)
-
-    def wait_value(self, v, timeout):
-        deadline = rospy.Time.now() + rospy.Duration(timeout)
-        with self.cond:
-            while abs(self.value - v) > 1e-9 and not rospy.is_shutdown() and rospy.Time.now() < deadline:
-                self.cond.wait(0.2)
-            return abs(self.value - v) <= 1e-9
-
-
-class Latest:
-    """The latest message on a topic, with a wait on a condition."""
-
-    def __init__(self, topic, cls):
-        self.cond = threading.Condition()
-        self.msg = None
-        rospy.Subscriber(topic, cls, self.on_msg)
-
-    def on_msg(self, m):
-        with self.cond:
-            self.msg = m
-            self.cond.notify_all()
-
-    def wait(self, predicate, timeout):
-        deadline = rospy.Time.now() + rospy.Duration(timeout)
-        with self.cond:
-            while not (self.msg is not None and predicate(self.msg)) and not rospy.is_shutdown() \
-                    and rospy.Time.now() < deadline:
-                self.cond.wait(0.2)
-            return self.msg is not None and predicate(self.msg)
 
 
 def radius_of(config):
@@ -103,18 +36,10 @@ class ZoneParamsTest(unittest.TestCase):
     def setUpClass(cls):
         rospy.init_node("test_zone_params")
         cls.log = ErrorLog("/costmap_node")
-        cls.planner = FakePlanner()
+        cls.planner = FakeServer("fake_planner")
         cls.state = Latest("/zone_state", UInt8)
         cls.inflation = Latest("/costmap_node/inflation_layer/parameter_updates", Config)
-        mask = OccupancyGrid()
-        mask.header.frame_id = "map"
-        mask.info.resolution = 1.0
-        mask.info.width = len(MASK)
-        mask.info.height = 1
-        mask.info.origin.orientation.w = 1.0
-        mask.data = MASK
-        cls.mask_pub = rospy.Publisher("/zone_mask", OccupancyGrid, queue_size=1, latch=True)
-        cls.mask_pub.publish(mask)
+        cls.mask_pub = publish_row_mask("/zone_mask", MASK)
         cls.robot = RobotPose("/costmap_node", 0.5, 0.5)
 
     def go(self, x, state):

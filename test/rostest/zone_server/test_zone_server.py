@@ -23,7 +23,7 @@ from rosgraph_msgs.msg import Log
 from visualization_msgs.msg import InteractiveMarkerFeedback, InteractiveMarkerInit
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from grid_watch import logged_with_key  # noqa: E402
+from grid_watch import ErrorLog, Latest  # noqa: E402
 
 RES = 0.1
 DOCK = [(1.02, 1.03), (2.97, 1.03), (2.97, 2.04), (1.02, 2.04)]
@@ -59,28 +59,6 @@ def expected_mask(polygons, circles, res=RES):
     return i0 * res, j0 * res, w, h, data
 
 
-class Latest:
-    def __init__(self, topic):
-        self.cond = threading.Condition()
-        self.msg = None
-        self.count = 0
-        rospy.Subscriber(topic, OccupancyGrid, self.on_msg)
-
-    def on_msg(self, m):
-        with self.cond:
-            self.msg = m
-            self.count += 1
-            self.cond.notify_all()
-
-    def wait(self, predicate, timeout):
-        deadline = rospy.Time.now() + rospy.Duration(timeout)
-        with self.cond:
-            while not (self.msg is not None and predicate(self.msg)) and not rospy.is_shutdown() \
-                    and rospy.Time.now() < deadline:
-                self.cond.wait(0.2)
-            return self.msg is not None and predicate(self.msg)
-
-
 def matches(expected):
     ox, oy, w, h, data = expected
 
@@ -95,17 +73,9 @@ class ZoneServerTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node("test_zone_server")
-        cls.logs = []
-        cls.log_cond = threading.Condition()
-
-        def on_log(m):
-            if m.name == "/zone_server" and m.level >= Log.WARN:
-                with cls.log_cond:
-                    cls.logs.append(m.msg)
-                    cls.log_cond.notify_all()
-        rospy.Subscriber("/rosout", Log, on_log)
-        cls.mask = Latest("/zone_mask")
-        cls.reloaded = Latest("/zone_mask_reloaded")
+        cls.log = ErrorLog("/zone_server", Log.WARN)  # warnings too
+        cls.mask = Latest("/zone_mask", OccupancyGrid)
+        cls.reloaded = Latest("/zone_mask_reloaded", OccupancyGrid)
         cls.feedback = rospy.Publisher("/zone_server/feedback", InteractiveMarkerFeedback, queue_size=10)
         for name in ["set_shape", "remove_shape", "save", "load"]:
             rospy.wait_for_service("/zone_server/" + name, 30.0)
@@ -134,13 +104,6 @@ class ZoneServerTest(unittest.TestCase):
         f.pose.position.y = y
         f.pose.orientation.w = 1.0
         self.feedback.publish(f)
-
-    def wait_logged(self, key, timeout):
-        deadline = rospy.Time.now() + rospy.Duration(timeout)
-        with self.log_cond:
-            while not logged_with_key(self.logs, key) and not rospy.is_shutdown() and rospy.Time.now() < deadline:
-                self.log_cond.wait(0.2)
-            return logged_with_key(self.logs, key)
 
     def test_drag_a_vertex_then_save_and_reload(self):
         initial = expected_mask([(DOCK, 100)], [(SLOW, 40)])
@@ -189,7 +152,7 @@ class ZoneServerTest(unittest.TestCase):
         # A drag that makes dock self-intersecting (vertex 0 above the top edge, with or without the
         # other case's drag): refused, reported, the handle put back, the mask unchanged.
         self.drag("dock/0", 2.0, 3.0)
-        self.assertTrue(self.wait_logged("/zone_server/shapes/dock/points", 20.0),
+        self.assertTrue(self.log.wait("/zone_server/shapes/dock/points", [], 20.0),
                         "the self-intersecting drag was not reported")
         self.assertEqual(list(self.mask.msg.data), list(before.data))
         # A good shape appears, and goes again when removed.
@@ -199,14 +162,6 @@ class ZoneServerTest(unittest.TestCase):
         self.assertTrue(self.mask.wait(lambda m: 55 in m.data, 20.0))
         self.assertTrue(self.remove_shape("extra").success)
         self.assertTrue(self.mask.wait(lambda m: 55 not in m.data and list(m.data) == list(before.data), 20.0))
-
-    def wait_logged_with(self, key, values, timeout):
-        deadline = rospy.Time.now() + rospy.Duration(timeout)
-        with self.log_cond:
-            while not logged_with_key(self.logs, key, *values) and not rospy.is_shutdown() \
-                    and rospy.Time.now() < deadline:
-                self.log_cond.wait(0.2)
-            return logged_with_key(self.logs, key, *values)
 
     def test_hostile_requests_are_refused_briefly(self):
         """Huge arrays, huge names, NaN and infinity, feedback in no frame: each refused with a short
@@ -233,9 +188,9 @@ class ZoneServerTest(unittest.TestCase):
         res = self.set_shape(ZoneShape(name="n" * 1000000, type="circle", value=10, center=Point(0, 0, 0), radius=1.0))
         self.assertFalse(res.success)
         self.assertLess(len(res.message), 300)
-        self.assertTrue(self.wait_logged_with("/zone_server/shapes/(bad name)/name", ["1000000"], 20.0),
+        self.assertTrue(self.log.wait("/zone_server/shapes/(bad name)/name", ["1000000"], 20.0),
                         "the huge name was not reported by its fixed key")
-        self.assertTrue(all(len(m) < 1000 for m in self.logs), "a log line carries the huge name")
+        self.assertTrue(all(len(m) < 1000 for m in self.log.lines), "a log line carries the huge name")
         # NaN and infinity in every number.
         for shape in [ZoneShape(name="c", type="circle", value=10, center=Point(0, float("inf"), 0), radius=1.0),
                       ZoneShape(name="c", type="circle", value=10, center=Point(0, 0, 0), radius=float("nan")),
@@ -266,7 +221,7 @@ class ZoneServerTest(unittest.TestCase):
         f.pose.orientation.w = 1.0
         f.header.frame_id = ""
         self.feedback.publish(f)
-        self.assertTrue(self.wait_logged("/zone_server/feedback/header.frame_id", 20.0),
+        self.assertTrue(self.log.wait("/zone_server/feedback/header.frame_id", [], 20.0),
                         "feedback in no frame was not refused")
         # A NaN position, stamped far in the future with a zero quaternion (neither plays a part).
         f.header.frame_id = "map"
@@ -274,7 +229,7 @@ class ZoneServerTest(unittest.TestCase):
         f.pose.position.x = float("nan")
         f.pose.orientation.w = 0.0
         self.feedback.publish(f)
-        self.assertTrue(self.wait_logged_with("/zone_server/shapes/hostile_sq/points", ["nan"], 20.0),
+        self.assertTrue(self.log.wait("/zone_server/shapes/hostile_sq/points", ["nan"], 20.0),
                         "the NaN drag was not refused")
         self.assertEqual(self.mask.count, count, "a refused request republished the mask")
         self.assertEqual(list(self.mask.msg.data), with_square)
@@ -315,7 +270,7 @@ class ZoneServerTest(unittest.TestCase):
         self.assertIn("big%d/999" % (offered - 1), last)
         self.assertFalse([h for h in last if h.startswith("big%d/" % offered)], "a shape past the limit has handles")
         self.assertLessEqual(len(last), 10000)
-        self.assertTrue(self.wait_logged_with("/zone_server/markers", ["10000"], 20.0), "no keyed warning")
+        self.assertTrue(self.log.wait("/zone_server/markers", ["10000"], 20.0), "no keyed warning")
         sub.unregister()
         for name in names:
             self.assertTrue(self.remove_shape(name).success)

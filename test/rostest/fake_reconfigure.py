@@ -1,4 +1,6 @@
-"""dynamic_reconfigure servers for the setpoint_stuck rostest: one double max_vel_x in [0, 2]."""
+"""A dynamic_reconfigure server hosted by a rostest (the Reconfigure service and a latched
+ConfigDescription, as a generated server has), with one double parameter max_vel_x in [0, 2]
+(default 1.5); shared by the zone_params and setpoint_stuck rostests."""
 import threading
 
 import rospy
@@ -19,14 +21,16 @@ def description():
     return desc
 
 
-class Server:
-    """A server at /<name>; with answer=False its handler never returns (until release())."""
+class FakeServer:
+    """The server at /<name>. It answers as a generated server does (unknown names are not in the
+    answer, out-of-range values are clamped); with answer=False its handler never returns (until
+    release()) and keeps the value it had."""
 
-    def __init__(self, name, answer):
+    def __init__(self, name, answer=True):
         self.cond = threading.Condition()
         self.answer = answer
         self.released = False
-        self.value = 1.5
+        self.value = 1.5  # before anyone sets it
         self.received = []  # every max_vel_x value a request carried, in order
         self.pub = rospy.Publisher("/%s/parameter_descriptions" % name, ConfigDescription, queue_size=1,
                                    latch=True)
@@ -39,7 +43,7 @@ class Server:
                 if p.name == "max_vel_x":
                     self.received.append(p.value)
                     if self.answer:
-                        self.value = p.value
+                        self.value = min(2.0, max(0.0, p.value))
             self.cond.notify_all()
             while not self.answer and not self.released:
                 self.cond.wait()
@@ -54,6 +58,10 @@ class Server:
             while not predicate(self) and not rospy.is_shutdown() and rospy.Time.now() < deadline:
                 self.cond.wait(0.2)
             return predicate(self)
+
+    def wait_value(self, v, timeout):
+        """Waits until the server holds max_vel_x = v; returns whether it does."""
+        return self.wait(lambda s: abs(s.value - v) <= 1e-9, timeout)
 
     def release(self):
         with self.cond:
