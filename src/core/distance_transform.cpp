@@ -3,6 +3,7 @@
 #include "costmap_layers/core/distance_transform.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <exception>
@@ -831,24 +832,28 @@ void run(const Call& call_in, DistanceTransformScratch& scratch, int threads)
   // The banded engines use the reach itself: their tables say "far" (cost 0) at reach + 1.
   c.cap = static_cast<int>(c.costs->reach());
   const int rows = c.win.y1 - c.win.y0;
-  // Bands of at least 64 rows each (shorter ones spend more on their lookahead than they save).
-  threads = c.sink != nullptr ? 1 : std::max(1, std::min(threads, rows / 64));
+  // Bands of at least 64 rows and 2 * cap (shorter ones spend more on their lookahead of cap rows
+  // than they save), about four per thread: the threads take the next band as they finish one, so
+  // that a band of busy rows (a dense part of the map) does not leave the other threads waiting.
+  const int max_bands = std::max(1, rows / std::max(64, 2 * c.cap));
+  threads = c.sink != nullptr ? 1 : std::min(threads, max_bands);
   if (threads == 1)
   {
     runBand(c, c.win.y0, c.win.y1, b, nullptr, 0, 0);
     return;
   }
+  const int bands = std::min(max_bands, 4 * threads);
   // Each band reads the rows within reach of it; those of other bands are written concurrently, so
   // they are read from a copy taken now (only the sources matter, and writing does not change them).
   const int cx0 = std::max(0, c.win.x0 - c.cap), cx1 = std::min(c.width, c.win.x1 + c.cap);
   const std::ptrdiff_t snap_stride = cx1 - cx0;
-  std::vector<int> bounds(static_cast<std::size_t>(threads) + 1);
-  for (int k = 0; k <= threads; ++k)
-    bounds[static_cast<std::size_t>(k)] = c.win.y0 + static_cast<int>(static_cast<int64_t>(rows) * k / threads);
+  std::vector<int> bounds(static_cast<std::size_t>(bands) + 1);
+  for (int k = 0; k <= bands; ++k)
+    bounds[static_cast<std::size_t>(k)] = c.win.y0 + static_cast<int>(static_cast<int64_t>(rows) * k / bands);
   // Copy every window row within reach of a band boundary.
   grow(b.snapshot, static_cast<std::size_t>(rows) * static_cast<std::size_t>(snap_stride));
   std::vector<char> copied(static_cast<std::size_t>(rows), 0);
-  for (int k = 1; k < threads; ++k)
+  for (int k = 1; k < bands; ++k)
   {
     const int at = bounds[static_cast<std::size_t>(k)];
     for (int y = std::max(c.win.y0, at - c.cap); y < std::min(c.win.y1, at + c.cap); ++y)
@@ -864,21 +869,24 @@ void run(const Call& call_in, DistanceTransformScratch& scratch, int threads)
   pool.reserve(static_cast<std::size_t>(threads - 1));
   const uint8_t* snap = b.snapshot.data();
   std::vector<std::exception_ptr> errors(static_cast<std::size_t>(threads));
-  auto band = [&](int k, DistanceTransformScratch::Buffers& buffers)
+  std::atomic<int> next_band{0};
+  auto worker = [&](int k, DistanceTransformScratch::Buffers& buffers)
   {
     try
     {
-      runBand(c, bounds[static_cast<std::size_t>(k)], bounds[static_cast<std::size_t>(k) + 1], buffers, snap, c.win.y0,
-              snap_stride);
+      for (int i = next_band.fetch_add(1); i < bands; i = next_band.fetch_add(1))
+        runBand(c, bounds[static_cast<std::size_t>(i)], bounds[static_cast<std::size_t>(i) + 1], buffers, snap,
+                c.win.y0, snap_stride);
     }
     catch (...)
     {
       errors[static_cast<std::size_t>(k)] = std::current_exception();
+      next_band.store(bands);  // the others stop after their current band
     }
   };
   for (int k = 1; k < threads; ++k)
-    pool.emplace_back(band, k, std::ref(*b.workers[static_cast<std::size_t>(k - 1)].buffers));
-  band(0, b);
+    pool.emplace_back(worker, k, std::ref(*b.workers[static_cast<std::size_t>(k - 1)].buffers));
+  worker(0, b);
   for (auto& t : pool)
     t.join();
   for (const auto& e : errors)

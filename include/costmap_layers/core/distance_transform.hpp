@@ -110,8 +110,9 @@ public:
 /// source (sources outside the window count, and the grid is read only within reach of the window):
 /// c = costs.at(d2), written by `rule`. Every row is read before it is written; writing must not change
 /// which cells are sources.
-/// @param threads  worker threads (>= 1): the window is cut into bands of rows, one per thread; the
-///                 result is the same for any count
+/// @param threads  worker threads (>= 1): the window is cut into bands of rows (about four per thread),
+///                 each thread taking the next band when done with one; the result is the same for
+///                 any count
 void distanceCostMerge(uint8_t* grid, int width, int height, std::ptrdiff_t stride, SourceRange source,
                        const DistanceCosts& costs, const DistanceWindow& window, CostMergeRule rule,
                        DistanceTransformScratch& scratch, int threads = 1);
