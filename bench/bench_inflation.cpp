@@ -381,6 +381,15 @@ int main(int argc, char** argv)
         ->Unit(benchmark::kMillisecond);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  // COSTMAP_LAYERS_BENCH_TARGET=AVX3 (a name simdTargets() lists): every benchmark on that target, so
+  // that two targets can be compared by the same binary in the same minutes.
+  if (const char* forced = std::getenv("COSTMAP_LAYERS_BENCH_TARGET"); forced != nullptr && *forced != '\0')
+    if (!setSimdTarget(forced))
+    {
+      std::fprintf(stderr, "COSTMAP_LAYERS_BENCH_TARGET=%s: not a target this build compiled and this CPU runs\n",
+                   forced);
+      return 1;
+    }
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;

@@ -31,6 +31,14 @@ constexpr int tablesPerOffset(int reach)
 }
 /// Up to this reach vertical distances are bytes and squared distances 16 bits.
 constexpr int kMaxBandedReach = 254;
+/// On targets with a byte permute across a whole vector (AVX-512 VBMI), up to this reach the row pass
+/// works in the cost domain with one lookup of 128 entries per column offset (wideTables()): a
+/// distance up to reach + 1 indexes it directly.
+constexpr int kMaxWideReach = 126;
+/// runJob's modes besides K tables of 16 entries (1-4) and 16-bit squared distances (0): the wide
+/// lookup of 64 entries (reach <= 62) and of 128 entries.
+constexpr int kWide64 = 8;
+constexpr int kWide128 = 9;
 
 /// One band of rows for the vector engine; buffers sized by the caller.
 struct Job
@@ -49,12 +57,13 @@ struct Job
   uint8_t* out_row;         ///< sink mode: one window row
   uint8_t* rows;            ///< stripe rows, row_stride bytes each; window column 0 at offset pad
   int row_stride, pad, stripe;
-  uint8_t* run;             ///< band width
-  uint8_t* up;              ///< band width
-  uint16_t* sq;             ///< reach > kMaxCostDomainReach: squared vertical distances, row_stride entries
-  uint16_t* acc;            ///< reach > kMaxCostDomainReach: one block of squared distances
-  uint8_t* costs;           ///< reach > kMaxCostDomainReach: one block of costs
-  const uint16_t* squares;  ///< 16-bit path: dx^2 eight times for each dx in [0, cap]
+  uint8_t* run;                ///< band width
+  uint8_t* up;                 ///< band width
+  uint16_t* sq;                ///< reach > kMaxCostDomainReach: squared vertical distances, row_stride entries
+  uint16_t* acc;               ///< reach > kMaxCostDomainReach: one block of squared distances
+  uint8_t* costs;              ///< reach > kMaxCostDomainReach: one block of costs
+  const uint16_t* squares;     ///< 16-bit path: dx^2 eight times for each dx in [0, cap]
+  const uint8_t* wide_tables;  ///< DistanceCosts::wideTables() (nullptr past kMaxWideReach)
 };
 
 /// In the cost domain a vertical distance v is stored as v + kBias: the 16-entry byte lookup of table
@@ -295,6 +304,68 @@ HWY_INLINE void rowPassCost8(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRIC
   }
 }
 
+#if HWY_TARGET == HWY_AVX3_DL
+/// The cost of distances m (< 128) by one permute of the offset's wide table t: Highway 1.0.3 has no
+/// byte-lane TableLookupLanes, so VBMI's vpermb / vpermt2b are called directly (this target only).
+template <int MODE, class D>
+HWY_INLINE hn::Vec<D> wideCost(D d, const uint8_t* t, hn::Vec<D> m)
+{
+  if constexpr (MODE == dt::kWide64)
+    return hn::Vec<D>{_mm512_permutexvar_epi8(m.raw, hn::Load(d, t).raw)};
+  else
+    return hn::Vec<D>{_mm512_permutex2var_epi8(hn::Load(d, t).raw, m.raw, hn::Load(d, t + 64).raw)};
+}
+
+/// Row pass in the cost domain by wide tables (reach <= kMaxWideReach, distances stored unbiased):
+/// c = max over dx of table_dx[min(g[x - dx], g[x + dx])], merged into out; as rowPassCost8 otherwise.
+template <int MODE>
+HWY_INLINE void rowPassWide(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRICT out, int n, const dt::Job& j)
+{
+  const hn::ScalableTag<uint8_t> d;
+  const int N = static_cast<int>(hn::Lanes(d));
+  const int cap = j.cap;
+  const uint8_t far = static_cast<uint8_t>(cap + 1);
+  const uint8_t* tables = j.wide_tables;
+  constexpr std::ptrdiff_t ts = 128;
+  const auto special = hn::Set(d, j.rule.special);
+  for (int x = 0; x < n; x += N)
+  {
+    const uint8_t* gx = g + x;
+    if (!anyNear(d, gx, cap, far)) continue;
+    const bool whole = x + N <= n;
+    const auto old = whole ? hn::LoadU(d, out + x) : hn::Zero(d);
+    const auto is_special = whole ? hn::Eq(old, special) : hn::FirstN(d, 0);
+    const auto floor = hn::IfThenZeroElse(is_special, old);
+    auto c0 = wideCost<MODE>(d, tables, hn::LoadU(d, gx));
+    auto c1 = hn::Zero(d);
+    auto at = [&](int dx)
+    { return wideCost<MODE>(d, tables + ts * dx, hn::Min(hn::LoadU(d, gx - dx), hn::LoadU(d, gx + dx))); };
+    int dx = 1;
+    for (; dx + dt::kGroup - 1 <= cap; dx += dt::kGroup)
+    {
+      c1 = hn::Max(c1, at(dx));
+      c0 = hn::Max(c0, at(dx + 1));
+      c1 = hn::Max(c1, at(dx + 2));
+      c0 = hn::Max(c0, at(dx + 3));
+      // As rowPassCost8: no further offset gives more than the cost of e^2 at vertical distance 0.
+      const int e = dx + dt::kGroup;
+      if (e <= cap)
+      {
+        const uint8_t top = tables[ts * e];
+        const auto kept = hn::Max(hn::Max(c0, c1), floor);
+        auto done = hn::Eq(hn::Max(kept, hn::Set(d, top)), kept);
+        if (top < j.rule.special_threshold) done = hn::Or(done, is_special);
+        if (hn::AllTrue(d, done)) break;
+      }
+    }
+    if (dx + dt::kGroup - 1 > cap)  // the loop ran out (no stop): the offsets left
+      for (; dx <= cap; ++dx)
+        c1 = hn::Max(c1, at(dx));
+    mergeStore(d, hn::Max(c0, c1), out + x, std::min(N, n - x), j.rule);
+  }
+}
+#endif
+
 /// Row pass in squared distances (kMaxCostDomainReach < reach <= kMaxBandedReach): d2 = min over dx of
 /// dx^2 + sq[x +- dx], then the cost table, merged into out.
 HWY_INLINE void rowPassSq16(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRICT out, int n, const dt::Job& j)
@@ -413,14 +484,15 @@ void runJob(const dt::Job& j)
   const int n = win.x1 - win.x0;
   const uint8_t lo = j.source.lo;
   const uint8_t span = static_cast<uint8_t>(j.source.hi - j.source.lo);
-  // Distances are stored biased in the cost domain (see kBias).
-  const uint8_t base = K > 0 ? dt::kBias : uint8_t{0};
+  // Distances are stored biased in the cost domain by 16-entry tables (see kBias).
+  constexpr bool kTables16 = K > 0 && K <= 4;
+  const uint8_t base = kTables16 ? dt::kBias : uint8_t{0};
   const uint8_t far = static_cast<uint8_t>(base + cap + 1);
   const int band_off = j.pad + (cx0 - win.x0);  // offset of column cx0 in a stripe row
   // The tables each group of offsets needs: those up to the last with a cost at vertical distance 0
   // (a larger distance costs no more).
   uint8_t group_tables[(dt::kMaxCostDomainReach + dt::kGroup - 1) / dt::kGroup + 1] = {};
-  if (K > 0)
+  if (kTables16)
     for (int i = 0, dx = 1; dx <= cap; ++i, dx += dt::kGroup)
       for (int k = 0; k < K; ++k)
         if (j.offset_tables[16 * K * dx + 16 * k] > 0) group_tables[i] = static_cast<uint8_t>(k + 1);
@@ -475,8 +547,13 @@ void runJob(const dt::Job& j)
       }
       else
         out = j.target + y * j.target_stride + win.x0;
-      if (K > 0)
-        rowPassCost8<(K > 0 ? K : 1)>(gr + j.pad, out, n, j, group_tables);
+#if HWY_TARGET == HWY_AVX3_DL
+      if constexpr (K == dt::kWide64 || K == dt::kWide128)
+        rowPassWide<K>(gr + j.pad, out, n, j);
+      else
+#endif
+          if constexpr (kTables16)
+        rowPassCost8<(kTables16 ? K : 1)>(gr + j.pad, out, n, j, group_tables);
       else
         rowPassSq16(gr + j.pad, out, n, j);
       if (j.sink != nullptr) (*j.sink)(y, j.out_row);
@@ -486,6 +563,19 @@ void runJob(const dt::Job& j)
 
 void RunDistanceJob(const dt::Job& j)
 {
+#if HWY_TARGET == HWY_AVX3_DL
+  // Up to two 16-entry tables per offset the byte permute is not faster (measured: the same at reach
+  // 20, slower at reach 11, where the one-table path has no stop checks); from three on it is.
+  if (j.wide_tables != nullptr && j.cap <= dt::kMaxWideReach && dt::tablesPerOffset(j.cap) >= 3)
+  {
+    // The index of vpermb is a distance up to cap + 1 (its low 6 bits), of vpermt2b up to 127.
+    if (j.cap + 1 < 64)
+      runJob<dt::kWide64>(j);
+    else
+      runJob<dt::kWide128>(j);
+    return;
+  }
+#endif
   switch (j.cap <= dt::kMaxCostDomainReach ? dt::tablesPerOffset(j.cap) : 0)
   {
     case 1:
@@ -568,6 +658,13 @@ DistanceCosts::DistanceCosts(int64_t max_cells, const std::function<uint8_t(uint
     table16_.assign(65536 + 3, 0);  // 3 bytes of slack: the engine gathers 32-bit words
     std::copy(table_.begin(), table_.end(), table16_.begin());
   }
+  if (reach_ <= dt::kMaxWideReach)
+  {
+    wide_tables_.resize(static_cast<std::size_t>(reach_ + 1));
+    for (int64_t dx = 0; dx <= reach_; ++dx)
+      for (int64_t v = 0; v < 128; ++v)
+        wide_tables_[static_cast<std::size_t>(dx)].cost[v] = at(static_cast<uint64_t>(dx * dx + v * v));
+  }
   if (reach_ <= dt::kMaxCostDomainReach)
   {
     const int64_t k_count = dt::tablesPerOffset(static_cast<int>(reach_));
@@ -645,6 +742,7 @@ void runBand(const Call& c, int b0, int b1, DistanceTransformScratch::Buffers& b
   j.cap = cap;
   j.offset_tables = c.costs->offsetTables();
   j.table16 = c.costs->table16();
+  j.wide_tables = c.costs->wideTables();
   j.target = c.target;
   j.target_stride = c.stride;
   j.rule = c.rule;

@@ -70,6 +70,10 @@ public:
   /// the cost of every 16-bit squared distance.
   const uint8_t* offsetTables() const { return offset_tables_.data(); }
   const uint8_t* table16() const { return table16_.data(); }
+  /// For targets with a byte permute across a whole 64-byte vector (reach <= 126): per column offset
+  /// dx in [0, reach], 128 bytes, entry v the cost of dx^2 + v^2 (0 past the reach), from a 64-byte
+  /// boundary on; else nullptr.
+  const uint8_t* wideTables() const { return wide_tables_.empty() ? nullptr : wide_tables_.front().cost; }
 
 private:
   bool any_ = false;
@@ -78,6 +82,11 @@ private:
   std::vector<uint8_t> table_;  ///< cost by squared distance up to reach_sq_, when small enough
   std::vector<uint8_t> table16_;
   std::vector<uint8_t> offset_tables_;
+  struct alignas(64) WideTable
+  {
+    uint8_t cost[128];
+  };
+  std::vector<WideTable> wide_tables_;
   std::function<uint8_t(uint64_t)> cost_;  ///< past table_ (huge reaches only)
 };
 
