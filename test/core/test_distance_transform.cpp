@@ -203,11 +203,14 @@ TEST_P(Engine, SweepRadiiAndResolutionsEqualBruteForce)
 
 // The switches between the engine's paths: reach 14 / 15 / 30 / 31 / 46 / 47 (one to four tables per
 // offset in the cost domain: bands of 16 vertical distances up to reach + 1), 59 / 60 (cost domain /
-// 16-bit) and 254 / 255 (16-bit / envelope), a flat cost so that the reach is exactly the cap.
+// 16-bit) and 254 / 255 (16-bit / envelope); on AVX3_DL also 30 / 31 (16-entry tables / one permute),
+// 62 / 63 (a 64-entry / 128-entry permute) and 126 / 127 (permute / 16-bit). A flat cost, so that the
+// reach is exactly the cap.
 TEST_P(Engine, PathBoundariesEqualBruteForce)
 {
   std::mt19937 rng(seed(21));
-  for (const int64_t cap : {0, 1, 2, 13, 14, 15, 16, 29, 30, 31, 32, 44, 45, 46, 47, 48, 59, 60, 253, 254, 255, 300})
+  for (const int64_t cap : {0,  1,  2,  13, 14, 15, 16, 29,  30,  31,  32,  44,  45,  46,  47,
+                            48, 59, 60, 61, 62, 63, 64, 125, 126, 127, 128, 253, 254, 255, 300})
   {
     const int w = cap > 100 ? 300 : 97, h = cap > 100 ? 260 : 61;
     const auto grid = randomGrid(rng, static_cast<std::size_t>(w) * h, cap > 100 ? 0.00005 : 0.01);
@@ -263,7 +266,7 @@ TEST_P(Engine, ThreadsGiveTheSameResult)
 TEST_P(Engine, RowsEqualBruteForce)
 {
   std::mt19937 rng(seed(11));
-  for (const int64_t cap : {0, 5, 14, 15, 31, 260})
+  for (const int64_t cap : {0, 5, 14, 15, 31, 62, 63, 126, 260})
   {
     const int w = 150 + static_cast<int>(rng() % 40), h = 120;
     auto grid = randomGrid(rng, static_cast<std::size_t>(w) * h, cap > 100 ? 0.0002 : 0.004);
