@@ -206,6 +206,30 @@ HWY_INLINE V lookup16(D d, const uint8_t* table, V idx)
 #endif
 }
 
+/// The floor of the stop checks for the block at out (n cells left in the row): what the merge keeps
+/// whatever the cost. A cell ends at max(old, cost), so old is a floor; a special cell only takes a
+/// cost from special_threshold on. The last, partial block of a row takes no floor.
+template <class D>
+HWY_INLINE hn::Vec<D> mergeFloor(D d, const uint8_t* out, int n, const CostMergeRule& rule, hn::Mask<D>& is_special)
+{
+  const bool whole = n >= static_cast<int>(hn::Lanes(d));
+  const auto old = whole ? hn::LoadU(d, out) : hn::Zero(d);
+  is_special = whole ? hn::Eq(old, hn::Set(d, rule.special)) : hn::FirstN(d, 0);
+  return hn::IfThenZeroElse(is_special, old);
+}
+
+/// Whether a block may stop: no further offset gives more than top (the next offset's cost at vertical
+/// distance 0), and every lane has that much (c0, c1) or keeps it anyway (floor), or is special while
+/// top is below special_threshold.
+template <class D, class V>
+HWY_INLINE bool blockDone(D d, V c0, V c1, V floor, hn::Mask<D> is_special, uint8_t top, const CostMergeRule& rule)
+{
+  const auto kept = hn::Max(hn::Max(c0, c1), floor);
+  auto done = hn::Eq(hn::Max(kept, hn::Set(d, top)), kept);
+  if (top < rule.special_threshold) done = hn::Or(done, is_special);
+  return hn::AllTrue(d, done);
+}
+
 /// The cost at column offset dx from biased vertical distances (see kBias), by the first KK of the
 /// offset's tables (those past its last non-zero one hold zeros).
 template <int KK, class D>
@@ -251,18 +275,12 @@ HWY_INLINE void rowPassCost8(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRIC
   const uint8_t far = static_cast<uint8_t>(dt::kBias + cap + 1);
   const uint8_t* tables = j.offset_tables;
   const std::ptrdiff_t ts = 16 * KMAX;
-  const auto special = hn::Set(d, j.rule.special);
   for (int x = 0; x < n; x += N)
   {
     const uint8_t* gx = g + x;
     if (!anyNear(d, gx, cap, far)) continue;
-    // What the merge keeps whatever the cost: a cell ends at max(old, cost), so old is a floor for
-    // the stop below; a special cell only takes a cost from special_threshold on. (The last, partial
-    // block of a row takes no floor.)
-    const bool whole = x + N <= n;
-    const auto old = whole ? hn::LoadU(d, out + x) : hn::Zero(d);
-    const auto is_special = whole ? hn::Eq(old, special) : hn::FirstN(d, 0);
-    const auto floor = hn::IfThenZeroElse(is_special, old);
+    hn::Mask<decltype(d)> is_special;
+    const auto floor = mergeFloor(d, out + x, n - x, j.rule, is_special);
     // Two accumulators: two shorter dependency chains of maxima.
     auto c0 = offsetCost<KMAX>(d, tables, gx, 0);
     auto c1 = hn::Zero(d);
@@ -291,14 +309,7 @@ HWY_INLINE void rowPassCost8(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRIC
       // cell, once that cost is below special_threshold), stop. (With one table the reach is at most
       // 14: checking costs more than it saves.)
       const int e = dx + dt::kGroup;
-      if (KMAX > 1 && e <= cap)
-      {
-        const uint8_t top = tables[ts * e];
-        const auto kept = hn::Max(hn::Max(c0, c1), floor);
-        auto done = hn::Eq(hn::Max(kept, hn::Set(d, top)), kept);
-        if (top < j.rule.special_threshold) done = hn::Or(done, is_special);
-        if (hn::AllTrue(d, done)) break;
-      }
+      if (KMAX > 1 && e <= cap && blockDone(d, c0, c1, floor, is_special, tables[ts * e], j.rule)) break;
     }
     mergeStore(d, hn::Max(c0, c1), out + x, std::min(N, n - x), j.rule);
   }
@@ -327,15 +338,12 @@ HWY_INLINE void rowPassWide(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRICT
   const uint8_t far = static_cast<uint8_t>(cap + 1);
   const uint8_t* tables = j.wide_tables;
   constexpr std::ptrdiff_t ts = 128;
-  const auto special = hn::Set(d, j.rule.special);
   for (int x = 0; x < n; x += N)
   {
     const uint8_t* gx = g + x;
     if (!anyNear(d, gx, cap, far)) continue;
-    const bool whole = x + N <= n;
-    const auto old = whole ? hn::LoadU(d, out + x) : hn::Zero(d);
-    const auto is_special = whole ? hn::Eq(old, special) : hn::FirstN(d, 0);
-    const auto floor = hn::IfThenZeroElse(is_special, old);
+    hn::Mask<decltype(d)> is_special;
+    const auto floor = mergeFloor(d, out + x, n - x, j.rule, is_special);
     auto c0 = wideCost<MODE>(d, tables, hn::LoadU(d, gx));
     auto c1 = hn::Zero(d);
     auto at = [&](int dx)
@@ -349,14 +357,7 @@ HWY_INLINE void rowPassWide(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRICT
       c0 = hn::Max(c0, at(dx + 3));
       // As rowPassCost8: no further offset gives more than the cost of e^2 at vertical distance 0.
       const int e = dx + dt::kGroup;
-      if (e <= cap)
-      {
-        const uint8_t top = tables[ts * e];
-        const auto kept = hn::Max(hn::Max(c0, c1), floor);
-        auto done = hn::Eq(hn::Max(kept, hn::Set(d, top)), kept);
-        if (top < j.rule.special_threshold) done = hn::Or(done, is_special);
-        if (hn::AllTrue(d, done)) break;
-      }
+      if (e <= cap && blockDone(d, c0, c1, floor, is_special, tables[ts * e], j.rule)) break;
     }
     if (dx + dt::kGroup - 1 > cap)  // the loop ran out (no stop): the offsets left
       for (; dx <= cap; ++dx)
