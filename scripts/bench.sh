@@ -8,6 +8,9 @@
 #                                               each of these maps at its own resolution (the sweep
 #                                               of radii, factors 3 and 10), e.g. willow and warehouse
 #   BENCH_REPETITIONS=5                         repetitions of each benchmark
+#   COSTMAP_LAYERS_BENCH_TARGET=AVX3            the inflation benchmarks on that SIMD target only (a
+#                                               name the BM_InflationTarget_* rows show), to compare
+#                                               two targets with the same binary
 # Extra arguments go to every benchmark program (e.g. --benchmark_filter=Sweep).
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
