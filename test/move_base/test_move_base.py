@@ -26,6 +26,7 @@ from std_srvs.srv import Empty, SetBool
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "rostest"))
 from grid_watch import ErrorLog, GridWatcher, translate  # noqa: E402
+from grid_watch import occupancy_grid as grid  # noqa: E402
 
 START = (1.0, 1.0)
 GOAL = (5.0, 1.0)
@@ -48,25 +49,8 @@ def in_band(x, y, margin=0.0):
 
 def room(width, height):
     """A room as mask_server publishes room.pgm (make_maps.py): walls two cells thick = 100, free = 0."""
-    g = OccupancyGrid()
-    g.header.frame_id = "map"
-    g.header.stamp = rospy.Time.now()
-    g.info.resolution = 0.05
-    g.info.width, g.info.height = width, height
-    g.info.origin.orientation.w = 1.0
-    g.data = [100 if i < 2 or j < 2 or i >= width - 2 or j >= height - 2 else 0
-              for j in range(height) for i in range(width)]
-    return g
-
-
-def grid(width, height, resolution, data):
-    g = OccupancyGrid()
-    g.header.frame_id = "map"
-    g.header.stamp = rospy.Time.now()
-    g.info.width, g.info.height, g.info.resolution = width, height, resolution
-    g.info.origin.orientation.w = 1.0
-    g.data = data
-    return g
+    return grid(width, height, 0.05, [100 if i < 2 or j < 2 or i >= width - 2 or j >= height - 2 else 0
+                                      for j in range(height) for i in range(width)])
 
 
 def length(poses):

@@ -157,16 +157,22 @@ class Latest:
             return self.msg is not None and predicate(self.msg)
 
 
+def occupancy_grid(width, height, resolution, data, frame="map", ox=0.0, oy=0.0, stamp=None):
+    """An OccupancyGrid as given, unchecked (the rostests also build malformed ones), origin (ox, oy)
+    unrotated, stamped now unless `stamp` is given."""
+    g = OccupancyGrid()
+    g.header.frame_id = frame
+    g.header.stamp = rospy.Time.now() if stamp is None else stamp
+    g.info.width, g.info.height, g.info.resolution = width, height, resolution
+    g.info.origin.position.x, g.info.origin.position.y = ox, oy
+    g.info.origin.orientation.w = 1.0
+    g.data = data
+    return g
+
+
 def publish_row_mask(topic, values):
     """Publishes, latched, a mask of one row of 1 m cells in the map frame (values along x from the
-    origin); returns the publisher, which must be kept for the latch to last."""
-    grid = OccupancyGrid()
-    grid.header.frame_id = "map"
-    grid.info.resolution = 1.0
-    grid.info.width = len(values)
-    grid.info.height = 1
-    grid.info.origin.orientation.w = 1.0
-    grid.data = values
+    origin, stamp 0); returns the publisher, which must be kept for the latch to last."""
     pub = rospy.Publisher(topic, OccupancyGrid, queue_size=1, latch=True)
-    pub.publish(grid)
+    pub.publish(occupancy_grid(len(values), 1, 1.0, values, stamp=rospy.Time()))
     return pub

@@ -22,20 +22,10 @@ from sensor_msgs.msg import LaserScan, PointCloud2, PointField, Range
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from grid_watch import CycleWatcher, GridWatcher, logged_with_key  # noqa: E402
+from grid_watch import occupancy_grid as grid  # noqa: E402
 
 NAN = float("nan")
 INF = float("inf")
-
-
-def grid(width, height, resolution, data, frame="map", ox=0.0, oy=0.0):
-    g = OccupancyGrid()
-    g.header.frame_id = frame
-    g.header.stamp = rospy.Time.now()
-    g.info.width, g.info.height, g.info.resolution = width, height, resolution
-    g.info.origin.position.x, g.info.origin.position.y = ox, oy
-    g.info.origin.orientation.w = 1.0
-    g.data = data
-    return g
 
 
 def stamped(msg, stamp):
