@@ -31,10 +31,15 @@ constexpr int tablesPerOffset(int reach)
 }
 /// Up to this reach vertical distances are bytes and squared distances 16 bits.
 constexpr int kMaxBandedReach = 254;
-/// On targets with a byte permute across a whole vector (AVX-512 VBMI), up to this reach the row pass
-/// works in the cost domain with one lookup of 128 entries per column offset (wideTables()): a
-/// distance up to reach + 1 indexes it directly.
+/// On targets with a byte permute across a whole vector (AVX-512 VBMI), from kMinWideReach to
+/// kMaxWideReach the row pass works in the cost domain with one lookup of 128 entries per column offset
+/// (wideTables()): a distance up to reach + 1 indexes it directly. Below, where one or two 16-entry
+/// tables per offset do, the permute was measured not faster (the same at reach 20, slower at reach
+/// 11, where the one-table path has no stop checks).
+constexpr int kMinWideReach = 31;
 constexpr int kMaxWideReach = 126;
+static_assert(tablesPerOffset(kMinWideReach - 1) == 2 && tablesPerOffset(kMinWideReach) == 3,
+              "the permute starts where a third 16-entry table would");
 /// runJob's modes besides K tables of 16 entries (1-4) and 16-bit squared distances (0): the wide
 /// lookup of 64 entries (reach <= 62) and of 128 entries.
 constexpr int kWide64 = 8;
@@ -63,7 +68,7 @@ struct Job
   uint16_t* acc;               ///< reach > kMaxCostDomainReach: one block of squared distances
   uint8_t* costs;              ///< reach > kMaxCostDomainReach: one block of costs
   const uint16_t* squares;     ///< 16-bit path: dx^2 eight times for each dx in [0, cap]
-  const uint8_t* wide_tables;  ///< DistanceCosts::wideTables() (nullptr past kMaxWideReach)
+  const uint8_t* wide_tables;  ///< DistanceCosts::wideTables() (nullptr outside kMinWideReach..kMaxWideReach)
 };
 
 /// In the cost domain a vertical distance v is stored as v + kBias: the 16-entry byte lookup of table
@@ -548,12 +553,13 @@ void runJob(const dt::Job& j)
       }
       else
         out = j.target + y * j.target_stride + win.x0;
-#if HWY_TARGET == HWY_AVX3_DL
       if constexpr (K == dt::kWide64 || K == dt::kWide128)
+      {
+#if HWY_TARGET == HWY_AVX3_DL
         rowPassWide<K>(gr + j.pad, out, n, j);
-      else
 #endif
-          if constexpr (kTables16)
+      }
+      else if constexpr (kTables16)
         rowPassCost8<(kTables16 ? K : 1)>(gr + j.pad, out, n, j, group_tables);
       else
         rowPassSq16(gr + j.pad, out, n, j);
@@ -565,9 +571,8 @@ void runJob(const dt::Job& j)
 void RunDistanceJob(const dt::Job& j)
 {
 #if HWY_TARGET == HWY_AVX3_DL
-  // Up to two 16-entry tables per offset the byte permute is not faster (measured: the same at reach
-  // 20, slower at reach 11, where the one-table path has no stop checks); from three on it is.
-  if (j.wide_tables != nullptr && j.cap <= dt::kMaxWideReach && dt::tablesPerOffset(j.cap) >= 3)
+  // The tables exist for the reaches the permute is for (kMinWideReach .. kMaxWideReach).
+  if (j.wide_tables != nullptr)
   {
     // The index of vpermb is a distance up to cap + 1 (its low 6 bits), of vpermt2b up to 127.
     if (j.cap + 1 < 64)
@@ -659,7 +664,7 @@ DistanceCosts::DistanceCosts(int64_t max_cells, const std::function<uint8_t(uint
     table16_.assign(65536 + 3, 0);  // 3 bytes of slack: the engine gathers 32-bit words
     std::copy(table_.begin(), table_.end(), table16_.begin());
   }
-  if (reach_ <= dt::kMaxWideReach)
+  if (reach_ >= dt::kMinWideReach && reach_ <= dt::kMaxWideReach)
   {
     wide_tables_.resize(static_cast<std::size_t>(reach_ + 1));
     for (int64_t dx = 0; dx <= reach_; ++dx)
