@@ -45,6 +45,18 @@ static_assert(tablesPerOffset(kMinWideReach - 1) == 2 && tablesPerOffset(kMinWid
 constexpr int kWide64 = 8;
 constexpr int kWide128 = 9;
 
+/// From kMinPaintReach to kMaxPaintReach a block of a row may be costed from the columns that can matter
+/// to it (listPainted, paintColumns: one vector load and maximum each) instead of column offset by
+/// offset, when there are at most kPaintPerReach * reach of them. Below, the one-table lookup per offset
+/// was measured faster than listing the columns at all.
+constexpr int kMinPaintReach = 15;
+constexpr int kMaxPaintReach = 126;
+constexpr int kPaintPerReach = 2;
+static_assert(tablesPerOffset(kMinPaintReach - 1) == 1 && tablesPerOffset(kMinPaintReach) == 2,
+              "painting starts where a second table per offset would");
+static_assert(kMinWideReach >= kMinPaintReach && kMaxWideReach <= kMaxPaintReach,
+              "the wide row pass paints (it needs the paint tables)");
+
 /// One band of rows for the vector engine; buffers sized by the caller.
 struct Job
 {
@@ -62,13 +74,18 @@ struct Job
   uint8_t* out_row;         ///< sink mode: one window row
   uint8_t* rows;            ///< stripe rows, row_stride bytes each; window column 0 at offset pad
   int row_stride, pad, stripe;
-  uint8_t* run;                ///< band width
-  uint8_t* up;                 ///< band width
-  uint16_t* sq;                ///< reach > kMaxCostDomainReach: squared vertical distances, row_stride entries
-  uint16_t* acc;               ///< reach > kMaxCostDomainReach: one block of squared distances
-  uint8_t* costs;              ///< reach > kMaxCostDomainReach: one block of costs
-  const uint16_t* squares;     ///< 16-bit path: dx^2 eight times for each dx in [0, cap]
-  const uint8_t* wide_tables;  ///< DistanceCosts::wideTables() (nullptr outside kMinWideReach..kMaxWideReach)
+  uint8_t* run;                   ///< band width
+  uint8_t* up;                    ///< band width
+  uint16_t* sq;                   ///< reach > kMaxCostDomainReach: squared vertical distances, row_stride entries
+  uint16_t* acc;                  ///< reach > kMaxCostDomainReach: one block of squared distances
+  uint8_t* costs;                 ///< reach > kMaxCostDomainReach: one block of costs
+  const uint16_t* squares;        ///< 16-bit path: dx^2 eight times for each dx in [0, cap]
+  const uint8_t* wide_tables;     ///< DistanceCosts::wideTables() (nullptr outside kMinWideReach..kMaxWideReach)
+  const uint8_t* paint;           ///< DistanceCosts::paintTables() (nullptr outside kMinPaintReach..kMaxPaintReach)
+  int paint_shift, paint_center;  ///< rows of 1 << paint_shift bytes
+  int paint_limit;                ///< a block takes the painting path with up to this many columns to paint
+  int32_t* paint_list;            ///< see listPainted
+  int* paint_counts;
 };
 
 /// In the cost domain a vertical distance v is stored as v + kBias: the 16-entry byte lookup of table
@@ -235,6 +252,113 @@ HWY_INLINE bool blockDone(D d, V c0, V c1, V floor, hn::Mask<D> is_special, uint
   return hn::AllTrue(d, done);
 }
 
+/// The number of bits set. Highway's targets do not enable the popcnt instruction, so the builtin would
+/// be a library call on x86: every x86 processor with SSE4.2 has the instruction, older ones get a few
+/// shifts and adds.
+HWY_INLINE int bitCount(uint64_t x)
+{
+#if HWY_ARCH_X86_64 && HWY_TARGET <= HWY_SSE4
+  uint64_t r;
+  asm("popcnt %1, %0" : "=r"(r) : "r"(x) : "cc");
+  return static_cast<int>(r);
+#elif HWY_ARCH_X86
+  x = x - ((x >> 1) & 0x5555555555555555ull);
+  x = (x & 0x3333333333333333ull) + ((x >> 2) & 0x3333333333333333ull);
+  x = (x + (x >> 4)) & 0x0F0F0F0F0F0F0F0Full;
+  return static_cast<int>((x * 0x0101010101010101ull) >> 56);
+#else
+  return __builtin_popcountll(x);
+#endif
+}
+
+/// How many chunks of N32 columns (see listPainted) the columns within reach of a block span.
+HWY_INLINE int paintChunks(int cap)
+{
+  const int N = static_cast<int>(hn::Lanes(hn::ScalableTag<uint8_t>()));
+  const int N32 = static_cast<int>(hn::Lanes(hn::ScalableTag<int32_t>()));
+  return (N + 2 * cap + N32 - 1) / N32;
+}
+
+/// The columns of one row that a block may have to paint (see paintColumns), listed once per row: for
+/// each column c from -cap on with a source within reach (v < far) and a neighbour farther from one,
+/// (v << paint_shift) - c, in column order; counts[i] = how many come before column -cap + i * N32.
+/// Why only those: a column c with v(c - 1) <= v(c) gives no cell left of it less than column c - 1
+/// does ((x - c + 1)^2 + v(c - 1)^2 < (x - c)^2 + v(c)^2 for x < c), and likewise on the right.
+/// Following such neighbours from any column towards a cell x ends at x itself or at a listed column
+/// between them. So the costs of a block are those of its own columns and of the listed ones within
+/// reach of it, whatever the others hold.
+HWY_INLINE void listPainted(const uint8_t* g, int n, const dt::Job& j, uint8_t base, uint8_t far)
+{
+  const hn::ScalableTag<uint8_t> d;
+  const hn::ScalableTag<int32_t> d32;
+  const hn::Rebind<uint8_t, decltype(d32)> d8;
+  const int N = static_cast<int>(hn::Lanes(d));
+  const int N32 = static_cast<int>(hn::Lanes(d32));
+  const int cap = j.cap;
+  const int chunks = ((n + N - 1) / N - 1) * N / N32 + paintChunks(cap);
+  const auto far8 = hn::Set(d, far);
+  const auto vfar = hn::Set(d32, far), vbase = hn::Set(d32, base);
+  const auto iota = hn::Iota(d32, 0);  // a constant (Iota from a variable start goes through memory)
+  int32_t* HWY_RESTRICT list = j.paint_list;
+  int* HWY_RESTRICT counts = j.paint_counts;
+  int k = 0;
+  // A vector of columns at a time (the mask, its count); its chunks of N32 columns only when it lists any.
+  for (int i = 0; i < chunks; i += N / N32)
+  {
+    const uint8_t* gc = g - cap + i * N32;
+    const auto v8 = hn::LoadU(d, gc);
+    const auto side8 = hn::Max(hn::Max(hn::LoadU(d, gc - 1), hn::LoadU(d, gc + 1)), v8);
+    uint8_t mask_bytes[8] = {};
+    hn::StoreMaskBits(d, hn::And(hn::Ne(v8, far8), hn::Ne(side8, v8)), mask_bytes);
+    uint64_t bits;
+    std::memcpy(&bits, mask_bytes, sizeof(bits));
+    for (int q = 0; q < N / N32 && i + q <= chunks; ++q)
+    {
+      const int before = k + bitCount(q * N32 >= 64 ? bits : bits & ((uint64_t{1} << (q * N32)) - 1));
+      counts[i + q] = before;
+      const uint64_t own = N32 >= 64 ? bits : (bits >> (q * N32)) & ((uint64_t{1} << N32) - 1);
+      if (own == 0 || i + q == chunks) continue;
+      const uint8_t* gq = gc + q * N32;
+      const auto v = hn::PromoteTo(d32, hn::LoadU(d8, gq));
+      const auto side = hn::Max(hn::PromoteTo(d32, hn::LoadU(d8, gq - 1)), hn::PromoteTo(d32, hn::LoadU(d8, gq + 1)));
+      const auto listed = hn::And(hn::Ne(v, vfar), hn::Lt(v, side));
+      const auto column = hn::Add(iota, hn::Set(d32, -cap + (i + q) * N32));
+      // Compress, then a whole-vector store (a compressing store to memory is slow on some processors);
+      // the next chunk's store overwrites what lies past this one's entries.
+      hn::StoreU(hn::Compress(hn::Sub(hn::ShiftLeftSame(hn::Sub(v, vbase), j.paint_shift), column), listed), d32,
+                 list + before);
+    }
+    k += bitCount(bits);
+  }
+  if (chunks % (N / N32) == 0) counts[chunks] = k;
+}
+
+/// The entries [lo, hi) of the list of one row (see listPainted) for the block at x.
+HWY_INLINE void paintRange(const dt::Job& j, int x, int& lo, int& hi)
+{
+  const int N32 = static_cast<int>(hn::Lanes(hn::ScalableTag<int32_t>()));
+  lo = j.paint_counts[x / N32];
+  hi = j.paint_counts[x / N32 + paintChunks(j.cap)];
+}
+
+/// The largest cost the listed columns within reach (entries [lo, hi)) give each cell of the block at
+/// x: per column c, its row of costs for v(c) (paintTables) read from the entry of cell x on.
+template <class D>
+HWY_INLINE hn::Vec<D> paintColumns(D d, int x, int lo, int hi, const dt::Job& j)
+{
+  const uint8_t* at = j.paint + j.paint_center + x;
+  const int32_t* list = j.paint_list;
+  auto c0 = hn::Zero(d), c1 = hn::Zero(d);
+  int i = lo;
+  for (; i + 1 < hi; i += 2)
+  {
+    c0 = hn::Max(c0, hn::LoadU(d, at + list[i]));
+    c1 = hn::Max(c1, hn::LoadU(d, at + list[i + 1]));
+  }
+  if (i < hi) c0 = hn::Max(c0, hn::LoadU(d, at + list[i]));
+  return hn::Max(c0, c1);
+}
+
 /// The cost at column offset dx from biased vertical distances (see kBias), by the first KK of the
 /// offset's tables (those past its last non-zero one hold zeros).
 template <int KK, class D>
@@ -283,7 +407,21 @@ HWY_INLINE void rowPassCost8(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRIC
   for (int x = 0; x < n; x += N)
   {
     const uint8_t* gx = g + x;
-    if (!anyNear(d, gx, cap, far)) continue;
+    if (j.paint != nullptr)
+    {
+      int lo, hi;
+      paintRange(j, x, lo, hi);
+      if (hi - lo <= j.paint_limit)
+      {
+        if (hi == lo && hn::AllTrue(d, hn::Eq(hn::LoadU(d, gx), hn::Set(d, far)))) continue;
+        auto c = offsetCost<KMAX>(d, tables, gx, 0);
+        if (hi > lo) c = hn::Max(c, paintColumns(d, x, lo, hi, j));
+        mergeStore(d, c, out + x, std::min(N, n - x), j.rule);
+        continue;
+      }
+    }
+    else if (!anyNear(d, gx, cap, far))
+      continue;
     hn::Mask<decltype(d)> is_special;
     const auto floor = mergeFloor(d, out + x, n - x, j.rule, is_special);
     // Two accumulators: two shorter dependency chains of maxima.
@@ -346,7 +484,18 @@ HWY_INLINE void rowPassWide(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRICT
   for (int x = 0; x < n; x += N)
   {
     const uint8_t* gx = g + x;
-    if (!anyNear(d, gx, cap, far)) continue;
+    {
+      int lo, hi;
+      paintRange(j, x, lo, hi);
+      if (hi - lo <= j.paint_limit)
+      {
+        if (hi == lo && hn::AllTrue(d, hn::Eq(hn::LoadU(d, gx), hn::Set(d, far)))) continue;
+        auto c = wideCost<MODE>(d, tables, hn::LoadU(d, gx));
+        if (hi > lo) c = hn::Max(c, paintColumns(d, x, lo, hi, j));
+        mergeStore(d, c, out + x, std::min(N, n - x), j.rule);
+        continue;
+      }
+    }
     hn::Mask<decltype(d)> is_special;
     const auto floor = mergeFloor(d, out + x, n - x, j.rule, is_special);
     auto c0 = wideCost<MODE>(d, tables, hn::LoadU(d, gx));
@@ -553,6 +702,7 @@ void runJob(const dt::Job& j)
       }
       else
         out = j.target + y * j.target_stride + win.x0;
+      if (K > 0 && j.paint != nullptr) listPainted(gr + j.pad, n, j, base, far);
       if constexpr (K == dt::kWide64 || K == dt::kWide128)
       {
 #if HWY_TARGET == HWY_AVX3_DL
@@ -671,6 +821,24 @@ DistanceCosts::DistanceCosts(int64_t max_cells, const std::function<uint8_t(uint
       for (int64_t v = 0; v < 128; ++v)
         wide_tables_[static_cast<std::size_t>(dx)].cost[v] = at(static_cast<uint64_t>(dx * dx + v * v));
   }
+  if (reach_ >= dt::kMinPaintReach && reach_ <= dt::kMaxPaintReach)
+  {
+    // Entry k of row v: the column at paint_center_ seen from k; the engine reads one vector (up to
+    // kMaxLanes) from center + x - c for c - x in [-reach, kMaxLanes - 1 + reach].
+    paint_center_ = static_cast<int>(2 * dt::kMaxLanes + reach_);
+    paint_shift_ = 6;
+    while ((int64_t{1} << paint_shift_) < 3 * dt::kMaxLanes + 2 * reach_)
+      ++paint_shift_;
+    const int64_t paint_stride = int64_t{1} << paint_shift_;
+    paint_tables_.assign(static_cast<std::size_t>(paint_stride * (reach_ + 1)), 0);
+    for (int64_t v = 0; v <= reach_; ++v)
+      for (int64_t k = 0; k < paint_stride; ++k)
+      {
+        const int64_t dx = k - paint_center_;
+        if (dx * dx <= static_cast<int64_t>(reach_sq_))
+          paint_tables_[static_cast<std::size_t>(v * paint_stride + k)] = at(static_cast<uint64_t>(dx * dx + v * v));
+      }
+  }
   if (reach_ <= dt::kMaxCostDomainReach)
   {
     const int64_t k_count = dt::tablesPerOffset(static_cast<int>(reach_));
@@ -700,6 +868,8 @@ struct DistanceTransformScratch::Buffers
   std::vector<uint8_t> rows;  // stripe rows (+ alignment)
   std::vector<uint8_t> run, up, out_row, costs;
   std::vector<uint16_t> sq, acc, squares;
+  std::vector<int32_t> paint_list;
+  std::vector<int> paint_counts;
   std::vector<const uint8_t*> src_rows;
   std::vector<uint8_t> snapshot;  // other bands' rows (threads)
   std::vector<uint32_t> exact;    // the envelope path: vertical distances of the padded window
@@ -749,13 +919,17 @@ void runBand(const Call& c, int b0, int b1, DistanceTransformScratch::Buffers& b
   j.offset_tables = c.costs->offsetTables();
   j.table16 = c.costs->table16();
   j.wide_tables = c.costs->wideTables();
+  j.paint = c.costs->paintTables();
+  j.paint_shift = c.costs->paintShift();
+  j.paint_center = c.costs->paintCenter();
+  j.paint_limit = dt::kPaintPerReach * cap;
   j.target = c.target;
   j.target_stride = c.stride;
   j.rule = c.rule;
   j.sink = c.sink;
   const int n = c.win.x1 - c.win.x0;
   const int cw = j.cx1 - j.cx0;
-  j.pad = cap + dt::kMaxLanes;
+  j.pad = cap + 2 * dt::kMaxLanes;
   // Rows start on a cache line, and so does window column 0.
   j.row_stride = (n + 2 * j.pad + dt::kMaxLanes - 1) / dt::kMaxLanes * dt::kMaxLanes;
   // A stripe of about 256 KiB stays in the level-2 cache between the two sweeps; at least 2 * cap rows
@@ -783,6 +957,16 @@ void runBand(const Call& c, int b0, int b1, DistanceTransformScratch::Buffers& b
     j.squares = b.squares.data();
     j.acc = b.acc.data();
     j.costs = b.costs.data();
+  }
+  if (j.paint != nullptr)
+  {
+    // At most one entry per column listed (n rounded up to a vector, 2 cap, one chunk), and a vector
+    // of slack for the compressing store; a count per column at most.
+    const std::size_t columns = static_cast<std::size_t>(n + 2 * cap + 2 * dt::kMaxLanes);
+    grow(b.paint_list, columns + dt::kMaxLanes);
+    grow(b.paint_counts, columns + 1);
+    j.paint_list = b.paint_list.data();
+    j.paint_counts = b.paint_counts.data();
   }
   if (c.sink != nullptr)
   {

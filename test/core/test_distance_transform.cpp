@@ -65,7 +65,23 @@ std::vector<uint8_t> mergeReference(const std::vector<uint8_t>& grid, int w, int
                                     SourceRange src, DistanceWindow win, int64_t max_cells,
                                     const std::function<uint8_t(uint64_t)>& cost_fn, CostMergeRule rule)
 {
-  const auto d = bruteForce(grid, w, h, stride, src);
+  // The exhaustive search depends on the grid and the sources only: one search for the checks of one
+  // grid in a row.
+  static std::vector<uint8_t> last_grid;
+  static std::vector<uint64_t> d;
+  static int last_w = -1, last_h = -1;
+  static std::ptrdiff_t last_stride = -1;
+  static SourceRange last_src{0, 0};
+  if (grid != last_grid || w != last_w || h != last_h || stride != last_stride || src.lo != last_src.lo ||
+      src.hi != last_src.hi)
+  {
+    d = bruteForce(grid, w, h, stride, src);
+    last_grid = grid;
+    last_w = w;
+    last_h = h;
+    last_stride = stride;
+    last_src = src;
+  }
   std::vector<uint8_t> out = grid;
   const uint64_t max_sq = static_cast<uint64_t>(max_cells) * static_cast<uint64_t>(max_cells);
   for (int y = std::max(0, win.y0); y < std::min(h, win.y1); ++y)
@@ -222,6 +238,51 @@ TEST_P(Engine, PathBoundariesEqualBruteForce)
     };
     checkMerge(grid, w, h, w, SourceRange{254, 255}, DistanceWindow{0, 0, w, h}, cap, fn, CostMergeRule{255, 253}, 1,
                "cap " + std::to_string(cap));
+  }
+}
+
+// From reach 15 a block is costed from the columns that can matter to it (a column next to one nearer
+// a source is left out) when there are few of them, otherwise offset by offset. One grid with both: a
+// dense left part (many columns per block), and shapes where most columns are left out: a long flat
+// wall (only its ends), a staircase diagonal, single sources, and the vertical distances 3 5 3 and
+// 3 3 (a column between or beside equal ones).
+TEST_P(Engine, PaintedAndScannedBlocksEqualBruteForce)
+{
+  std::mt19937 rng(seed(31));
+  const int w = 420, h = 150;
+  std::vector<uint8_t> grid(static_cast<std::size_t>(w) * h, 0);
+  {
+    auto set = [&](int x, int y, uint8_t v)
+    {
+      if (x >= 0 && x < w && y >= 0 && y < h) grid[static_cast<std::size_t>(y) * w + x] = v;
+    };
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < 110; ++x)
+        if (u(rng) < 0.2) set(x, y, u(rng) < 0.8 ? 254 : 255);
+    for (int x = 140; x < 330; ++x)
+      set(x, 30, 254);  // flat wall
+    for (int t = 0; t < 120; ++t)
+      set(150 + t, 60 + t / 3, 254);  // staircase
+    set(200, 117, 254);               // 3 5 3 at row 120 (columns 200-202)
+    set(201, 115, 254);
+    set(202, 117, 254);
+    set(230, 117, 254);  // 3 3 at row 120
+    set(231, 117, 254);
+    for (int x = 340; x < w; x += 23)
+      set(x, 20 + (x * 7) % 110, 254);  // single sources
+  }
+  for (const int64_t cap : {15, 16, 20, 22, 31, 40, 59, 60, 62, 63, 100, 126})
+  {
+    const auto fn = [cap](uint64_t d2) -> uint8_t
+    {
+      if (d2 > static_cast<uint64_t>(cap * cap)) return 0;
+      return static_cast<uint8_t>(250 - (d2 * 240) / static_cast<uint64_t>(cap * cap + 1));
+    };
+    checkMerge(grid, w, h, w, SourceRange{254, 254}, DistanceWindow{0, 0, w, h}, cap, fn, CostMergeRule{255, 253}, 1,
+               "cap " + std::to_string(cap));
+    checkMerge(grid, w, h, w, SourceRange{254, 254}, DistanceWindow{37, 11, w - 5, h - 3}, cap, fn,
+               CostMergeRule{255, 253}, 2, "cap " + std::to_string(cap) + ", window, 2 threads");
   }
 }
 

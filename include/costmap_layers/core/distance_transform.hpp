@@ -74,6 +74,12 @@ public:
   /// dx in [0, reach], 128 bytes, entry v the cost of dx^2 + v^2 (0 past the reach), from a 64-byte
   /// boundary on; else nullptr.
   const uint8_t* wideTables() const { return wide_tables_.empty() ? nullptr : wide_tables_.front().cost; }
+  /// For the engine (15 <= reach <= 126, else nullptr): per vertical distance v in [0, reach],
+  /// 2^paintShift() bytes, entry k
+  /// the cost of (k - paintCenter())^2 + v^2 (0 past the reach): the costs one column gives a row.
+  const uint8_t* paintTables() const { return paint_tables_.empty() ? nullptr : paint_tables_.data(); }
+  int paintShift() const { return paint_shift_; }
+  int paintCenter() const { return paint_center_; }
 
 private:
   bool any_ = false;
@@ -87,6 +93,8 @@ private:
     uint8_t cost[128];
   };
   std::vector<WideTable> wide_tables_;
+  std::vector<uint8_t> paint_tables_;
+  int paint_shift_ = 0, paint_center_ = 0;
   std::function<uint8_t(uint64_t)> cost_;  ///< past table_ (huge reaches only)
 };
 
