@@ -47,11 +47,17 @@ constexpr int kWide128 = 9;
 
 /// From kMinPaintReach to kMaxPaintReach a block of a row may be costed from the columns that can matter
 /// to it (listPainted, paintColumns: one vector load and maximum each) instead of column offset by
-/// offset, when there are at most kPaintPerReach * reach of them. Below, the one-table lookup per offset
-/// was measured faster than listing the columns at all.
+/// offset: when it has at most kPaintPercent % as many as the offsets it took the last time it ran them
+/// (paintChoice). A row lists its columns while the row before painted at least 1 / kPaintRowShare of
+/// its blocks, and looks again every kPaintProbe rows (runJob). Below kMinPaintReach the one-table
+/// lookup per offset was measured faster than listing the columns at all. (Measured on willow, a
+/// scanned map with ragged walls, painting every block with up to 2 x reach columns was slower than
+/// the offsets; on warehouse and the synthetic map, with straight walls, far faster.)
 constexpr int kMinPaintReach = 15;
 constexpr int kMaxPaintReach = 126;
-constexpr int kPaintPerReach = 2;
+constexpr int kPaintPercent = 50;
+constexpr int kPaintProbe = 16;
+constexpr int kPaintRowShare = 4;
 static_assert(tablesPerOffset(kMinPaintReach - 1) == 1 && tablesPerOffset(kMinPaintReach) == 2,
               "painting starts where a second table per offset would");
 static_assert(kMinWideReach >= kMinPaintReach && kMaxWideReach <= kMaxPaintReach,
@@ -83,7 +89,7 @@ struct Job
   const uint8_t* wide_tables;     ///< DistanceCosts::wideTables() (nullptr outside kMinWideReach..kMaxWideReach)
   const uint8_t* paint;           ///< DistanceCosts::paintTables() (nullptr outside kMinPaintReach..kMaxPaintReach)
   int paint_shift, paint_center;  ///< rows of 1 << paint_shift bytes
-  int paint_limit;                ///< a block takes the painting path with up to this many columns to paint
+  uint8_t* gather_est;            ///< per block of the row: the offsets it took when it last ran them (see paintChoice)
   int32_t* paint_list;            ///< see listPainted
   int* paint_counts;
 };
@@ -359,6 +365,25 @@ HWY_INLINE hn::Vec<D> paintColumns(D d, int x, int lo, int hi, const dt::Job& j)
   return hn::Max(c0, c1);
 }
 
+/// How a row pass that paints (see listPainted) costs the block at x: kSkip (no source within reach),
+/// kPaint or kOffsets. Painting takes one load and maximum per listed column (plus listing them), the
+/// offsets a few lookups each and stop early: the block paints when its listed columns are at most
+/// kPaintPercent % of the offsets the block took the last time it ran them (gather_est; see runJob).
+enum class BlockWay
+{
+  kSkip,
+  kPaint,
+  kOffsets
+};
+template <class D>
+HWY_INLINE BlockWay paintChoice(D d, const uint8_t* g, int x, const dt::Job& j, uint8_t far, int& lo, int& hi)
+{
+  paintRange(j, x, lo, hi);
+  if (hi == lo && hn::AllTrue(d, hn::Eq(hn::LoadU(d, g + x), hn::Set(d, far)))) return BlockWay::kSkip;
+  const int est = j.gather_est[x / static_cast<int>(hn::Lanes(d))];
+  return (hi - lo) * 100 <= est * dt::kPaintPercent ? BlockWay::kPaint : BlockWay::kOffsets;
+}
+
 /// The cost at column offset dx from biased vertical distances (see kBias), by the first KK of the
 /// offset's tables (those past its last non-zero one hold zeros).
 template <int KK, class D>
@@ -395,8 +420,8 @@ HWY_INLINE void offsetGroup(D d, const uint8_t* tables, std::ptrdiff_t tstride, 
 /// readable on [-pad, n + pad). KMAX: tables per offset; group_tables[i]: the tables the offsets of
 /// group i (offsets 1 + kGroup i ...) need, non-increasing, 0 past the last offset with a cost.
 template <int KMAX>
-HWY_INLINE void rowPassCost8(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRICT out, int n, const dt::Job& j,
-                             const uint8_t* group_tables)
+HWY_INLINE int rowPassCost8(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRICT out, int n, const dt::Job& j,
+                            const uint8_t* group_tables, bool paint)
 {
   const hn::ScalableTag<uint8_t> d;
   const int N = static_cast<int>(hn::Lanes(d));
@@ -404,24 +429,27 @@ HWY_INLINE void rowPassCost8(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRIC
   const uint8_t far = static_cast<uint8_t>(dt::kBias + cap + 1);
   const uint8_t* tables = j.offset_tables;
   const std::ptrdiff_t ts = 16 * KMAX;
+  int painted = 0;  // blocks painted (their own columns alone included)
   for (int x = 0; x < n; x += N)
   {
     const uint8_t* gx = g + x;
-    if (j.paint != nullptr)
+    if (paint)
     {
       int lo, hi;
-      paintRange(j, x, lo, hi);
-      if (hi - lo <= j.paint_limit)
+      const BlockWay way = paintChoice(d, g, x, j, far, lo, hi);
+      if (way == BlockWay::kSkip) continue;
+      if (way == BlockWay::kPaint)
       {
-        if (hi == lo && hn::AllTrue(d, hn::Eq(hn::LoadU(d, gx), hn::Set(d, far)))) continue;
         auto c = offsetCost<KMAX>(d, tables, gx, 0);
         if (hi > lo) c = hn::Max(c, paintColumns(d, x, lo, hi, j));
         mergeStore(d, c, out + x, std::min(N, n - x), j.rule);
+        ++painted;
         continue;
       }
     }
     else if (!anyNear(d, gx, cap, far))
       continue;
+    int used = cap;  // offsets taken
     hn::Mask<decltype(d)> is_special;
     const auto floor = mergeFloor(d, out + x, n - x, j.rule, is_special);
     // Two accumulators: two shorter dependency chains of maxima.
@@ -431,7 +459,11 @@ HWY_INLINE void rowPassCost8(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRIC
     {
       const int count = std::min(dt::kGroup, cap + 1 - dx);
       const int tables_needed = KMAX == 1 ? 1 : group_tables[i];
-      if (tables_needed == 0) break;  // no further offset costs anything
+      if (tables_needed == 0)  // no further offset costs anything
+      {
+        used = dx - 1;
+        break;
+      }
       switch (tables_needed)
       {
         case 1:
@@ -452,10 +484,16 @@ HWY_INLINE void rowPassCost8(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRIC
       // cell, once that cost is below special_threshold), stop. (With one table the reach is at most
       // 14: checking costs more than it saves.)
       const int e = dx + dt::kGroup;
-      if (KMAX > 1 && e <= cap && blockDone(d, c0, c1, floor, is_special, tables[ts * e], j.rule)) break;
+      if (KMAX > 1 && e <= cap && blockDone(d, c0, c1, floor, is_special, tables[ts * e], j.rule))
+      {
+        used = e - 1;
+        break;
+      }
     }
+    if (j.paint != nullptr) j.gather_est[x / N] = static_cast<uint8_t>(used);
     mergeStore(d, hn::Max(c0, c1), out + x, std::min(N, n - x), j.rule);
   }
+  return painted;
 }
 
 #if HWY_TARGET == HWY_AVX3_DL
@@ -473,7 +511,8 @@ HWY_INLINE hn::Vec<D> wideCost(D d, const uint8_t* t, hn::Vec<D> m)
 /// Row pass in the cost domain by wide tables (reach <= kMaxWideReach, distances stored unbiased):
 /// c = max over dx of table_dx[min(g[x - dx], g[x + dx])], merged into out; as rowPassCost8 otherwise.
 template <int MODE>
-HWY_INLINE void rowPassWide(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRICT out, int n, const dt::Job& j)
+HWY_INLINE int rowPassWide(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRICT out, int n, const dt::Job& j,
+                           bool paint)
 {
   const hn::ScalableTag<uint8_t> d;
   const int N = static_cast<int>(hn::Lanes(d));
@@ -481,21 +520,26 @@ HWY_INLINE void rowPassWide(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRICT
   const uint8_t far = static_cast<uint8_t>(cap + 1);
   const uint8_t* tables = j.wide_tables;
   constexpr std::ptrdiff_t ts = 128;
+  int painted = 0;  // blocks painted (their own columns alone included)
   for (int x = 0; x < n; x += N)
   {
     const uint8_t* gx = g + x;
+    if (paint)
     {
       int lo, hi;
-      paintRange(j, x, lo, hi);
-      if (hi - lo <= j.paint_limit)
+      const BlockWay way = paintChoice(d, g, x, j, far, lo, hi);
+      if (way == BlockWay::kSkip) continue;
+      if (way == BlockWay::kPaint)
       {
-        if (hi == lo && hn::AllTrue(d, hn::Eq(hn::LoadU(d, gx), hn::Set(d, far)))) continue;
         auto c = wideCost<MODE>(d, tables, hn::LoadU(d, gx));
         if (hi > lo) c = hn::Max(c, paintColumns(d, x, lo, hi, j));
         mergeStore(d, c, out + x, std::min(N, n - x), j.rule);
+        ++painted;
         continue;
       }
     }
+    else if (!anyNear(d, gx, cap, far))
+      continue;
     hn::Mask<decltype(d)> is_special;
     const auto floor = mergeFloor(d, out + x, n - x, j.rule, is_special);
     auto c0 = wideCost<MODE>(d, tables, hn::LoadU(d, gx));
@@ -516,8 +560,10 @@ HWY_INLINE void rowPassWide(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRICT
     if (dx + dt::kGroup - 1 > cap)  // the loop ran out (no stop): the offsets left
       for (; dx <= cap; ++dx)
         c1 = hn::Max(c1, at(dx));
+    j.gather_est[x / N] = static_cast<uint8_t>(std::min(cap, dx + dt::kGroup - 1));
     mergeStore(d, hn::Max(c0, c1), out + x, std::min(N, n - x), j.rule);
   }
+  return painted;
 }
 #endif
 
@@ -652,6 +698,10 @@ void runJob(const dt::Job& j)
       for (int k = 0; k < K; ++k)
         if (j.offset_tables[16 * K * dx + 16 * k] > 0) group_tables[i] = static_cast<uint8_t>(k + 1);
   auto src = [&](int y) { return j.src_rows[y - j.ry0]; };
+  bool painting = true;  // whether the last row that could paint did so (see below)
+  int rows_done = 0;
+  const int blocks = (n + static_cast<int>(hn::Lanes(hn::ScalableTag<uint8_t>())) - 1) /
+                     static_cast<int>(hn::Lanes(hn::ScalableTag<uint8_t>()));
 
   // Columns outside the band stay far in every stripe row.
   const int used_rows = std::min(j.stripe, win.y1 - win.y0);
@@ -702,17 +752,26 @@ void runJob(const dt::Job& j)
       }
       else
         out = j.target + y * j.target_stride + win.x0;
-      if (K > 0 && j.paint != nullptr) listPainted(gr + j.pad, n, j, base, far);
+      // The first row costed (rows go up within a stripe) runs the offsets in every block, which records how many each
+      // block takes (gather_est, for paintChoice; a block records it again whenever it runs them). The rows after it
+      // paint where that looks cheaper, each after listing its columns (listPainted), as long as the row
+      // before painted at least 1 / kPaintRowShare of its blocks (own columns alone included); every
+      // kPaintProbe rows one looks again.
+      const bool paint = K > 0 && j.paint != nullptr && rows_done > 0 && (painting || rows_done % dt::kPaintProbe == 0);
+      ++rows_done;
+      if (paint) listPainted(gr + j.pad, n, j, base, far);
+      int painted = 0;
       if constexpr (K == dt::kWide64 || K == dt::kWide128)
       {
 #if HWY_TARGET == HWY_AVX3_DL
-        rowPassWide<K>(gr + j.pad, out, n, j);
+        painted = rowPassWide<K>(gr + j.pad, out, n, j, paint);
 #endif
       }
       else if constexpr (kTables16)
-        rowPassCost8<(kTables16 ? K : 1)>(gr + j.pad, out, n, j, group_tables);
+        painted = rowPassCost8<(kTables16 ? K : 1)>(gr + j.pad, out, n, j, group_tables, paint);
       else
         rowPassSq16(gr + j.pad, out, n, j);
+      if (paint) painting = painted * dt::kPaintRowShare >= blocks;
       if (j.sink != nullptr) (*j.sink)(y, j.out_row);
     }
   }
@@ -870,6 +929,7 @@ struct DistanceTransformScratch::Buffers
   std::vector<uint16_t> sq, acc, squares;
   std::vector<int32_t> paint_list;
   std::vector<int> paint_counts;
+  std::vector<uint8_t> gather_est;
   std::vector<const uint8_t*> src_rows;
   std::vector<uint8_t> snapshot;  // other bands' rows (threads)
   std::vector<uint32_t> exact;    // the envelope path: vertical distances of the padded window
@@ -922,7 +982,6 @@ void runBand(const Call& c, int b0, int b1, DistanceTransformScratch::Buffers& b
   j.paint = c.costs->paintTables();
   j.paint_shift = c.costs->paintShift();
   j.paint_center = c.costs->paintCenter();
-  j.paint_limit = dt::kPaintPerReach * cap;
   j.target = c.target;
   j.target_stride = c.stride;
   j.rule = c.rule;
@@ -965,6 +1024,9 @@ void runBand(const Call& c, int b0, int b1, DistanceTransformScratch::Buffers& b
     const std::size_t columns = static_cast<std::size_t>(n + 2 * cap + 2 * dt::kMaxLanes);
     grow(b.paint_list, columns + dt::kMaxLanes);
     grow(b.paint_counts, columns + 1);
+    // Before the first row every block is taken to need every offset.
+    b.gather_est.assign(static_cast<std::size_t>(n) + 1, static_cast<uint8_t>(cap));
+    j.gather_est = b.gather_est.data();
     j.paint_list = b.paint_list.data();
     j.paint_counts = b.paint_counts.data();
   }
