@@ -384,6 +384,22 @@ HWY_INLINE BlockWay paintChoice(D d, const uint8_t* g, int x, const dt::Job& j, 
   return (hi - lo) * 100 <= est * dt::kPaintPercent ? BlockWay::kPaint : BlockWay::kOffsets;
 }
 
+/// A block of a row that paints: true when it is done (no source within reach, or painted; see
+/// paintChoice), false when it is to run the offsets. own() gives its own columns' costs.
+template <class D, class Own>
+HWY_INLINE bool paintedBlock(D d, const uint8_t* g, uint8_t* out, int x, int n, const dt::Job& j, uint8_t far,
+                             const Own& own, int& painted)
+{
+  int lo, hi;
+  const BlockWay way = paintChoice(d, g, x, j, far, lo, hi);
+  if (way != BlockWay::kPaint) return way == BlockWay::kSkip;
+  auto c = own();
+  if (hi > lo) c = hn::Max(c, paintColumns(d, x, lo, hi, j));
+  mergeStore(d, c, out + x, std::min(static_cast<int>(hn::Lanes(d)), n - x), j.rule);
+  painted += hi > lo;
+  return true;
+}
+
 /// The cost at column offset dx from biased vertical distances (see kBias), by the first KK of the
 /// offset's tables (those past its last non-zero one hold zeros).
 template <int KK, class D>
@@ -435,17 +451,9 @@ HWY_INLINE int rowPassCost8(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRICT
     const uint8_t* gx = g + x;
     if constexpr (PAINT)
     {
-      int lo, hi;
-      const BlockWay way = paintChoice(d, g, x, j, far, lo, hi);
-      if (way == BlockWay::kSkip) continue;
-      if (way == BlockWay::kPaint)
-      {
-        auto c = offsetCost<KMAX>(d, tables, gx, 0);
-        if (hi > lo) c = hn::Max(c, paintColumns(d, x, lo, hi, j));
-        mergeStore(d, c, out + x, std::min(N, n - x), j.rule);
-        painted += hi > lo;
+      if (paintedBlock(
+              d, g, out, x, n, j, far, [&] { return offsetCost<KMAX>(d, tables, gx, 0); }, painted))
         continue;
-      }
     }
     else if (!anyNear(d, gx, cap, far))
       continue;
@@ -525,17 +533,9 @@ HWY_INLINE int rowPassWide(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRICT 
     const uint8_t* gx = g + x;
     if constexpr (PAINT)
     {
-      int lo, hi;
-      const BlockWay way = paintChoice(d, g, x, j, far, lo, hi);
-      if (way == BlockWay::kSkip) continue;
-      if (way == BlockWay::kPaint)
-      {
-        auto c = wideCost<MODE>(d, tables, hn::LoadU(d, gx));
-        if (hi > lo) c = hn::Max(c, paintColumns(d, x, lo, hi, j));
-        mergeStore(d, c, out + x, std::min(N, n - x), j.rule);
-        painted += hi > lo;
+      if (paintedBlock(
+              d, g, out, x, n, j, far, [&] { return wideCost<MODE>(d, tables, hn::LoadU(d, gx)); }, painted))
         continue;
-      }
     }
     else if (!anyNear(d, gx, cap, far))
       continue;
