@@ -55,9 +55,9 @@ constexpr int kWide128 = 9;
 /// the offsets; on warehouse and the synthetic map, with straight walls, far faster.)
 constexpr int kMinPaintReach = 15;
 constexpr int kMaxPaintReach = 126;
-constexpr int kPaintPercent = 50;
+constexpr int kPaintPercent = 35;
 constexpr int kPaintProbe = 16;
-constexpr int kPaintRowShare = 4;
+constexpr int kPaintRowShare = 2;
 static_assert(tablesPerOffset(kMinPaintReach - 1) == 1 && tablesPerOffset(kMinPaintReach) == 2,
               "painting starts where a second table per offset would");
 static_assert(kMinWideReach >= kMinPaintReach && kMaxWideReach <= kMaxPaintReach,
@@ -993,7 +993,8 @@ void runBand(const Call& c, int b0, int b1, DistanceTransformScratch::Buffers& b
   j.sink = c.sink;
   const int n = c.win.x1 - c.win.x0;
   const int cw = j.cx1 - j.cx0;
-  j.pad = cap + 2 * dt::kMaxLanes;
+  // Listing a row's columns (listPainted) reads up to two vectors past the reach on the right.
+  j.pad = cap + (j.paint != nullptr ? 2 : 1) * dt::kMaxLanes;
   // Rows start on a cache line, and so does window column 0.
   j.row_stride = (n + 2 * j.pad + dt::kMaxLanes - 1) / dt::kMaxLanes * dt::kMaxLanes;
   // A stripe of about 256 KiB stays in the level-2 cache between the two sweeps; at least 2 * cap rows
