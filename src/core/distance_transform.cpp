@@ -445,7 +445,7 @@ HWY_INLINE int rowPassCost8(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRICT
   const uint8_t far = static_cast<uint8_t>(dt::kBias + cap + 1);
   const uint8_t* tables = j.offset_tables;
   const std::ptrdiff_t ts = 16 * KMAX;
-  int painted = 0;  // blocks painted (their own columns alone included)
+  int painted = 0;  // blocks that painted listed columns
   for (int x = 0; x < n; x += N)
   {
     const uint8_t* gx = g + x;
@@ -527,7 +527,7 @@ HWY_INLINE int rowPassWide(const uint8_t* HWY_RESTRICT g, uint8_t* HWY_RESTRICT 
   const uint8_t far = static_cast<uint8_t>(cap + 1);
   const uint8_t* tables = j.wide_tables;
   constexpr std::ptrdiff_t ts = 128;
-  int painted = 0;  // blocks painted (their own columns alone included)
+  int painted = 0;  // blocks that painted listed columns
   for (int x = 0; x < n; x += N)
   {
     const uint8_t* gx = g + x;
@@ -751,11 +751,11 @@ void runJob(const dt::Job& j)
       }
       else
         out = j.target + y * j.target_stride + win.x0;
-      // The first row costed (rows go up within a stripe) runs the offsets in every block, which records how many each
-      // block takes (gather_est, for paintChoice; a block records it again whenever it runs them). The rows after it
-      // paint where that looks cheaper, each after listing its columns (listPainted), as long as the row
-      // before painted at least 1 / kPaintRowShare of its blocks (own columns alone included); every
-      // kPaintProbe rows one looks again.
+      // The first row costed (rows go up within a stripe) runs the offsets in every block, which
+      // records how many each block takes (gather_est, for paintChoice; a block records it again
+      // whenever it runs them). The rows after it paint where that looks cheaper, each after listing
+      // its columns (listPainted), as long as the row before painted listed columns in at least
+      // 1 / kPaintRowShare of its blocks; every kPaintProbe rows one looks again.
       const bool paint = K > 0 && j.paint != nullptr && rows_done > 0 && (painting || rows_done % dt::kPaintProbe == 0);
       ++rows_done;
       if (paint) listPainted(gr + j.pad, n, j, base, far);
