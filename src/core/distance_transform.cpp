@@ -62,6 +62,8 @@ static_assert(tablesPerOffset(kMinPaintReach - 1) == 1 && tablesPerOffset(kMinPa
               "painting starts where a second table per offset would");
 static_assert(kMinWideReach >= kMinPaintReach && kMaxWideReach <= kMaxPaintReach,
               "the wide row pass paints (it needs the paint tables)");
+static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__,
+              "listPainted moves mask bits between byte arrays and 64-bit words by memcpy");
 
 /// One band of rows for the vector engine; buffers sized by the caller.
 struct Job
@@ -303,7 +305,7 @@ HWY_INLINE void listPainted(const uint8_t* g, int n, const dt::Job& j, uint8_t b
   const int cap = j.cap;
   const int chunks = ((n + N - 1) / N - 1) * N / N32 + paintChunks(cap);
   const auto far8 = hn::Set(d, far);
-  const auto vfar = hn::Set(d32, far), vbase = hn::Set(d32, base);
+  const auto vbase = hn::Set(d32, base);
   const auto iota = hn::Iota(d32, 0);  // a constant (Iota from a variable start goes through memory)
   int32_t* HWY_RESTRICT list = j.paint_list;
   int* HWY_RESTRICT counts = j.paint_counts;
@@ -324,10 +326,11 @@ HWY_INLINE void listPainted(const uint8_t* g, int n, const dt::Job& j, uint8_t b
       counts[i + q] = before;
       const uint64_t own = N32 >= 64 ? bits : (bits >> (q * N32)) & ((uint64_t{1} << N32) - 1);
       if (own == 0 || i + q == chunks) continue;
-      const uint8_t* gq = gc + q * N32;
-      const auto v = hn::PromoteTo(d32, hn::LoadU(d8, gq));
-      const auto side = hn::Max(hn::PromoteTo(d32, hn::LoadU(d8, gq - 1)), hn::PromoteTo(d32, hn::LoadU(d8, gq + 1)));
-      const auto listed = hn::And(hn::Ne(v, vfar), hn::Lt(v, side));
+      const auto v = hn::PromoteTo(d32, hn::LoadU(d8, gc + q * N32));
+      // The chunk's own bits of the mask above (little-endian, as the mask was read).
+      uint8_t own_bytes[8];
+      std::memcpy(own_bytes, &own, sizeof(own));
+      const auto listed = hn::LoadMaskBits(d32, own_bytes);
       const auto column = hn::Add(iota, hn::Set(d32, -cap + (i + q) * N32));
       // Compress, then a whole-vector store (a compressing store to memory is slow on some processors);
       // the next chunk's store overwrites what lies past this one's entries.

@@ -75,8 +75,8 @@ public:
   /// boundary on; else nullptr.
   const uint8_t* wideTables() const { return wide_tables_.empty() ? nullptr : wide_tables_.front().cost; }
   /// For the engine (15 <= reach <= 126, else nullptr): per vertical distance v in [0, reach],
-  /// 2^paintShift() bytes, entry k
-  /// the cost of (k - paintCenter())^2 + v^2 (0 past the reach): the costs one column gives a row.
+  /// 2^paintShift() bytes, entry k the cost of (k - paintCenter())^2 + v^2 (0 past the reach): the costs
+  /// one column gives a row.
   const uint8_t* paintTables() const { return paint_tables_.empty() ? nullptr : paint_tables_.data(); }
   int paintShift() const { return paint_shift_; }
   int paintCenter() const { return paint_center_; }
