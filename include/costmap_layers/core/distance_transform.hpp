@@ -70,7 +70,7 @@ public:
   /// the cost of every 16-bit squared distance.
   const uint8_t* offsetTables() const { return offset_tables_.data(); }
   const uint8_t* table16() const { return table16_.data(); }
-  /// For targets with a byte permute across a whole 64-byte vector (31 <= reach <= 126): per column offset
+  /// For targets with a byte permute across a whole 64-byte vector (15 <= reach <= 126): per column offset
   /// dx in [0, reach], 128 bytes, entry v the cost of dx^2 + v^2 (0 past the reach), from a 64-byte
   /// boundary on; else nullptr.
   const uint8_t* wideTables() const { return wide_tables_.empty() ? nullptr : wide_tables_.front().cost; }
