@@ -61,6 +61,8 @@ constexpr int kPaintProbe = 16;
 constexpr int kPaintRowShare = 2;
 static_assert(tablesPerOffset(kMinPaintReach - 1) == 1 && tablesPerOffset(kMinPaintReach) == 2,
               "painting starts where a second table per offset would");
+static_assert(kMaxCostDomainReach <= kMaxPaintReach,
+              "gather_est (kept where painting can happen) exists wherever the stop checks read it");
 static_assert(kMinWideReach >= kMinPaintReach && kMaxWideReach <= kMaxPaintReach,
               "the wide row pass paints (it needs the paint tables)");
 static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__,
