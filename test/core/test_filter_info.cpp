@@ -102,6 +102,15 @@ TEST(FilterInfoRules, TypesAndFields)
   e = validateFilterInfo(info(0, "/" + std::string(2000, 'm')));
   EXPECT_EQ(e.field, "filter_mask_topic");
   EXPECT_LT(e.message.size(), 200u);  // a long topic is not repeated in the report
+  // ROS's name grammar (roscpp would refuse these only once the info were in force).
+  for (const char* bad : {"/mask-1", "1mask", "~mask", "/a.b", "_m", "/m:1", "/m%"})
+  {
+    e = validateFilterInfo(info(0, bad));
+    EXPECT_EQ(e.field, "filter_mask_topic") << bad;
+    EXPECT_NE(e.message.find(std::string("'") + bad + "'"), std::string::npos) << e.message;
+  }
+  for (const char* good : {"m", "/m", "ns/mask_2", "/ns//mask", "M1"})
+    EXPECT_TRUE(validateFilterInfo(info(0, good)).ok()) << good;
 
   e = validateFilterInfo(info(1, "/m", std::nan(""), 1.0));
   EXPECT_EQ(e.field, "base");
@@ -263,6 +272,11 @@ TEST(FilterInfoKeepout, WrongInfoIsReportedAndTheOldOneStays)
 
   r.ctx->publishFilterInfo(info(0, ""));
   EXPECT_EQ(r.ctx->countKey("filter_info/filter_mask_topic"), 1);
+  // A topic ROS would refuse: refused here, before the mask in force is dropped.
+  r.ctx->publishFilterInfo(info(0, "/keepout-mask"));
+  EXPECT_EQ(r.ctx->countKey("filter_info/filter_mask_topic"), 2);
+  EXPECT_EQ(r.maskSubscription(), before);
+  EXPECT_NE(r.filter->getMask(), nullptr);
 
   // base and multiplier: Nav2's keepout filter wants 0 and 1; used all the same, with a warning.
   r.ctx->publishFilterInfo(info(0, "/keepout_filter_mask", 5.0, 2.0));
