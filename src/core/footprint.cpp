@@ -135,6 +135,26 @@ Footprint transformFootprint(double x, double y, double yaw, const Footprint& fo
   return out;
 }
 
+std::string footprintProblem(const Footprint& footprint)
+{
+  if (footprint.size() < 3) return "a footprint needs at least 3 points (got " + std::to_string(footprint.size()) + ")";
+  for (std::size_t k = 0; k < footprint.size(); ++k)
+  {
+    const Eigen::Vector2d& v = footprint[k];
+    // A vertex is a length from the robot's centre: finite, and within kMaxDistance as robot_radius.
+    const bool finite = std::isfinite(v.x()) && std::isfinite(v.y());
+    if (!finite || std::fabs(v.x()) > limits::kMaxDistance || std::fabs(v.y()) > limits::kMaxDistance)
+    {
+      std::ostringstream what;
+      what << "vertex " << k << " (" << v.x() << ", " << v.y() << ") "
+           << (finite ? "is farther than " + std::to_string(limits::kMaxDistance) + " m from the robot's centre"
+                      : std::string("is not finite"));
+      return what.str();
+    }
+  }
+  return {};
+}
+
 Footprint FootprintConfig::padded() const
 {
   Footprint fp = footprint.empty() ? makeFootprintFromRadius(robot_radius) : footprint;
@@ -173,16 +193,10 @@ FootprintConfig parseFootprintConfig(const ParamReader& params)
         cfg.footprint.emplace_back(x, y);
       }
     }
-    // A vertex is a length from the robot's centre: within kMaxDistance, as robot_radius.
-    for (const auto& v : cfg.footprint)
+    if (!cfg.footprint.empty())
     {
-      if (std::fabs(v.x()) > limits::kMaxDistance || std::fabs(v.y()) > limits::kMaxDistance)
-      {
-        std::ostringstream what;
-        what << "has a vertex (" << v.x() << ", " << v.y() << ") farther than " << limits::kMaxDistance
-             << " m from the robot's centre";
-        throw std::invalid_argument(what.str());
-      }
+      const std::string problem = footprintProblem(cfg.footprint);
+      if (!problem.empty()) throw std::invalid_argument(problem);
     }
   }
   catch (const std::invalid_argument& e)

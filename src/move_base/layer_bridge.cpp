@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "costmap_layers/core/config_compat.hpp"
+#include "costmap_layers/core/footprint.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
 #include "costmap_layers/ros/conversions.hpp"
 #include "costmap_layers/ros/costmap_node.hpp"
@@ -160,7 +161,20 @@ void LayerBridge::onFootprintChanged()
   costmap_layers::Footprint footprint;
   for (const auto& p : layered_costmap_->getFootprint())
     footprint.emplace_back(p.x, p.y);
+  // costmap_2d passes on whatever its footprint topic or parameters carried (float32, NaN included):
+  // a polygon the core could not use keeps the last good one (NaN vertices would make every inflated
+  // cell inscribed, and a keepout filter's escape mode switch on anywhere).
+  // (Empty before costmap_2d has set its own: it loads the plugins first, initialize() asks here.)
+  if (footprint.empty() && !footprint_taken_) return;
+  const std::string problem = costmap_layers::footprintProblem(footprint);
+  if (!problem.empty())
+  {
+    context_->report(costmap_layers::Severity::Error, "footprint",
+                     name_ + ": footprint from move_base's costmap ignored, the last good one stays: " + problem);
+    return;
+  }
   host_->setFootprint(footprint);
+  footprint_taken_ = true;
 }
 
 void LayerBridge::reset()

@@ -17,6 +17,7 @@
 
 #include "costmap_layers/core/costmap_config.hpp"
 #include "costmap_layers/core/costmap_filter.hpp"
+#include "costmap_layers/core/footprint.hpp"
 #include "costmap_layers/core/inflation_layer.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
 #include "costmap_layers/core/obstacle_layer.hpp"
@@ -276,4 +277,21 @@ TEST(NumberEdges, LayerParameters)
               {"z_resolution", 1e3, true},
               {"z_resolution", 1e300, false}},
              [](const ParamValue& ns) { parseVoxelConfig(ParamReader(ns, "voxel")); });
+}
+
+// The one footprint rule, also what the move_base bridge applies to the footprint costmap_2d hands on
+// (its footprint topic is float32: NaN and +-inf arrive as they are).
+TEST(NumberEdges, FootprintProblemNamesTheVertex)
+{
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(footprintProblem(makeFootprintFromRadius(0.3)), "");
+  EXPECT_EQ(footprintProblem({{1e4, -1e4}, {-1e4, -1e4}, {0, 1e4}}), "");  // at the limit
+  EXPECT_TRUE(contains(footprintProblem({{0, 0}, {1, 1}}), "at least 3")) << footprintProblem({{0, 0}, {1, 1}});
+  EXPECT_TRUE(contains(footprintProblem({}), "got 0"));
+  const std::string all_nan = footprintProblem({{nan, nan}, {nan, nan}, {nan, nan}});
+  EXPECT_TRUE(contains(all_nan, "vertex 0") && contains(all_nan, "not finite")) << all_nan;
+  const std::string one_inf = footprintProblem({{0.2, 0.2}, {-0.2, 0.2}, {-0.2, inf}});
+  EXPECT_TRUE(contains(one_inf, "vertex 2") && contains(one_inf, "inf")) << one_inf;
+  const std::string far = footprintProblem({{0.2, 0.2}, {-10000.5, 0.2}, {-0.2, -0.2}});
+  EXPECT_TRUE(contains(far, "vertex 1") && contains(far, "10000.5") && contains(far, "farther")) << far;
 }

@@ -19,7 +19,7 @@ import roslib.packages
 import rospy
 import rostest
 from costmap_layers.msg import MaxSpeed
-from geometry_msgs.msg import PoseStamped
+from geometry_msgs.msg import Point32, Polygon, PoseStamped
 from nav_msgs.msg import OccupancyGrid
 from nav_msgs.srv import GetPlan
 from std_srvs.srv import Empty, SetBool
@@ -299,6 +299,37 @@ class MoveBaseTest(unittest.TestCase):
                  if "/bad_move_base/global_costmap/inflation" in line and "inflation_radius" in line]
         self.assertTrue(fatal, "no error naming the parameter; move_base printed:\n" + proc.stdout[-3000:])
         self.assertIn("-1", fatal[0])
+
+    def test_zz_a_footprint_of_nan_leaves_the_bridged_layers_footprint(self):
+        # costmap_2d hands the footprint its `footprint` topic carries (geometry_msgs/Polygon, float32)
+        # to every plugin as it is. NaN vertices would make every inflated cell within inflation_radius
+        # inscribed (253) and switch a keepout filter's escape mode on anywhere: the bridge names the
+        # vertex and keeps the last good footprint. (Named to run last: costmap_2d itself keeps the
+        # footprint it was handed.)
+        self.assert_same_grids(120, 80)
+        # The footprint costmap_2d set at start-up was taken without a word.
+        self.assertEqual([line for line in self.move_base_errors.lines if "/footprint]" in line], [])
+        nan = float("nan")
+        pub = rospy.Publisher("/move_base/global_costmap/footprint", Polygon, queue_size=1)
+        try:
+            deadline = rospy.Time.now() + rospy.Duration(30.0)
+            while pub.get_num_connections() < 1 and rospy.Time.now() < deadline:
+                rospy.sleep(0.05)  # polled with a deadline, not a fixed wait
+            self.assertGreaterEqual(pub.get_num_connections(), 1, "move_base does not read its footprint topic")
+            # Several times (a subscriber queue of 1 may drop one); then several costmap publications.
+            for _ in range(3):
+                seen = self.global_grid.count
+                pub.publish(Polygon([Point32(nan, nan, 0.0)] * 4))
+                self.assertTrue(self.global_grid.wait_until(lambda g: g.count >= seen + 3, timeout=30.0))
+        finally:
+            pub.unregister()
+        # The inflation is still the twin's, cell for cell (NaN taken in would make it 253 out to 0.3 m),
+        # and each bridged layer said why it kept its footprint.
+        self.assert_same_grids(120, 80)
+        logged = self.move_base_errors.wait("/move_base/global_costmap/inflation/footprint", ("vertex 0", "not finite"),
+                                            timeout=10.0)
+        self.assertTrue(logged, "move_base logged nothing under [/move_base/global_costmap/inflation/footprint];"
+                        " last lines:\n%s" % "\n".join(self.move_base_errors.lines[-20:]))
 
 
 if __name__ == "__main__":

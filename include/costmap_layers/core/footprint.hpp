@@ -23,6 +23,10 @@ void calculateMinAndMaxDistances(const Footprint& footprint, double& min_dist, d
 /// Parses "[[x1, y1], [x2, y2], ...]". Throws std::invalid_argument naming the text on error, and
 /// when there are fewer than 3 points or a value is not finite.
 Footprint parseFootprintString(const std::string& text);
+/// What makes a polygon unusable as a footprint, or "" when it is not: fewer than 3 points, a vertex
+/// that is not finite, or one farther than limits::kMaxDistance from the robot's centre (the message
+/// names the vertex and its values).
+std::string footprintProblem(const Footprint& footprint);
 /// The footprint moved to the pose (x, y, yaw) [m, rad].
 Footprint transformFootprint(double x, double y, double yaw, const Footprint& footprint);
 
