@@ -35,16 +35,24 @@ TfVerdict tfVerdict(tf2::BufferCore& tf, const std::string& target, const std::s
                     const ros::Time& now, double max_ahead)
 {
   if (frame.empty()) return TfVerdict::NoFrame;
-  if ((stamp - now).toSec() > max_ahead) return TfVerdict::Future;
-  if (tf.canTransform(target, frame, stamp)) return TfVerdict::Ready;
+  if (secondsBetween(stamp, now) > max_ahead) return TfVerdict::Future;
+  try
+  {
+    if (tf.canTransform(target, frame, stamp)) return TfVerdict::Ready;
+  }
+  catch (const std::exception&)
+  {
+    // tf2 computes with ROS time, which throws beyond 32-bit seconds (a stamp decades before now)
+    return TfVerdict::BadStamp;
+  }
   try
   {
     // The newest transform tf has between the frames; the reading is beyond hope when even the
     // oldest one tf still keeps is newer than it.
     const ros::Time latest = tf.lookupTransform(target, frame, ros::Time(0)).header.stamp;
-    if (!latest.isZero() && stamp + tf.getCacheLength() < latest) return TfVerdict::TooOld;
+    if (!latest.isZero() && secondsBetween(latest, stamp) > tf.getCacheLength().toSec()) return TfVerdict::TooOld;
   }
-  catch (const tf2::TransformException&)
+  catch (const std::exception&)
   {
     // frames not connected (yet): wait
   }
@@ -412,13 +420,29 @@ private:
     std::deque<Ptr> still;
     for (const Ptr& m : waiting_)
     {
-      const TfVerdict v = check(*m);
-      if (v == TfVerdict::Ready)
-        ready_(m);
-      else if (v == TfVerdict::Wait)
-        still.push_back(m);
-      else
-        failed_(m, v);
+      // Nothing a reading carries may escape into roscpp's spinner thread (that would end the node):
+      // a reading the rule or its callbacks throw on is dropped as one tf cannot place.
+      try
+      {
+        const TfVerdict v = check(*m);
+        if (v == TfVerdict::Ready)
+          ready_(m);
+        else if (v == TfVerdict::Wait)
+          still.push_back(m);
+        else
+          failed_(m, v);
+      }
+      catch (const std::exception&)
+      {
+        try
+        {
+          failed_(m, TfVerdict::BadStamp);
+        }
+        catch (const std::exception&)
+        {
+          // dropped; the report itself failed (out of memory)
+        }
+      }
     }
     while (still.size() > kQueue)
     {
@@ -472,7 +496,7 @@ void LayerPorts::subscribeSensor(const std::string& topic, const std::string& se
     // Each reason is its own throttled report, so that a stale stamp does not hide a wrong frame.
     std::string key = owner + topic + "/tf/", why;
     const ros::Time stamp = msg->header.stamp;
-    const double behind = (ros::Time::now() - stamp).toSec();
+    const double behind = secondsBetween(ros::Time::now(), stamp);
     char when[96];
     std::snprintf(when, sizeof(when), "header.stamp %.3f s (%.3f s %s now)", stamp.toSec(), std::fabs(behind),
                   behind >= 0.0 ? "before" : "after");
@@ -485,6 +509,10 @@ void LayerPorts::subscribeSensor(const std::string& topic, const std::string& se
       case TfVerdict::TooOld:
         key += "stamp";
         why = std::string(when) + " is older than every transform tf keeps";
+        break;
+      case TfVerdict::BadStamp:
+        key += "stamp";
+        why = std::string(when) + " is beyond what tf can compute with";
         break;
       case TfVerdict::Future:
         key += "future";

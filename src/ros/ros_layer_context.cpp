@@ -6,6 +6,7 @@
 #include <mutex>
 
 #include "costmap_layers/ros/conversions.hpp"
+#include "costmap_layers/ros/tf_verdict.hpp"
 
 namespace costmap_layers_ros
 {
@@ -96,12 +97,12 @@ std::optional<costmap_layers::Transform2D> lookupTransform2D(const tf2_ros::Buff
   {
     const geometry_msgs::TransformStamped t = tf.lookupTransform(target_frame, source_frame, ros::Time(0));
     // A zero stamp means only static transforms: those never go stale.
-    if (!t.header.stamp.isZero() && (ros::Time::now() - t.header.stamp).toSec() > tolerance && tolerance > 0.0)
+    const double age = secondsBetween(ros::Time::now(), t.header.stamp);
+    if (!t.header.stamp.isZero() && age > tolerance && tolerance > 0.0)
     {
       if (error)
-        *error = "transform " + source_frame + " -> " + target_frame + " is " +
-                 std::to_string((ros::Time::now() - t.header.stamp).toSec()) + " s old (transform_tolerance " +
-                 std::to_string(tolerance) + " s)";
+        *error = "transform " + source_frame + " -> " + target_frame + " is " + std::to_string(age) +
+                 " s old (transform_tolerance " + std::to_string(tolerance) + " s)";
       return std::nullopt;
     }
     costmap_layers::Transform2D out;
@@ -126,6 +127,12 @@ std::optional<costmap_layers::Transform2D> lookupTransform2D(const tf2_ros::Buff
   catch (const tf2::TransformException& e)
   {
     if (error) *error = e.what();
+    return std::nullopt;
+  }
+  catch (const std::exception& e)
+  {
+    // tf2 computes with ROS time, which throws beyond 32-bit seconds: a stamp decades off
+    if (error) *error = "transform " + source_frame + " -> " + target_frame + ": " + e.what();
     return std::nullopt;
   }
 }

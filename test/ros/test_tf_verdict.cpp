@@ -80,3 +80,30 @@ TEST(TfVerdict, AnEmptyFrameIsNamed)
   Rig r;
   EXPECT_EQ(r.at("", 119.0), TfVerdict::NoFrame);
 }
+
+// Header stamps are any uint32 seconds a sender likes; ROS's Time - Time throws once the difference
+// leaves 32-bit seconds (about 68 years). The rule answers at both ends of ROS time instead.
+TEST(TfVerdict, StampsAtTheEndsOfRosTimeAreAnsweredNotThrown)
+{
+  Rig r;
+  const double last = 4294967295.0;  // secs = 0xFFFFFFFF
+  EXPECT_EQ(r.at("map", last, 120.0), TfVerdict::Future);
+  EXPECT_EQ(tfVerdict(r.buffer, "map", "base_link", ros::Time(0xFFFFFFFFu, 999999999u), ros::Time(120.0), 1.0),
+            TfVerdict::Future);
+  EXPECT_EQ(r.at("laser", 1e-9, 120.0), TfVerdict::TooOld);  // (a zero stamp is tf's "the newest")
+  EXPECT_NEAR(costmap_layers_ros::secondsBetween(ros::Time(last), ros::Time(0.0)), last, 1e-6);
+  EXPECT_NEAR(costmap_layers_ros::secondsBetween(ros::Time(0.0), ros::Time(last)), -last, 1e-6);
+  EXPECT_NEAR(costmap_layers_ros::secondsBetween(ros::Time(100, 5), ros::Time(99, 999999999)), 6e-9, 1e-15);
+}
+
+// A clock past 2^31 s (a simulation's, or after 2038) with transforms there: a reading stamped near
+// 0 is older than anything tf keeps, whatever tf's own arithmetic does with the gap.
+TEST(TfVerdict, AReadingDecadesOlderThanTheClockIsTooOld)
+{
+  tf2::BufferCore buffer{ros::Duration(10.0)};
+  const double t0 = 4200000000.0;
+  for (int k = 0; k <= 5; ++k)
+    buffer.setTransform(tf("map", "base_link", t0 + k, 0.1 * k), "test");
+  EXPECT_EQ(tfVerdict(buffer, "map", "base_link", ros::Time(1.0), ros::Time(t0 + 5.0), 1.0), TfVerdict::TooOld);
+  EXPECT_EQ(tfVerdict(buffer, "map", "base_link", ros::Time(t0 + 4.5), ros::Time(t0 + 5.0), 1.0), TfVerdict::Ready);
+}

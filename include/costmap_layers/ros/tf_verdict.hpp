@@ -11,13 +11,21 @@ namespace costmap_layers_ros
 {
 enum class TfVerdict
 {
-  Ready,     ///< tf can transform the reading's frame at its stamp
-  Wait,      ///< not yet: the transform may still arrive
-  TooOld,    ///< older than every transform tf keeps: it never will
-  Future,    ///< stamped more than max_ahead after now: a wrong clock, or the clock jumped back
-  NoFrame,   ///< header.frame_id is empty
-  PushedOut  ///< waited until the gate's queue was full of newer readings
+  Ready,      ///< tf can transform the reading's frame at its stamp
+  Wait,       ///< not yet: the transform may still arrive
+  TooOld,     ///< older than every transform tf keeps: it never will
+  Future,     ///< stamped more than max_ahead after now: a wrong clock, or the clock jumped back
+  NoFrame,    ///< header.frame_id is empty
+  PushedOut,  ///< waited until the gate's queue was full of newer readings
+  BadStamp    ///< tf could not work at the stamp (beyond what ROS time arithmetic holds)
 };
+
+/// a - b in seconds, for any two stamps. ROS's own Time - Time throws when the difference leaves 32-bit
+/// seconds (about 68 years), and any stamp a sender puts in a header can be that far from now.
+inline double secondsBetween(const ros::Time& a, const ros::Time& b)
+{
+  return static_cast<double>(static_cast<int64_t>(a.toNSec() - b.toNSec())) * 1e-9;
+}
 
 /// Whether tf can transform `frame` into `target` at `stamp`, given the time `now`.
 /// @param max_ahead  [s] how far a stamp may lie ahead of now: tf's canTransform() is true at any

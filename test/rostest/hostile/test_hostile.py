@@ -202,6 +202,12 @@ class HostileTest(unittest.TestCase):
         self.flood("/scan", [stamped(scan(ranges=[2.0] * 3), rospy.Time.now() + hour)], repeat=12)
         self.flood("/cloud", [stamped(cloud(), rospy.Time.now() - hour)], repeat=3)
         self.flood("/sonar", [stamped(sonar(), rospy.Time.now() + hour)], repeat=12)
+        # Stamps at the end of ROS time (secs = 0xFFFFFFFF, about 68 years on): ROS's own Time - Time
+        # throws that far from now, which in a subscriber callback would end the node.
+        end = rospy.Time(0xFFFFFFFF, 0)
+        self.flood("/scan", [stamped(scan(ranges=[2.0] * 3), end)], repeat=3)
+        self.flood("/cloud", [stamped(cloud(), end)], repeat=3)
+        self.flood("/sonar", [stamped(sonar(), end)], repeat=3)
         self.assertTrue(self.cycles.wait(10), "the update loop stopped")
 
         # Still running: it answers a service and keeps publishing.
@@ -247,6 +253,7 @@ class HostileTest(unittest.TestCase):
             ("obstacle_layer/cloud/tf/stamp", "header.stamp"),
             ("obstacle_layer/scan/tf/future", "header.stamp"),
             ("range_layer/sonar/tf/future", "header.stamp"),
+            ("obstacle_layer/cloud/tf/future", "4294967295"),
         ]
         for key, *values in expectations:
             self.assertTrue(self.wait_said(key, *values, timeout=5.0), "nothing logged under [/costmap_node/%s] with %s; got:\n%s" % (
