@@ -71,9 +71,11 @@ LayerPorts::LayerPorts(ros::NodeHandle public_nh, ros::NodeHandle private_nh, co
       log_(std::move(log))
 {
   port_subscribers_.resize(layer.inputs().size());
+  port_topics_.resize(layer.inputs().size());
   for (std::size_t i = 0; i < layer.inputs().size(); ++i)
   {
     const costmap_layers::InputPort& in = layer.inputs()[i];
+    port_topics_[i] = resolveTopic(in.topic);
     switch (in.kind)
     {
       case InputKind::Map:
@@ -96,19 +98,53 @@ LayerPorts::LayerPorts(ros::NodeHandle public_nh, ros::NodeHandle private_nh, co
         break;
     }
   }
-  // A port the layer replaces at run time (a filter whose filter info named the mask topic): the old
-  // subscription ends (roscpp waits for a delivery in progress), the new one starts. Replacements of
-  // one layer arrive one at a time and in order (Layer::setInputListener()).
+  // A port the layer replaces at run time (a filter whose filter info named the mask topic): the new
+  // subscription starts (when it cannot, the old one stays), then the old one ends (roscpp waits for a
+  // delivery in progress). Replacements of one layer arrive one at a time and in order
+  // (Layer::setInputListener()). The receipts of a topic that only a replaced port read go with it, so
+  // that a sender naming ever new topics cannot grow them.
+  const std::size_t fixed_receipts = receipts_.size();
   layer.setInputListener(
-      [this](std::size_t index, const costmap_layers::InputPort& port)
+      [this, fixed_receipts](std::size_t index, const costmap_layers::InputPort& port)
       {
         std::lock_guard<std::mutex> lock(ports_mutex_);
         if (index >= port_subscribers_.size()) return;
+        ros::Subscriber next = subscribe(port);
+        const std::string old_topic = port_topics_[index];
         port_subscribers_[index].shutdown();
-        port_subscribers_[index] = subscribe(port);
-        // Not throttled (a replacement is rare and each one matters); ends with the layer's stable key.
+        port_subscribers_[index] = next;
+        port_topics_[index] = resolveTopic(port.topic);
+        bool still_read = false;
+        for (const std::string& t : port_topics_)
+          still_read = still_read || t == old_topic;
+        if (!still_read)
+        {
+          std::lock_guard<std::mutex> receipts_lock(receipts_mutex_);
+          for (std::size_t k = fixed_receipts; k < receipts_.size(); ++k)
+            if (receipts_[k].first == old_topic)
+            {
+              receipts_.erase(receipts_.begin() + static_cast<std::ptrdiff_t>(k));
+              break;
+            }
+        }
+        // Each move is logged (each one matters), ending with the layer's stable key; a sender moving
+        // the topic over and over gets kMovesLogged lines per kMovePeriod and then a count.
+        constexpr std::size_t kMovesLogged = 10;
+        constexpr double kMovePeriod = 10.0;  // [s]
+        const double now = ros::WallTime::now().toSec();
+        while (!move_log_times_.empty() && !(now - move_log_times_.front() < kMovePeriod))
+          move_log_times_.pop_front();
+        if (move_log_times_.size() >= kMovesLogged)
+        {
+          ++moves_unlogged_;
+          return;
+        }
+        move_log_times_.push_back(now);
         const std::string& ns = private_nh_.getNamespace();
-        ROS_INFO("%s: now reading %s [%s/input]", ns.c_str(), resolveTopic(port.topic).c_str(), ns.c_str());
+        std::string more;
+        if (moves_unlogged_ > 0) more = " (and " + std::to_string(moves_unlogged_) + " moves before, not logged)";
+        moves_unlogged_ = 0;
+        ROS_INFO("%s: now reading %s%s [%s/input]", ns.c_str(), next.getTopic().c_str(), more.c_str(), ns.c_str());
       });
   for (const costmap_layers::OutputPort& out : layer.outputs())
   {

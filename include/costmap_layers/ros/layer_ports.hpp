@@ -9,6 +9,7 @@
 #include <tf2_ros/buffer.h>
 
 #include <atomic>
+#include <deque>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -80,6 +81,9 @@ private:
   std::shared_ptr<ThrottledLog> log_;
   std::mutex ports_mutex_;
   std::vector<ros::Subscriber> port_subscribers_;     ///< by input index (guarded by ports_mutex_)
+  std::vector<std::string> port_topics_;              ///< their topics as receipts_ keys them (the same)
+  std::deque<double> move_log_times_;                 ///< [s] when replaced ports were logged (ports_mutex_)
+  std::size_t moves_unlogged_ = 0;                    ///< replacements since, not logged (ports_mutex_)
   std::vector<std::shared_ptr<void>> sensor_inputs_;  ///< tf gates with their subscribers
   std::map<std::pair<costmap_layers::OutputKind, std::string>, ros::Publisher> publishers_;  ///< by kind, topic
   ros::ServiceServer toggle_;

@@ -113,6 +113,58 @@ class Nav2KeepoutTest(unittest.TestCase):
                 self.log_cond.wait(0.5)
             self.assertTrue(moved(), "no [/costmap_node/late_keepout/input] line naming /late_mask_b on /rosout")
 
+    def test_3b_a_sender_moving_the_mask_topic_over_and_over_grows_nothing(self):
+        # Each move subscribes anew; what the node keeps per topic (the receipts in its diagnostics) and
+        # the lines it logs must not grow with the number of topics a sender names.
+        import rosgraph
+        from diagnostic_msgs.msg import DiagnosticArray
+        statuses = []
+        status_cond = threading.Condition()
+
+        def on_diagnostics(msg):
+            with status_cond:
+                statuses.extend(s for s in msg.status if s.name.endswith("layer late_keepout"))
+                status_cond.notify_all()
+
+        diag_sub = rospy.Subscriber("/diagnostics", DiagnosticArray, on_diagnostics, queue_size=50)
+        master = rosgraph.Master("/test_nav2_keepout")
+        info_pub = rospy.Publisher("/late_filter_info", CostmapFilterInfo, queue_size=100, latch=True)
+
+        def move_to(topic):
+            info = CostmapFilterInfo(type=0, filter_mask_topic=topic, base=0.0, multiplier=1.0)
+            info.header.stamp = rospy.Time.now()
+            info_pub.publish(info)
+            deadline = rospy.Time.now() + rospy.Duration(20.0)
+            while rospy.Time.now() < deadline:  # until the node reads the topic (polled with a deadline)
+                subscribers = dict(master.getSystemState()[1])
+                if "/costmap_node" in subscribers.get(topic, []):
+                    return
+                rospy.sleep(0.02)
+            self.fail("costmap_node never subscribed " + topic)
+
+        start = rospy.Time.now()
+        for k in range(25):
+            move_to("/late_mask_x%d" % k)
+        move_to("/late_mask_b")
+        self.assertTrue(self.grid.wait_until(lambda g: value_at(g, 3.25, -2.25) == 100, 30.0),
+                        "back on /late_mask_b, its mask is not in the costmap")
+        # The diagnostics now name the one mask topic the filter reads (and its info topic).
+        with status_cond:
+            seen = len(statuses)
+            deadline = rospy.Time.now() + rospy.Duration(10.0)
+            while len(statuses) < seen + 2 and rospy.Time.now() < deadline:
+                status_cond.wait(0.5)
+            self.assertGreaterEqual(len(statuses), seen + 2, "no diagnostics of late_keepout")
+            keys = [v.key for v in statuses[-1].values if "late_mask" in v.key]
+        diag_sub.unregister()
+        self.assertEqual(keys, ["received on /late_mask_b"])
+        # 26 moves within seconds: at most 10 lines (the first of each move per 10 s).
+        with self.log_cond:
+            lines = [m for m in self.logs if m.msg.endswith("[/costmap_node/late_keepout/input]")
+                     and m.header.stamp >= start]
+        self.assertGreaterEqual(len(lines), 1)
+        self.assertLessEqual(len(lines), 10, "\n".join(m.msg for m in lines))
+
     def run_info_server(self, name, *args):
         exe = roslib.packages.find_node("costmap_layers", "costmap_filter_info_server")
         self.assertTrue(exe, "costmap_filter_info_server not found")
