@@ -11,7 +11,7 @@ PKGS=(
   python3-colcon-package-selection rosbash python3-rostopic python3-rosnode python3-roslaunch
   libeigen3-dev libtf2-ros-dev libmap-msgs-dev python3-map-msgs ros-map-msgs libyaml-cpp-dev
   libpng-dev libbenchmark-dev libstd-srvs-dev ros-std-srvs python3-std-srvs python3-rospy
-  python3-tf2-ros python3-yaml libsensor-msgs-dev ros-sensor-msgs python3-sensor-msgs
+  python3-tf2-ros libtf2-msgs-dev python3-tf2-msgs python3-yaml libsensor-msgs-dev ros-sensor-msgs python3-sensor-msgs
   libmessage-filters-dev libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
   libdiagnostic-updater-dev libdiagnostic-msgs-dev ros-diagnostic-msgs python3-diagnostic-msgs
   libcli11-dev nlohmann-json3-dev libhwy-dev

@@ -53,7 +53,7 @@ CostmapNode::CostmapNode(ros::NodeHandle nh, ros::NodeHandle private_nh, std::st
       topic_ns_(std::move(topic_ns)),
       log_(std::make_shared<ThrottledLog>()),
       tf_(ros::Duration(10.0)),
-      tf_listener_(tf_)
+      tf_listener_(tf_, log_, private_nh.getNamespace())
 {
   try
   {

@@ -2,6 +2,7 @@
 #include <geometry_msgs/TransformStamped.h>
 #include <gtest/gtest.h>
 
+#include "costmap_layers/ros/tf_listener.hpp"
 #include "costmap_layers/ros/tf_verdict.hpp"
 
 using costmap_layers_ros::TfVerdict;
@@ -106,4 +107,19 @@ TEST(TfVerdict, AReadingDecadesOlderThanTheClockIsTooOld)
     buffer.setTransform(tf("map", "base_link", t0 + k, 0.1 * k), "test");
   EXPECT_EQ(tfVerdict(buffer, "map", "base_link", ros::Time(1.0), ros::Time(t0 + 5.0), 1.0), TfVerdict::TooOld);
   EXPECT_EQ(tfVerdict(buffer, "map", "base_link", ros::Time(t0 + 4.5), ros::Time(t0 + 5.0), 1.0), TfVerdict::Ready);
+}
+
+// The node's tf listener takes a transform only when tf2 can add its cache length to the stamp.
+TEST(TfStampProblem, TheLastCacheLengthOfRosTimeIsRefused)
+{
+  const ros::Duration cache(10.0);
+  EXPECT_EQ(costmap_layers_ros::tfStampProblem(ros::Time(0, 0), cache), "");
+  EXPECT_EQ(costmap_layers_ros::tfStampProblem(ros::Time(1796220000, 5), cache), "");
+  EXPECT_EQ(costmap_layers_ros::tfStampProblem(ros::Time(0xFFFFFFFFu - 10u, 999999999u), cache), "");  // the last
+  const std::string after = costmap_layers_ros::tfStampProblem(ros::Time(0xFFFFFFFFu - 9u, 0u), cache);
+  EXPECT_NE(after.find("header.stamp 4294967286.000000000"), std::string::npos) << after;
+  EXPECT_NE(costmap_layers_ros::tfStampProblem(ros::Time(0xFFFFFFFFu, 999999999u), cache), "");
+  // The sum tf2 computes for the last accepted stamp stays in range; one more nanosecond would not.
+  EXPECT_NO_THROW(ros::Time(0xFFFFFFFFu - 10u, 999999999u) + cache);
+  EXPECT_THROW(ros::Time(0xFFFFFFFFu - 9u, 0u) + cache, std::runtime_error);
 }

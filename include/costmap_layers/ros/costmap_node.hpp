@@ -5,7 +5,7 @@
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <ros/ros.h>
 #include <tf2_ros/buffer.h>
-#include <tf2_ros/transform_listener.h>
+#include "costmap_layers/ros/tf_listener.hpp"
 
 #include <memory>
 #include <mutex>
@@ -74,7 +74,7 @@ private:
   costmap_layers::CostmapConfig config_;
   std::shared_ptr<ThrottledLog> log_;
   tf2_ros::Buffer tf_;
-  tf2_ros::TransformListener tf_listener_;
+  GuardedTfListener tf_listener_;
   // Declared before the costmap: layers must be destroyed while their plugin library is loaded.
   PluginFactory factory_;
   std::unique_ptr<costmap_layers::LayeredCostmap> costmap_;

@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """Hostile input: for every input class the node reads (maps, masks, map updates, speed limits, laser
-scans, point clouds, ranges) the malformed variants (truncated, oversized, NaN/inf, negative or zero
-sizes, huge dimensions, wrong frames, stale stamps) are published while the node runs. It must keep running, the
-published costmap and /max_speed must keep their last good values, and each problem must be reported
-by an error that names the field and its value, throttled (not once per message)."""
+scans, point clouds, ranges, tf) the malformed variants (truncated, oversized, NaN/inf, negative or
+zero sizes, huge dimensions, wrong frames, stale stamps and stamps at the end of ROS time) are
+published while the node runs. It must keep running, the published costmap and /max_speed must keep
+their last good values, and each problem must be reported by an error that names the field and its
+value, throttled (not once per message)."""
 import math
 import os
 import struct
@@ -18,7 +19,9 @@ from costmap_layers.msg import MaxSpeed, SpeedLimit, SpeedLimits
 from map_msgs.msg import OccupancyGridUpdate
 from nav_msgs.msg import OccupancyGrid
 from rosgraph_msgs.msg import Log
+from geometry_msgs.msg import TransformStamped
 from sensor_msgs.msg import LaserScan, PointCloud2, PointField, Range
+from tf2_msgs.msg import TFMessage
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from grid_watch import CycleWatcher, GridWatcher, logged_with_key  # noqa: E402
@@ -99,6 +102,7 @@ class HostileTest(unittest.TestCase):
             "/scan": rospy.Publisher("/scan", LaserScan, queue_size=10),
             "/cloud": rospy.Publisher("/cloud", PointCloud2, queue_size=10),
             "/sonar": rospy.Publisher("/sonar", Range, queue_size=10),
+            "/tf": rospy.Publisher("/tf", TFMessage, queue_size=10),
         }
         # A good state to keep: the static map with the keepout dock drawn, and area 1's limit.
         dock = (14.0, 8.5)
@@ -208,6 +212,13 @@ class HostileTest(unittest.TestCase):
         self.flood("/scan", [stamped(scan(ranges=[2.0] * 3), end)], repeat=3)
         self.flood("/cloud", [stamped(cloud(), end)], repeat=3)
         self.flood("/sonar", [stamped(sonar(), end)], repeat=3)
+        # The same stamp on /tf: tf2 adds its cache length to it (ROS time arithmetic throws), and
+        # tf2_ros's own listener lets that end the node; the node's listener names it and drops it.
+        far_tf = TransformStamped()
+        far_tf.header.frame_id, far_tf.child_frame_id = "map", "hostile_frame"
+        far_tf.header.stamp = end
+        far_tf.transform.rotation.w = 1.0
+        self.flood("/tf", [TFMessage([far_tf])], repeat=3)
         self.assertTrue(self.cycles.wait(10), "the update loop stopped")
 
         # Still running: it answers a service and keeps publishing.
@@ -254,6 +265,7 @@ class HostileTest(unittest.TestCase):
             ("obstacle_layer/scan/tf/future", "header.stamp"),
             ("range_layer/sonar/tf/future", "header.stamp"),
             ("obstacle_layer/cloud/tf/future", "4294967295"),
+            ("tf/transforms", "4294967295", "hostile_frame"),
         ]
         for key, *values in expectations:
             self.assertTrue(self.wait_said(key, *values, timeout=5.0), "nothing logged under [/costmap_node/%s] with %s; got:\n%s" % (

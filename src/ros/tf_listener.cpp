@@ -1,0 +1,86 @@
+#include "costmap_layers/ros/tf_listener.hpp"
+
+#include <cstdint>
+#include <cstdio>
+
+namespace costmap_layers_ros
+{
+std::string tfStampProblem(const ros::Time& stamp, const ros::Duration& cache_length)
+{
+  // The last instant ROS time holds, in nanoseconds; tf2 computes stamp + cache_length.
+  constexpr uint64_t kLastNs = 0xFFFFFFFFull * 1000000000ull + 999999999ull;
+  const uint64_t cache_ns = cache_length.toNSec() > 0 ? static_cast<uint64_t>(cache_length.toNSec()) : 0;
+  if (stamp.toNSec() <= kLastNs - cache_ns) return {};
+  char text[160];
+  std::snprintf(text, sizeof(text),
+                "header.stamp %u.%09u s is within tf's cache length (%.1f s) of the end of ROS time", stamp.sec,
+                stamp.nsec, cache_length.toSec());
+  return text;
+}
+
+GuardedTfListener::GuardedTfListener(tf2_ros::Buffer& buffer, std::shared_ptr<ThrottledLog> log, std::string owner)
+    : buffer_(buffer), log_(std::move(log)), owner_(std::move(owner))
+{
+  nh_.setCallbackQueue(&queue_);
+  // As tf2_ros: /tf in order and without delay, /tf_static latched by its publishers.
+  tf_sub_ = nh_.subscribe<tf2_msgs::TFMessage>(
+      "/tf", 100, [this](const ros::MessageEvent<const tf2_msgs::TFMessage>& e) { receive(e, false); },
+      ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());
+  static_sub_ = nh_.subscribe<tf2_msgs::TFMessage>(
+      "/tf_static", 100, [this](const ros::MessageEvent<const tf2_msgs::TFMessage>& e) { receive(e, true); },
+      ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());
+  spinner_ = std::make_unique<ros::AsyncSpinner>(1, &queue_);
+  spinner_->start();
+  // Look-ups with a timeout may wait: this thread fills the buffer meanwhile (tf2_ros says the same).
+  buffer_.setUsingDedicatedThread(true);
+}
+
+GuardedTfListener::~GuardedTfListener()
+{
+  spinner_->stop();
+  tf_sub_.shutdown();
+  static_sub_.shutdown();
+}
+
+void GuardedTfListener::receive(const ros::MessageEvent<const tf2_msgs::TFMessage>& event, bool is_static)
+{
+  const ros::Time now = ros::Time::now();
+  if (now < last_update_)
+  {
+    // A restarted simulation or bag: what the buffer holds belongs to the old timeline.
+    log_->log(costmap_layers::Severity::Warn, owner_ + "/tf/clock",
+              owner_ + ": the clock jumped back: tf's buffer is cleared (as tf2_ros does)");
+    buffer_.clear();
+  }
+  last_update_ = now;
+  // The sender, as tf2_ros names it (the buffer keeps it as the transform's authority).
+  std::string authority = "unknown";
+  if (const auto header = event.getConnectionHeaderPtr())
+  {
+    const auto caller = header->find("callerid");
+    if (caller != header->end()) authority = caller->second;
+  }
+  const tf2_msgs::TFMessage& msg = *event.getConstMessage();
+  for (std::size_t k = 0; k < msg.transforms.size(); ++k)
+  {
+    const geometry_msgs::TransformStamped& t = msg.transforms[k];
+    std::string problem = tfStampProblem(t.header.stamp, buffer_.getCacheLength());
+    if (problem.empty())
+    {
+      try
+      {
+        buffer_.setTransform(t, authority, is_static);
+        continue;
+      }
+      catch (const std::exception& e)
+      {
+        problem = e.what();
+      }
+    }
+    const std::string topic = is_static ? "/tf_static" : "/tf";
+    log_->log(costmap_layers::Severity::Error, owner_ + "/tf/transforms",
+              owner_ + ": dropped transforms[" + std::to_string(k) + "] (" + t.header.frame_id.substr(0, 64) + " -> " +
+                  t.child_frame_id.substr(0, 64) + ") on " + topic + " from " + authority + ": " + problem);
+  }
+}
+}  // namespace costmap_layers_ros
