@@ -5,6 +5,7 @@
 #include <limits>
 #include <sstream>
 
+#include "costmap_layers/core/input_error.hpp"
 #include "costmap_layers/core/param_reader.hpp"
 #include "costmap_layers/core/stamp_order.hpp"
 
@@ -306,8 +307,9 @@ void CostmapFilter::updateBounds(double robot_x, double robot_y, double robot_ya
         to_mask_ = *t;
       else
         context_->report(Severity::Error, "transform",
-                         name_ + ": no transform from " + global + " to mask frame " + active_mask_->frame_id +
-                             ", filter skipped this update: " + error);
+                         name_ + ": no transform from " + global + " to mask frame " +
+                             shownText(active_mask_->frame_id) +
+                             ", filter skipped this update: " + shownText(error, 400));
     }
     if (have_transform_ && filter_enabled_) processPose(*active_mask_, to_mask_, robot_x, robot_y, robot_yaw);
   }
@@ -403,8 +405,8 @@ LayerStatus CostmapFilter::status() const
     s.raise(StatusLevel::Warn, "the latest mask on " + mask_topic_ + " was rejected (" + last_rejection_ +
                                    "); the previous one stays in force");
   if (active_mask_ && !have_transform_)
-    s.raise(StatusLevel::Warn,
-            "cannot place the mask: no transform into " + active_mask_->frame_id + " (" + transform_error_ + ")");
+    s.raise(StatusLevel::Warn, "cannot place the mask: no transform into " + shownText(active_mask_->frame_id) + " (" +
+                                   shownText(transform_error_, 400) + ")");
   if (s.level == StatusLevel::Ok)
     s.message = active_mask_ ? "mask from " + mask_topic_ + " in force" : "mask received, applied at the next update";
   return s;

@@ -10,4 +10,10 @@ std::string valueText(double value)
   s << value;
   return s.str();
 }
+
+std::string shownText(const std::string& text, std::size_t max)
+{
+  if (text.size() <= max) return text;
+  return text.substr(0, max) + "... (" + std::to_string(text.size()) + " characters)";
+}
 }  // namespace costmap_layers

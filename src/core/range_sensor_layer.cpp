@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "costmap_layers/core/cost_values.hpp"
+#include "costmap_layers/core/input_error.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
 #include "costmap_layers/core/limits.hpp"
 #include "costmap_layers/core/param_reader.hpp"
@@ -162,7 +163,7 @@ std::string RangeSensorLayer::queueRange(const RangeData& range, const SensorPos
   if (!r.ok())
   {
     context_->report(Severity::Warn, "invalid_range",
-                     name_ + ": range reading in frame '" + range.frame_id + "' rejected: " + r.error);
+                     name_ + ": range reading in frame '" + shownText(range.frame_id) + "' rejected: " + r.error);
     return r.error;
   }
   if (!r.use) return {};
@@ -171,7 +172,7 @@ std::string RangeSensorLayer::queueRange(const RangeData& range, const SensorPos
   {
     const std::string error = aheadOfNowError(range.stamp_ns, now);
     context_->report(Severity::Warn, "future_range",
-                     name_ + ": range reading in frame '" + range.frame_id + "' rejected: " + error);
+                     name_ + ": range reading in frame '" + shownText(range.frame_id) + "' rejected: " + error);
     return error;
   }
   Pending p;

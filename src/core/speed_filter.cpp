@@ -515,8 +515,9 @@ std::optional<SpeedFilter::Publication> SpeedFilter::lookahead(const OccupancyGr
     if (!t)
     {
       context_->report(Severity::Error, "path/transform",
-                       name_ + ": cannot transform the path on " + config_.path_topic + " from " + path->frame_id +
-                           " into " + global + ": the robot's own cell only this cycle: " + error);
+                       name_ + ": cannot transform the path on " + config_.path_topic + " from " +
+                           shownText(path->frame_id) + " into " + global +
+                           ": the robot's own cell only this cycle: " + shownText(error, 400));
       return std::nullopt;
     }
     to_global = *t;

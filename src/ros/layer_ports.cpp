@@ -23,6 +23,7 @@
 #include "costmap_layers/Nav2SpeedLimit.h"
 #include "costmap_layers/SpeedLimits.h"
 #include "costmap_layers/core/costmap_filter.hpp"
+#include "costmap_layers/core/input_error.hpp"
 #include "costmap_layers/ros/conversions.hpp"
 #include "costmap_layers/ros/tf_verdict.hpp"
 
@@ -524,7 +525,8 @@ void LayerPorts::subscribeSensor(const std::string& topic, const std::string& se
     catch (const std::exception& e)
     {
       log->log(Severity::Warn, owner + topic + "/tf",
-               owner + ": dropped a reading on " + topic + " (frame " + msg->header.frame_id + "): " + e.what());
+               owner + ": dropped a reading on " + topic + " (frame " +
+                   costmap_layers::shownText(msg->header.frame_id) + "): " + costmap_layers::shownText(e.what(), 400));
     }
   };
   auto failed = [=](const typename Msg::ConstPtr& msg, TfVerdict verdict)
@@ -562,8 +564,8 @@ void LayerPorts::subscribeSensor(const std::string& topic, const std::string& se
         break;
     }
     log->log(Severity::Warn, key,
-             owner + ": dropped a reading on " + topic + ": cannot transform frame '" + msg->header.frame_id +
-                 "' into '" + global + "': " + why);
+             owner + ": dropped a reading on " + topic + ": cannot transform frame '" +
+                 costmap_layers::shownText(msg->header.frame_id) + "' into '" + global + "': " + why);
   };
   sensor_inputs_.push_back(
       TfGate<Msg>::create(public_nh_, resolveTopic(topic), tf_, global_frame_, ready, failed, receiptsFor(topic)));

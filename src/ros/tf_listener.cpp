@@ -3,6 +3,8 @@
 #include <cstdint>
 #include <cstdio>
 
+#include "costmap_layers/core/input_error.hpp"
+
 namespace costmap_layers_ros
 {
 std::string tfStampProblem(const ros::Time& stamp, const ros::Duration& cache_length)
@@ -79,8 +81,10 @@ void GuardedTfListener::receive(const ros::MessageEvent<const tf2_msgs::TFMessag
     }
     const std::string topic = is_static ? "/tf_static" : "/tf";
     log_->log(costmap_layers::Severity::Error, owner_ + "/tf/transforms",
-              owner_ + ": dropped transforms[" + std::to_string(k) + "] (" + t.header.frame_id.substr(0, 64) + " -> " +
-                  t.child_frame_id.substr(0, 64) + ") on " + topic + " from " + authority + ": " + problem);
+              owner_ + ": dropped transforms[" + std::to_string(k) + "] (" +
+                  costmap_layers::shownText(t.header.frame_id) + " -> " + costmap_layers::shownText(t.child_frame_id) +
+                  ") on " + topic + " from " + costmap_layers::shownText(authority) + ": " +
+                  costmap_layers::shownText(problem, 400));
   }
 }
 }  // namespace costmap_layers_ros

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "costmap_layers/core/cost_values.hpp"
+#include "costmap_layers/core/input_error.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
 #include "costmap_layers/core/param_reader.hpp"
 #include "costmap_layers/core/range_sensor_layer.hpp"
@@ -345,4 +346,27 @@ TEST(RangeSensorLayer, ReadingStampedAheadOfNowIsRejected)
   r.stamp_ns = 0;  // no stamp: accepted
   EXPECT_EQ(rig.layer->addRange(r, poseAt(2.0, 5.0, 0.0)), "");
   EXPECT_EQ(rig.layer->pending(), 2u);
+}
+
+// A sender's megabyte frame_id is named by its first 64 characters and its length, not copied whole
+// into the report (the log line and the throttled report stay small).
+TEST(RangeSensorLayer, AHugeFrameIdIsShownClipped)
+{
+  Rig rig(nav2Params(true));
+  RangeData r = sonar(std::numeric_limits<float>::quiet_NaN());
+  r.frame_id = std::string(1000000, 'f');
+  EXPECT_FALSE(rig.layer->addRange(r, poseAt(2, 5, 0)).empty());
+  ASSERT_FALSE(rig.ctx->reports.empty());
+  const std::string& said = rig.ctx->reports.back().message;
+  EXPECT_LT(said.size(), 400u) << said.substr(0, 400);
+  EXPECT_NE(said.find(std::string(64, 'f') + "... (1000000 characters)"), std::string::npos) << said.substr(0, 400);
+}
+
+TEST(ShownText, ClipsAfterMaxAndSaysHowLong)
+{
+  EXPECT_EQ(shownText("base_link"), "base_link");
+  EXPECT_EQ(shownText(std::string(64, 'a')), std::string(64, 'a'));
+  EXPECT_EQ(shownText(std::string(65, 'a')), std::string(64, 'a') + "... (65 characters)");
+  EXPECT_EQ(shownText("abcdef", 3), "abc... (6 characters)");
+  EXPECT_EQ(shownText(""), "");
 }

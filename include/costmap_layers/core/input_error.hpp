@@ -2,6 +2,7 @@
 // for tests, never a value from the message) and one line naming the field and its value.
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 namespace costmap_layers
@@ -18,4 +19,7 @@ struct InputError
 
 /// A number as an error message shows it: the stream's default form (0.3, 1e+300, nan, inf).
 std::string valueText(double value);
+/// A sender's text (a frame_id, a topic) as a message shows it: at most max characters, then how long
+/// it was, so that a megabyte name does not become a megabyte log line.
+std::string shownText(const std::string& text, std::size_t max = 64);
 }  // namespace costmap_layers
