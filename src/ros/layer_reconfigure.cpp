@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "costmap_layers/core/input_error.hpp"
+
 namespace costmap_layers_ros
 {
 using costmap_layers::ParamSpec;
@@ -152,6 +154,15 @@ dynamic_reconfigure::ConfigDescription LayerReconfigure::describe(const std::vec
   return d;
 }
 
+bool LayerReconfigure::errorDue()
+{
+  // At most one error line per layer per second: a caller flooding the service cannot flood the log.
+  const double now = ros::WallTime::now().toSec();
+  if (last_error_ >= 0.0 && now >= last_error_ && now - last_error_ < 1.0) return false;
+  last_error_ = now;
+  return true;
+}
+
 bool LayerReconfigure::onSet(dynamic_reconfigure::Reconfigure::Request& req,
                              dynamic_reconfigure::Reconfigure::Response& res)
 {
@@ -160,16 +171,25 @@ bool LayerReconfigure::onSet(dynamic_reconfigure::Reconfigure::Request& req,
   ParamValue next = params_.isMap() ? params_ : ParamValue::makeMap();
   auto known = [&specs](const std::string& name)
   { return std::any_of(specs.begin(), specs.end(), [&name](const ParamSpec& s) { return s.name == name; }); };
+  // The names a caller sent that cannot change: the first few, each clipped, and how many in all (a
+  // caller's thousands of megabyte names must not become a log line that size).
+  constexpr std::size_t kNamesShown = 8;
   std::string unknown;
+  std::size_t unknown_count = 0;
+  auto ignore = [&](const std::string& name)
+  {
+    if (unknown_count++ < kNamesShown) unknown += " " + costmap_layers::shownText(name);
+  };
   for (const auto& p : req.config.bools)
-    known(p.name) ? (void)next.set(p.name, ParamValue::makeBool(p.value)) : (void)(unknown += " " + p.name);
+    known(p.name) ? (void)next.set(p.name, ParamValue::makeBool(p.value)) : ignore(p.name);
   for (const auto& p : req.config.ints)
-    known(p.name) ? (void)next.set(p.name, ParamValue::makeInt(p.value)) : (void)(unknown += " " + p.name);
+    known(p.name) ? (void)next.set(p.name, ParamValue::makeInt(p.value)) : ignore(p.name);
   for (const auto& p : req.config.doubles)
-    known(p.name) ? (void)next.set(p.name, ParamValue::makeDouble(p.value)) : (void)(unknown += " " + p.name);
+    known(p.name) ? (void)next.set(p.name, ParamValue::makeDouble(p.value)) : ignore(p.name);
   for (const auto& p : req.config.strs)
-    known(p.name) ? (void)next.set(p.name, ParamValue::makeString(p.value)) : (void)(unknown += " " + p.name);
-  if (!unknown.empty())
+    known(p.name) ? (void)next.set(p.name, ParamValue::makeString(p.value)) : ignore(p.name);
+  if (unknown_count > kNamesShown) unknown += " (" + std::to_string(unknown_count) + " in all)";
+  if (unknown_count > 0 && errorDue())
     ROS_ERROR("%s: ignored parameters that cannot change at run time:%s", layer_->getName().c_str(), unknown.c_str());
   try
   {
@@ -179,7 +199,9 @@ bool LayerReconfigure::onSet(dynamic_reconfigure::Reconfigure::Request& req,
   }
   catch (const std::exception& e)
   {
-    ROS_ERROR("%s: reconfiguration refused, keeping the previous parameters: %s", layer_->getName().c_str(), e.what());
+    if (errorDue())
+      ROS_ERROR("%s: reconfiguration refused, keeping the previous parameters: %s", layer_->getName().c_str(),
+                costmap_layers::shownText(e.what(), 400).c_str());
   }
   res.config = toConfig(layer_->tunableParameters(params_), false);
   updates_.publish(res.config);

@@ -50,6 +50,9 @@ private:
   costmap_layers::ParamValue params_;  ///< guarded by mutex_
   RunLocked run_locked_;
   std::mutex mutex_;
+  double last_error_ = -1.0;  ///< [s, wall] when an error line was last logged (under mutex_)
+  /// Whether an error line may be logged now (and, if so, that it was).
+  bool errorDue();
   ros::Publisher descriptions_;
   ros::Publisher updates_;
   ros::ServiceServer service_;

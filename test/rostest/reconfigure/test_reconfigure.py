@@ -53,6 +53,33 @@ class ReconfigureTest(unittest.TestCase):
         client.update_configuration({"enabled": True, "inflation_radius": 0.55})
         self.assertTrue(self.grid.wait_until(lambda g: g.at(*NEAR) > 0 and g.at(*FAR) == 0, 10.0))
 
+    def test_a_flood_of_unknown_names_is_one_short_line_per_second(self):
+        # 200 names of 10^4 characters each, 10 calls in a row: the node answers every call, names the
+        # first few clipped with the count, and logs at most one line per layer per second.
+        from dynamic_reconfigure.msg import Config, DoubleParameter
+        from dynamic_reconfigure.srv import Reconfigure
+        from rosgraph_msgs.msg import Log
+        lines = []
+        sub = rospy.Subscriber("/rosout", Log, lambda m: lines.append(m) if m.name == "/costmap_node" else None)
+        rospy.wait_for_service("/costmap_node/inflation_layer/set_parameters", timeout=20)
+        call = rospy.ServiceProxy("/costmap_node/inflation_layer/set_parameters", Reconfigure)
+        names = [("x%03d" % k) * 2500 for k in range(200)]
+        start = rospy.get_time()
+        for _ in range(10):
+            answer = call(Config(doubles=[DoubleParameter(n, 1.0) for n in names]))
+            self.assertAlmostEqual({p.name: p.value for p in answer.config.doubles}["inflation_radius"], 0.55)
+        elapsed = rospy.get_time() - start
+        deadline = rospy.get_time() + 10.0
+        while not [m for m in lines if "ignored parameters" in m.msg] and rospy.get_time() < deadline:
+            rospy.sleep(0.1)  # polled with a deadline: /rosout relays the node's lines
+        self.assertTrue(self.cycles.wait(3), "the update loop stopped")  # and whatever else was said arrives
+        said = [m.msg for m in lines if "ignored parameters" in m.msg]
+        sub.unregister()
+        self.assertGreaterEqual(len(said), 1, "the ignored names were not reported")
+        self.assertLessEqual(len(said), int(elapsed) + 1, "%d lines in %.1f s" % (len(said), elapsed))
+        self.assertLess(len(said[0]), 1500, said[0][:300])
+        self.assertIn("(200 in all)", said[0])
+
 
 if __name__ == "__main__":
     rostest.rosrun("costmap_layers", "reconfigure", ReconfigureTest)
