@@ -60,6 +60,14 @@ TfVerdict tfVerdict(tf2::BufferCore& tf, const std::string& target, const std::s
   return TfVerdict::Wait;
 }
 
+TfVerdict gateVerdict(tf2::BufferCore& tf, const std::string& target, const std::string& frame,
+                      const std::string& sensor_frame, const ros::Time& stamp, const ros::Time& now, double max_ahead)
+{
+  const TfVerdict v = tfVerdict(tf, target, frame, stamp, now, max_ahead);
+  if (v != TfVerdict::Ready || sensor_frame.empty() || sensor_frame == frame) return v;
+  return tfVerdict(tf, target, sensor_frame, stamp, now, max_ahead);
+}
+
 LayerPorts::LayerPorts(ros::NodeHandle public_nh, ros::NodeHandle private_nh, costmap_layers::Layer& layer,
                        std::string global_frame, tf2_ros::Buffer& tf, std::shared_ptr<ThrottledLog> log,
                        std::string topic_ns)
@@ -416,11 +424,13 @@ public:
   static constexpr double kMaxAhead = 1.0;
 
   static std::shared_ptr<TfGate> create(ros::NodeHandle& nh, const std::string& topic, tf2_ros::Buffer& tf,
-                                        std::string target, std::function<void(const Ptr&)> ready,
+                                        std::string target, std::string sensor_frame,
+                                        std::function<void(const Ptr&)> ready,
                                         std::function<void(const Ptr&, TfVerdict)> failed,
                                         std::shared_ptr<LayerPorts::Receipts> receipts)
   {
-    std::shared_ptr<TfGate> gate(new TfGate(tf, std::move(target), std::move(ready), std::move(failed)));
+    std::shared_ptr<TfGate> gate(
+        new TfGate(tf, std::move(target), std::move(sensor_frame), std::move(ready), std::move(failed)));
     std::weak_ptr<TfGate> weak = gate;  // callbacks still in flight after destruction do nothing
     gate->subscriber_ = nh.subscribe<Msg>(topic, 5,
                                           [weak, receipts](const Ptr& msg)
@@ -437,15 +447,19 @@ public:
   }
 
 private:
-  TfGate(tf2_ros::Buffer& tf, std::string target, std::function<void(const Ptr&)> ready,
+  TfGate(tf2_ros::Buffer& tf, std::string target, std::string sensor_frame, std::function<void(const Ptr&)> ready,
          std::function<void(const Ptr&, TfVerdict)> failed)
-      : tf_(tf), target_(std::move(target)), ready_(std::move(ready)), failed_(std::move(failed))
+      : tf_(tf),
+        target_(std::move(target)),
+        sensor_frame_(std::move(sensor_frame)),
+        ready_(std::move(ready)),
+        failed_(std::move(failed))
   {
   }
 
   TfVerdict check(const Msg& msg) const
   {
-    return tfVerdict(tf_, target_, msg.header.frame_id, msg.header.stamp, ros::Time::now(), kMaxAhead);
+    return gateVerdict(tf_, target_, msg.header.frame_id, sensor_frame_, msg.header.stamp, ros::Time::now(), kMaxAhead);
   }
 
   /// Queues msg (when not null) and hands on, in order, every waiting reading tf can now place. One
@@ -491,6 +505,7 @@ private:
 
   tf2_ros::Buffer& tf_;
   const std::string target_;
+  const std::string sensor_frame_;  ///< the readings' origin frame when not their own (may be empty)
   const std::function<void(const Ptr&)> ready_;
   const std::function<void(const Ptr&, TfVerdict)> failed_;
   std::mutex mutex_;
@@ -516,7 +531,8 @@ void LayerPorts::subscribeSensor(const std::string& topic, const std::string& se
       const std::string& frame = msg->header.frame_id;
       pose.to_global = fromMsg(tf.lookupTransform(global, frame, msg->header.stamp).transform);
       const std::string origin_frame = sensor_frame.empty() ? frame : sensor_frame;
-      const auto origin = tf.lookupTransform(global, origin_frame, msg->header.stamp, ros::Duration(0.1));
+      // The gate let it through once tf could place both frames at the stamp: no waiting here.
+      const auto origin = tf.lookupTransform(global, origin_frame, msg->header.stamp);
       pose.origin_x = origin.transform.translation.x;
       pose.origin_y = origin.transform.translation.y;
       pose.origin_z = origin.transform.translation.z;
@@ -565,9 +581,11 @@ void LayerPorts::subscribeSensor(const std::string& topic, const std::string& se
     }
     log->log(Severity::Warn, key,
              owner + ": dropped a reading on " + topic + ": cannot transform frame '" +
-                 costmap_layers::shownText(msg->header.frame_id) + "' into '" + global + "': " + why);
+                 costmap_layers::shownText(msg->header.frame_id) + "'" +
+                 (sensor_frame.empty() ? std::string() : " (sensor_frame '" + sensor_frame + "')") + " into '" +
+                 global + "': " + why);
   };
-  sensor_inputs_.push_back(
-      TfGate<Msg>::create(public_nh_, resolveTopic(topic), tf_, global_frame_, ready, failed, receiptsFor(topic)));
+  sensor_inputs_.push_back(TfGate<Msg>::create(public_nh_, resolveTopic(topic), tf_, global_frame_, sensor_frame, ready,
+                                               failed, receiptsFor(topic)));
 }
 }  // namespace costmap_layers_ros

@@ -123,3 +123,25 @@ TEST(TfStampProblem, TheLastCacheLengthOfRosTimeIsRefused)
   EXPECT_NO_THROW(ros::Time(0xFFFFFFFFu - 10u, 999999999u) + cache);
   EXPECT_THROW(ros::Time(0xFFFFFFFFu - 9u, 0u) + cache, std::runtime_error);
 }
+
+// A source with sensor_frame: the gate lets a reading through only when tf can place the sensor frame
+// at the stamp too, so that its delivery never waits for tf under the gate's lock.
+TEST(TfVerdict, TheGateWaitsForTheSensorFrameToo)
+{
+  Rig r;
+  // map -> mast from t = 111 s to 115 s only: it lags base_link's transforms (kept from 110 s to 120 s).
+  for (int t = 111; t <= 115; ++t)
+    r.buffer.setTransform(tf("map", "mast", t, 0.0), "test");
+  auto gate = [&r](const std::string& sensor_frame, double stamp)
+  {
+    return costmap_layers_ros::gateVerdict(r.buffer, "map", "base_link", sensor_frame, ros::Time(stamp),
+                                           ros::Time(120.0), 1.0);
+  };
+  EXPECT_EQ(gate("mast", 112.5), TfVerdict::Ready);
+  EXPECT_EQ(gate("mast", 117.0), TfVerdict::Wait);  // base_link could, the mast cannot yet
+  EXPECT_EQ(gate("", 117.0), TfVerdict::Ready);
+  EXPECT_EQ(gate("base_link", 117.0), TfVerdict::Ready);
+  EXPECT_EQ(gate("laser", 117.0), TfVerdict::Ready);
+  EXPECT_EQ(gate("mast", 121.5), TfVerdict::Future);
+  EXPECT_EQ(gate("", 100.0), TfVerdict::TooOld);
+}

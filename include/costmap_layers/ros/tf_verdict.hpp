@@ -34,4 +34,10 @@ inline double secondsBetween(const ros::Time& a, const ros::Time& b)
 /// const in tf2, hence the non-const buffer).
 TfVerdict tfVerdict(tf2::BufferCore& tf, const std::string& target, const std::string& frame, const ros::Time& stamp,
                     const ros::Time& now, double max_ahead);
+
+/// The gate's verdict on a reading in `frame` whose origin is `sensor_frame` (empty: the frame
+/// itself): Ready only when tf can place both at the stamp, so that delivering it never waits for tf
+/// (a look-up that waited would hold the gate, and a spinner thread, while more readings queue).
+TfVerdict gateVerdict(tf2::BufferCore& tf, const std::string& target, const std::string& frame,
+                      const std::string& sensor_frame, const ros::Time& stamp, const ros::Time& now, double max_ahead);
 }  // namespace costmap_layers_ros
