@@ -10,6 +10,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "costmap_layers/core/input_error.hpp"
+
 namespace costmap_layers_ros
 {
 using costmap_layers::ParamValue;
@@ -48,14 +50,6 @@ bool sameValue(const ParamValue& a, const ParamValue& b)
 std::chrono::steady_clock::time_point after(std::chrono::steady_clock::time_point t, double seconds)
 {
   return t + std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(seconds));
-}
-
-/// A server's text, at most 64 characters of it: a hostile server's megabyte name or value must not
-/// become a megabyte log line.
-std::string clip(const std::string& text)
-{
-  constexpr std::size_t kMax = 64;
-  return text.size() <= kMax ? text : text.substr(0, kMax) + "... (" + std::to_string(text.size()) + " characters)";
 }
 
 /// How many of a server's parameter names an error lists.
@@ -154,15 +148,15 @@ std::string SetpointApplier::checkAgainst(const Setpoint& s, const dynamic_recon
   for (const auto& g : d.groups)
     for (const auto& p : g.parameters)
     {
-      if (count++ < kListed) names += (names.empty() ? "" : ", ") + clip(p.name);
+      if (count++ < kListed) names += (names.empty() ? "" : ", ") + costmap_layers::shownText(p.name);
       if (p.name == s.parameter) found = &p;
     }
   if (count > kListed) names += " and " + std::to_string(count - kListed) + " more";
   if (!found) return "the server has no parameter '" + s.parameter + "' (it has: " + names + ")";
   const std::string want = reconfigureTypeName(s.value.type());
   if (found->type != want)
-    return "the server's '" + s.parameter + "' is of type " + clip(found->type) + ", the value is of type " + want +
-           (found->type == "double" && want == "int" ? " (write 1.0, not 1)" : "");
+    return "the server's '" + s.parameter + "' is of type " + costmap_layers::shownText(found->type) +
+           ", the value is of type " + want + (found->type == "double" && want == "int" ? " (write 1.0, not 1)" : "");
   if (s.value.isNumber())
   {
     const ParamValue lo = find(d.min, s.parameter), hi = find(d.max, s.parameter);
@@ -181,7 +175,7 @@ std::string SetpointApplier::checkAnswer(const Setpoint& s, const dynamic_reconf
 {
   const ParamValue got = find(answer, s.parameter);
   if (got.isNull()) return "the server's answer has no parameter '" + s.parameter + "' (unknown to it)";
-  if (!sameValue(got, s.value)) return "the server refused it and holds " + clip(got.toString());
+  if (!sameValue(got, s.value)) return "the server refused it and holds " + costmap_layers::shownText(got.toString());
   return "";
 }
 
