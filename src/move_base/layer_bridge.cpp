@@ -164,8 +164,9 @@ void LayerBridge::onFootprintChanged()
   // costmap_2d passes on whatever its footprint topic or parameters carried (float32, NaN included):
   // a polygon the core could not use keeps the last good one (NaN vertices would make every inflated
   // cell inscribed, and a keepout filter's escape mode switch on anywhere).
-  // (Empty before costmap_2d has set its own: it loads the plugins first, initialize() asks here.)
-  if (footprint.empty() && !footprint_taken_) return;
+  // (Empty before costmap_2d has set its own: it loads the plugins first, initialize() asks here. The
+  // host's footprint is empty until one has passed below.)
+  if (footprint.empty() && host_->getFootprint().empty()) return;
   const std::string problem = costmap_layers::footprintProblem(footprint);
   if (!problem.empty())
   {
@@ -174,7 +175,6 @@ void LayerBridge::onFootprintChanged()
     return;
   }
   host_->setFootprint(footprint);
-  footprint_taken_ = true;
 }
 
 void LayerBridge::reset()

@@ -70,7 +70,6 @@ private:
   std::unique_ptr<costmap_layers_ros::LayerReconfigure> reconfigure_;
   std::atomic<bool> full_update_{true};  ///< redraw the whole map next cycle (start, reconfigure, reset)
   bool drawn_enabled_ = true;            ///< the core layer's switch as of the last cycle
-  bool footprint_taken_ = false;         ///< a footprint of costmap_2d's has passed footprintProblem()
 };
 
 }  // namespace move_base
