@@ -154,15 +154,6 @@ dynamic_reconfigure::ConfigDescription LayerReconfigure::describe(const std::vec
   return d;
 }
 
-bool LayerReconfigure::errorDue()
-{
-  // At most one error line per layer per second: a caller flooding the service cannot flood the log.
-  const double now = ros::WallTime::now().toSec();
-  if (last_error_ >= 0.0 && now >= last_error_ && now - last_error_ < 1.0) return false;
-  last_error_ = now;
-  return true;
-}
-
 bool LayerReconfigure::onSet(dynamic_reconfigure::Reconfigure::Request& req,
                              dynamic_reconfigure::Reconfigure::Response& res)
 {
@@ -189,8 +180,11 @@ bool LayerReconfigure::onSet(dynamic_reconfigure::Reconfigure::Request& req,
   for (const auto& p : req.config.strs)
     known(p.name) ? (void)next.set(p.name, ParamValue::makeString(p.value)) : ignore(p.name);
   if (unknown_count > kNamesShown) unknown += " (" + std::to_string(unknown_count) + " in all)";
-  if (unknown_count > 0 && errorDue())
-    ROS_ERROR("%s: ignored parameters that cannot change at run time:%s", layer_->getName().c_str(), unknown.c_str());
+  // One key for both lines: at most one error line per layer per second, whatever a caller floods.
+  const std::string error_key = nh_.getNamespace() + "/set_parameters";
+  if (unknown_count > 0)
+    errors_.log(costmap_layers::Severity::Error, error_key,
+                layer_->getName() + ": ignored parameters that cannot change at run time:" + unknown);
   try
   {
     run_locked_([&] { layer_->reconfigure(next); });
@@ -199,9 +193,9 @@ bool LayerReconfigure::onSet(dynamic_reconfigure::Reconfigure::Request& req,
   }
   catch (const std::exception& e)
   {
-    if (errorDue())
-      ROS_ERROR("%s: reconfiguration refused, keeping the previous parameters: %s", layer_->getName().c_str(),
-                costmap_layers::shownText(e.what(), 400).c_str());
+    errors_.log(costmap_layers::Severity::Error, error_key,
+                layer_->getName() + ": reconfiguration refused, keeping the previous parameters: " +
+                    costmap_layers::shownText(e.what(), 400));
   }
   res.config = toConfig(layer_->tunableParameters(params_), false);
   updates_.publish(res.config);

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "costmap_layers/core/layer.hpp"
+#include "costmap_layers/ros/ros_layer_context.hpp"
 
 namespace costmap_layers_ros
 {
@@ -50,9 +51,7 @@ private:
   costmap_layers::ParamValue params_;  ///< guarded by mutex_
   RunLocked run_locked_;
   std::mutex mutex_;
-  double last_error_ = -1.0;  ///< [s, wall] when an error line was last logged (under mutex_)
-  /// Whether an error line may be logged now (and, if so, that it was).
-  bool errorDue();
+  ThrottledLog errors_{1.0};  ///< the service's error lines: at most one per second
   ros::Publisher descriptions_;
   ros::Publisher updates_;
   ros::ServiceServer service_;
