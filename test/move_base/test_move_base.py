@@ -16,6 +16,7 @@ import unittest
 
 import dynamic_reconfigure.client
 import roslib.packages
+import rospkg
 import rospy
 import rostest
 from costmap_layers.msg import MaxSpeed
@@ -58,6 +59,14 @@ def length(poses):
         math.hypot(b.pose.position.x - a.pose.position.x, b.pose.position.y - a.pose.position.y)
         for a, b in zip(poses, poses[1:])
     )
+
+
+def move_base_stderr():
+    """All move_base wrote to stderr so far, from its first line (copied by stderr_to_log.sh into the log
+    directory of this run)."""
+    path = os.path.join(rospkg.get_log_dir(), rospy.get_param("/run_id"), "move_base-stderr.log")
+    with open(path, encoding="utf-8", errors="replace") as f:
+        return f.read()
 
 
 class MoveBaseTest(unittest.TestCase):
@@ -307,8 +316,10 @@ class MoveBaseTest(unittest.TestCase):
         # vertex and keeps the last good footprint. (Named to run last: costmap_2d itself keeps the
         # footprint it was handed.)
         self.assert_same_grids(120, 80)
-        # The footprint costmap_2d set at start-up was taken without a word.
-        self.assertEqual([line for line in self.move_base_errors.lines if "/footprint]" in line], [])
+        # The footprint costmap_2d set at start-up was taken without a word: nothing about a footprint in
+        # what move_base wrote to stderr from its first line on (a /rosout subscriber may connect later).
+        start_up = move_base_stderr()
+        self.assertEqual([line for line in start_up.splitlines() if "/footprint]" in line], [])
         nan = float("nan")
         pub = rospy.Publisher("/move_base/global_costmap/footprint", Polygon, queue_size=1)
         try:
@@ -330,6 +341,13 @@ class MoveBaseTest(unittest.TestCase):
                                             timeout=10.0)
         self.assertTrue(logged, "move_base logged nothing under [/move_base/global_costmap/inflation/footprint];"
                         " last lines:\n%s" % "\n".join(self.move_base_errors.lines[-20:]))
+        # The file the start-up check read gets the lines as they are written: this one is there too.
+        key = "[/move_base/global_costmap/inflation/footprint]"
+        deadline = rospy.Time.now() + rospy.Duration(10.0)
+        while key not in move_base_stderr() and rospy.Time.now() < deadline:
+            rospy.sleep(0.05)  # polled with a deadline, not a fixed wait
+        self.assertIn(key, move_base_stderr(), "the error is not in move_base's stderr log: the start-up check"
+                      " above read nothing")
 
 
 if __name__ == "__main__":
