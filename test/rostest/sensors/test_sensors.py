@@ -114,6 +114,7 @@ class SensorsTest(unittest.TestCase):
                                    static_tf("base_link", "camera", 0.0, 0.0, 0.5),
                                    static_tf("base_link", "sonar", 0.0, 0.0, 0.2)])
         cls.scan_pub = rospy.Publisher("/scan", LaserScan, queue_size=5)
+        cls.mount_pub = rospy.Publisher("/scan_mount", LaserScan, queue_size=5)
         cls.cloud_pub = rospy.Publisher("/cloud", PointCloud2, queue_size=5)
         cls.sonar_pub = rospy.Publisher("/sonar", Range, queue_size=5)
         cls.tf_buffer = tf2_ros.Buffer()
@@ -193,6 +194,27 @@ class SensorsTest(unittest.TestCase):
         self.assertEqual(self.grid.snapshot().count(100), before.count(100))
         self.publish_for(self.scan_pub, lambda st: scan([1.0] * 5, st), 1.0)
         self.assertTrue(self.grid.wait_until(lambda g: g.at(3.05, 5.0) == 100, 10.0), "the node stopped taking readings")
+
+    def test_sensor_frame_is_waited_for_then_used(self):
+        # scan_mount's rays start at its sensor_frame `mount`, which tf does not know yet: its readings wait
+        # for that frame too (not only for their own `laser`), then are dropped with a warning naming both
+        # frames, and mark nothing.
+        self.publish_for(self.mount_pub, lambda st: scan([1.5] * 5, st), 2.0)
+        deadline = rospy.Time.now() + rospy.Duration(10.0)
+        while not self.said("obstacle_layer/scan_mount/tf/wait", "mount") and rospy.Time.now() < deadline:
+            rospy.sleep(0.2)
+        self.assertTrue(self.said("obstacle_layer/scan_mount/tf/wait", "'laser'", "sensor_frame 'mount'", "map"),
+                        "no warning named the reading's frame and the missing sensor_frame")
+        self.assertEqual(self.grid.at(3.55, 5.0), 0, "a reading whose sensor_frame tf cannot place marked")
+        # Once tf has the frame, the same readings mark 1.5 m ahead.
+        self.statics.sendTransform([static_tf("base_link", "laser", 0.0, 0.0, 0.3),
+                                    static_tf("base_link", "camera", 0.0, 0.0, 0.5),
+                                    static_tf("base_link", "sonar", 0.0, 0.0, 0.2),
+                                    static_tf("base_link", "mount", 0.0, 0.0, 0.3)])
+        self.tf_buffer.lookup_transform("map", "mount", rospy.Time(0), rospy.Duration(10.0))
+        self.publish_for(self.mount_pub, lambda st: scan([1.5] * 5, st), 1.0)
+        self.assertTrue(self.grid.wait_until(lambda g: g.at(3.55, 5.0) == 100, 10.0),
+                        "the readings did not mark once sensor_frame was in tf; lethal: %s" % self.lethal())
 
     def test_late_source_is_reported(self):
         # The laser expects a reading every 1.0 s: after it stops, the layer is not current and says so.
