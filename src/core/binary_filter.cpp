@@ -20,7 +20,7 @@ BinaryFilterConfig parseBinaryFilterConfig(const ParamReader& params)
                               "): the filter info (costmap_filter_info_server, type 3) gives base and multiplier; "
                               "remove '" +
                               held + "', or configure the filter with mask_topic instead");
-  c.binary_state_topic = params.getString("binary_state_topic", c.binary_state_topic);
+  c.binary_state_topic = params.getTopic("binary_state_topic", c.binary_state_topic, true);
   if (c.binary_state_topic.empty()) params.fail("binary_state_topic", "is empty: name the topic of the state");
   c.default_state = params.getBool("default_state", c.default_state);
   c.flip_threshold = params.getDouble("flip_threshold", c.flip_threshold);

@@ -85,13 +85,13 @@ InputError validateGridUpdate(int64_t x, int64_t y, uint32_t width, uint32_t hei
 void CostmapFilter::onInitialize()
 {
   ParamReader params(context_->params(), name_);
-  filter_info_topic_ = params.getString("filter_info_topic", "");
+  filter_info_topic_ = params.getTopic("filter_info_topic", "", true);
   if (usesFilterInfo() && params.has("mask_topic"))
     params.fail("filter_info_topic",
                 "is set together with 'mask_topic' (" + params.raw("mask_topic")->toString() +
                     "): set one of them: filter_info_topic (Nav2's form) takes the mask topic from the filter info "
                     "(costmap_filter_info_server), mask_topic names the mask directly");
-  if (!usesFilterInfo()) mask_topic_ = params.getString("mask_topic", defaultMaskTopic());
+  if (!usesFilterInfo()) mask_topic_ = params.getTopic("mask_topic", defaultMaskTopic(), true);
   // The filter always takes part in updates, so that switching it off can clear its own effect.
   filter_enabled_ = enabled_;
   enabled_ = true;

@@ -4,6 +4,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "costmap_layers/core/input_error.hpp"
+
 namespace costmap_layers
 {
 void ParamReader::fail(const std::string& name, const std::string& what) const
@@ -91,6 +93,15 @@ std::string ParamReader::getString(const std::string& name, const std::string& d
   if (v != nullptr && v->type() != ParamValue::Type::String) fail(name, "must be a string");
   const std::string value = v != nullptr ? v->asString() : def;
   note({name, ParamValue::Type::String, ParamValue::makeString(def), ParamValue::makeString(value), 0, 0, {}});
+  return value;
+}
+
+std::string ParamReader::getTopic(const std::string& name, const std::string& def, bool allow_empty) const
+{
+  const std::string value = getString(name, def);
+  if (value.empty() && allow_empty) return value;
+  const std::string problem = rosNameProblem(value);
+  if (!problem.empty()) fail(name, "must be a topic name: " + problem);
   return value;
 }
 

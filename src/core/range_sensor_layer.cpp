@@ -39,6 +39,11 @@ RangeSensorConfig parseRangeSensorConfig(const ParamReader& p)
     {
       p.fail("topics", "must be a list of topic names");
     }
+    for (const auto& topic : c.topics)
+    {
+      const std::string problem = rosNameProblem(topic);
+      if (!problem.empty()) p.fail("topics", "must list topic names: " + problem);
+    }
   }
   const double big = std::numeric_limits<double>::max();
   c.phi = p.getDouble("phi", c.phi, 1e-9, big);

@@ -24,8 +24,8 @@ SpeedFilterConfig parseSpeedFilterConfig(const ParamReader& params)
                               "): the filter info (costmap_filter_info_server) gives the unit (type 1 percent, 2 "
                               "m/s), base and multiplier, and the mask holds the limits; remove '" +
                               held + "', or configure the filter with mask_topic instead");
-  c.max_speed_topic = params.getString("max_speed_topic", c.max_speed_topic);
-  c.speed_limit_topic = params.getString("speed_limit_topic", c.speed_limit_topic);
+  c.max_speed_topic = params.getTopic("max_speed_topic", c.max_speed_topic, true);
+  c.speed_limit_topic = params.getTopic("speed_limit_topic", c.speed_limit_topic, true);
   c.default_max_speed = params.getDouble("default_max_speed", c.default_max_speed, 0.0);
   c.enable_path_lookahead = params.getBool("enable_path_lookahead", c.enable_path_lookahead);
   c.max_decel = params.getDouble("max_decel", c.max_decel, -1e3, 1e3);
@@ -39,8 +39,8 @@ SpeedFilterConfig parseSpeedFilterConfig(const ParamReader& params)
     params.fail("max_lookahead", "(" + valueText(c.max_lookahead) + " m) is below min_lookahead (" +
                                      valueText(c.min_lookahead) +
                                      " m): the lookahead is clamped to [min_lookahead, max_lookahead]");
-  c.path_topic = params.getString("path_topic", c.path_topic);
-  c.odom_topic = params.getString("odom_topic", c.odom_topic);
+  c.path_topic = params.getTopic("path_topic", c.path_topic, true);
+  c.odom_topic = params.getTopic("odom_topic", c.odom_topic, true);
   c.odom_timeout = params.getDouble("odom_timeout", c.odom_timeout, 1e-3, limits::kMaxDuration);
   if (c.enable_path_lookahead && (c.path_topic.empty() || c.odom_topic.empty()))
     params.fail(c.path_topic.empty() ? "path_topic" : "odom_topic",
@@ -50,7 +50,7 @@ SpeedFilterConfig parseSpeedFilterConfig(const ParamReader& params)
     c.mask_mode = SpeedMaskMode::Nav2;
     return c;
   }
-  c.features_topic = params.getString("features_topic", c.features_topic);
+  c.features_topic = params.getTopic("features_topic", c.features_topic, true);
   c.speed_limit_in_percent = params.getBool("speed_limit_in_percent", c.speed_limit_in_percent);
   const std::string mode = params.getChoice("mask_mode", "area_id", {"area_id", "nav2"});
   c.mask_mode = mode == "nav2" ? SpeedMaskMode::Nav2 : SpeedMaskMode::AreaId;

@@ -93,7 +93,7 @@ std::string target(const Setpoint& s)
 ZoneParameterConfig parseZoneParameterConfig(const ParamReader& params)
 {
   ZoneParameterConfig c;
-  c.state_event_topic = params.getString("state_event_topic", c.state_event_topic);
+  c.state_event_topic = params.getTopic("state_event_topic", c.state_event_topic, true);
   if (c.state_event_topic.empty()) params.fail("state_event_topic", "must not be empty");
   c.setpoint_timeout = params.getDouble("setpoint_timeout", c.setpoint_timeout, 1e-3, limits::kMaxDuration);
 

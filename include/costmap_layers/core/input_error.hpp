@@ -22,4 +22,8 @@ std::string valueText(double value);
 /// A sender's text (a frame_id, a topic) as a message shows it: at most max characters, then how long
 /// it was, so that a megabyte name does not become a megabyte log line.
 std::string shownText(const std::string& text, std::size_t max = 64);
+/// Why `name` is not a ROS graph resource name (roscpp's rule: a letter, '/' or, when allow_private,
+/// '~' first, then letters, digits, '_' and '/'), or "" when it is one. The reason quotes the name
+/// (clipped) and the first character at fault.
+std::string rosNameProblem(const std::string& name, bool allow_private = true);
 }  // namespace costmap_layers

@@ -44,6 +44,9 @@ public:
   double getDouble(const std::string& name, double def, double min = std::numeric_limits<double>::lowest(),
                    double max = std::numeric_limits<double>::max()) const;
   std::string getString(const std::string& name, const std::string& def) const;
+  /// A topic name: fails naming the parameter unless it is a ROS name (rosNameProblem), or empty when
+  /// allow_empty (a topic that may be left out).
+  std::string getTopic(const std::string& name, const std::string& def, bool allow_empty = false) const;
   /// Accepts one of the given choices only.
   std::string getChoice(const std::string& name, const std::string& def, const std::vector<std::string>& choices) const;
 
