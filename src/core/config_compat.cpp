@@ -158,6 +158,10 @@ void loadOldParameters(CompatResult& r)
   std::vector<std::string> layers;
   const ParamValue* static_map = ns.find("static_map");
   if (static_map != nullptr) consume(r, "static_map");
+  if (static_map != nullptr && static_map->type() != ParamValue::Type::Bool)
+    r.warnings.push_back("pre-Hydro parameter \"static_map\" is " + static_map->toString() +
+                         ", not true or false: no static layer (costmap_2d reads it as a bool only, and skips it "
+                         "as well)");
   if (static_map != nullptr && static_map->type() == ParamValue::Type::Bool && static_map->asBool())
   {
     plugins.push(pluginEntry("static_layer", "costmap_2d::StaticLayer"));
@@ -171,6 +175,11 @@ void loadOldParameters(CompatResult& r)
   if (map_type != nullptr) consume(r, "map_type");
   const bool voxel =
       map_type != nullptr && map_type->type() == ParamValue::Type::String && map_type->asString() == "voxel";
+  if (map_type != nullptr && !voxel &&
+      !(map_type->type() == ParamValue::Type::String && map_type->asString() == "costmap"))
+    r.warnings.push_back("pre-Hydro parameter \"map_type\" is " + map_type->toString() +
+                         ", neither \"voxel\" nor \"costmap\": an ObstacleLayer, as costmap_2d makes for any value "
+                         "but \"voxel\"");
   plugins.push(pluginEntry("obstacle_layer", voxel ? "costmap_2d::VoxelLayer" : "costmap_2d::ObstacleLayer"));
   layers.push_back("obstacle_layer");
   subMap(ns, "obstacle_layer");
@@ -207,6 +216,74 @@ struct CopyRule
   const char* type;
   std::vector<const char*> keys;
 };
+
+/// A frame id written with tf's leading '/': stripped, with a warning naming `shown`.
+void stripLeadingSlash(ParamValue& map, const std::string& key, const std::string& shown, CompatResult& r)
+{
+  ParamValue* v = map.findMutable(key);
+  if (v == nullptr || v->type() != ParamValue::Type::String) return;
+  const std::string written = v->asString();
+  const std::size_t first = written.find_first_not_of('/');
+  if (first == 0 || first == std::string::npos) return;  // no slash, or nothing but slashes (refused later)
+  *v = ParamValue::makeString(written.substr(first));
+  r.warnings.push_back(shown + " '" + written +
+                       "': tf2 frame ids cannot start with '/' (tf stripped it; tf2, and "
+                       "costmap_2d on it, find no such frame): using '" +
+                       written.substr(first) + "'");
+}
+
+/// Whether a footprint value is a polygon (not empty, not "[]"), i.e. one robot_radius yields to.
+bool givesPolygon(const ParamValue& footprint)
+{
+  if (footprint.isList()) return !footprint.asList().empty();
+  if (footprint.type() != ParamValue::Type::String) return false;
+  std::string text;
+  for (const char c : footprint.asString())
+    if (c != ' ' && c != '\t') text += c;
+  return !text.empty() && text != "[]";
+}
+
+/// Where costmap_2d's or Nav2's obstacle layers read a value differently from this package's: the
+/// translation into this package's terms, said.
+///  - combination_method: costmap_2d's layers write nothing for any value but 0 and 1 (its documented
+///    99, "Do nothing"); Nav2's use 1 for any value but 0, 1 and 2 (with a warning).
+///  - an observation source without data_type: Nav2 reads LaserScan (costmap_2d PointCloud, which is
+///    refused here as it is written: see the layer's own report).
+void translateObstacleDefaults(ParamValue& ns, const PluginSpec& spec, CompatResult& r)
+{
+  const TypeDialect dialect = typeDialect(spec.type);
+  const std::string cls = pluginClassName(resolvePluginType(spec.type));
+  if (dialect == TypeDialect::Native || (cls != "ObstacleLayer" && cls != "VoxelLayer")) return;
+  ParamValue* layer = ns.findMutable(spec.name);
+  if (layer == nullptr || !layer->isMap()) return;
+  if (ParamValue* cm = layer->findMutable("combination_method"); cm != nullptr && cm->type() == ParamValue::Type::Int)
+  {
+    const int64_t v = cm->asInt();
+    if (dialect == TypeDialect::Costmap2D && v != 0 && v != 1 && v != 99)
+    {
+      r.warnings.push_back(spec.name + "/combination_method " + std::to_string(v) + ": " + spec.type +
+                           " writes nothing into the costmap for any value but 0 and 1 (costmap_2d's 99, \"Do "
+                           "nothing\"): taken as 99. (2 is Nav2's maximum that keeps unknown cells unknown: write "
+                           "the type as costmap_layers/" +
+                           cls + " or nav2_costmap_2d::" + cls + " for that)");
+      *cm = ParamValue::makeInt(99);
+    }
+    else if (dialect == TypeDialect::Nav2 && (v < 0 || v > 2))
+    {
+      r.warnings.push_back(spec.name + "/combination_method " + std::to_string(v) + ": " + spec.type +
+                           " takes 0, 1 or 2, and uses 1 (maximum) for any other value, as Nav2 does");
+      *cm = ParamValue::makeInt(1);
+    }
+  }
+  if (dialect != TypeDialect::Nav2) return;
+  for (const auto& source : sourceNamesOf(layer->find("observation_sources")))
+  {
+    ParamValue& src = subMap(*layer, source);
+    if (src.find("data_type") != nullptr) continue;
+    src.set("data_type", ParamValue::makeString("LaserScan"));
+    r.notes.push_back(spec.name + "/" + source + ": data_type not set: LaserScan, Nav2's default");
+  }
+}
 
 /// costmap_2d's copyParentParameters, by the type name exactly as written.
 const std::vector<CopyRule>& copyRules()
@@ -245,9 +322,23 @@ CompatResult applyCostmap2dRules(const ParamValue& ns_in, const std::vector<Pare
   }
   const PluginLists lists = parsePluginLists(ns);
 
+  // tf took "/map"; tf2 refuses frame ids with a leading '/', so that costmap_2d on tf2 waits forever
+  // for such a frame: the name without it, said once.
+  for (const char* key : {"global_frame", "robot_base_frame"})
+    stripLeadingSlash(ns, key, key, r);
+  for (const auto& spec : lists.plugins)
+  {
+    ParamValue* layer = ns.findMutable(spec.name);
+    if (layer == nullptr || !layer->isMap()) continue;
+    for (const auto& source : sourceNamesOf(layer->find("observation_sources")))
+      if (ParamValue* src = layer->findMutable(source); src != nullptr && src->isMap())
+        stripLeadingSlash(*src, "sensor_frame", spec.name + "/" + source + "/sensor_frame", r);
+  }
+
   // 2. copyParentParameters, 3. costmap_2d's own defaults.
   for (const auto& spec : lists.plugins)
   {
+    translateObstacleDefaults(ns, spec, r);
     for (const auto& rule : copyRules())
       if (spec.type == rule.type)
         for (const char* key : rule.keys)
@@ -313,6 +404,12 @@ CompatResult applyCostmap2dRules(const ParamValue& ns_in, const std::vector<Pare
       }
     }
   }
+  // costmap_2d's makeFootprintFromParams takes a footprint given as a polygon over robot_radius.
+  const ParamValue* footprint = ns.find("footprint");
+  const ParamValue* radius = ns.find("robot_radius");
+  if (footprint != nullptr && radius != nullptr && givesPolygon(*footprint))
+    r.notes.push_back("robot_radius " + radius->toString() +
+                      " is not used: footprint is set too, and the footprint wins (as in costmap_2d)");
   return r;
 }
 
@@ -494,9 +591,21 @@ const std::vector<IgnoredKey>& ignoredKeys()
   static const char* kNav2Static =
       "Nav2 reads it at the costmap level for its StaticLayer; costmap_layers reads it in the static layer's "
       "namespace (costmap_2d's place): move it there";
-  static const char* kNeedsLayer =
-      "a pre-Hydro costmap-level key: with a plugins list costmap_2d copies it only into a layer whose type is "
-      "written costmap_2d::...; set it in the layer's namespace";
+  // costmap_2d's copyParentParameters moves each of these from the costmap's namespace into a plugin
+  // of one type only, written costmap_2d::... (e.g. max_obstacle_height into an ObstacleLayer, not a
+  // VoxelLayer).
+  static const char* kNeedsStatic =
+      "a pre-Hydro costmap-level key: with a plugins list costmap_2d copies it only into a plugin of type "
+      "costmap_2d::StaticLayer; set it in the static layer's namespace";
+  static const char* kNeedsInflation =
+      "a pre-Hydro costmap-level key: with a plugins list costmap_2d copies it only into a plugin of type "
+      "costmap_2d::InflationLayer; set it in the inflation layer's namespace";
+  static const char* kNeedsObstacle =
+      "a pre-Hydro costmap-level key: with a plugins list costmap_2d copies it only into a plugin of type "
+      "costmap_2d::ObstacleLayer (not a VoxelLayer); set it in the obstacle or voxel layer's namespace";
+  static const char* kNeedsVoxel =
+      "a pre-Hydro costmap-level key: with a plugins list costmap_2d copies it only into a plugin of type "
+      "costmap_2d::VoxelLayer; set it in the voxel layer's namespace";
   static const std::vector<IgnoredKey> table = {
       {"costmap", "footprint_topic",
        "costmap_2d subscribes to it for footprint changes at run time; costmap_layers takes the footprint from "
@@ -510,19 +619,21 @@ const std::vector<IgnoredKey>& ignoredKeys()
       {"costmap", "unknown_cost_value", kNav2Static},
       {"costmap", "trinary_costmap", kNav2Static},
       {"costmap", "use_maximum", kNav2Static},
-      {"costmap", "map_topic", kNeedsLayer},
-      {"costmap", "inflation_radius", kNeedsLayer},
-      {"costmap", "cost_scaling_factor", kNeedsLayer},
-      {"costmap", "max_obstacle_height", kNeedsLayer},
-      {"costmap", "observation_sources", kNeedsLayer},
+      {"costmap", "map_topic", kNeedsStatic},
+      {"costmap", "inflation_radius", kNeedsInflation},
+      {"costmap", "cost_scaling_factor", kNeedsInflation},
+      {"costmap", "max_obstacle_height", kNeedsObstacle},
+      {"costmap", "observation_sources",
+       "a pre-Hydro costmap-level key: with a plugins list costmap_2d reads it only in an obstacle or voxel "
+       "layer's namespace; set it there"},
       {"costmap", "obstacle_range", "found by searchParam from an obstacle layer's sources; this costmap has none"},
       {"costmap", "raytrace_range", "found by searchParam from an obstacle layer's sources; this costmap has none"},
-      {"costmap", "origin_z", kNeedsLayer},
-      {"costmap", "z_resolution", kNeedsLayer},
-      {"costmap", "z_voxels", kNeedsLayer},
-      {"costmap", "mark_threshold", kNeedsLayer},
-      {"costmap", "unknown_threshold", kNeedsLayer},
-      {"costmap", "publish_voxel_map", kNeedsLayer},
+      {"costmap", "origin_z", kNeedsVoxel},
+      {"costmap", "z_resolution", kNeedsVoxel},
+      {"costmap", "z_voxels", kNeedsVoxel},
+      {"costmap", "mark_threshold", kNeedsVoxel},
+      {"costmap", "unknown_threshold", kNeedsVoxel},
+      {"costmap", "publish_voxel_map", kNeedsVoxel},
       {"ObstacleLayer", "transform_tolerance",
        "costmap_2d's obstacle layer lets tf lag this much (default 0.2 s); here readings wait for tf in a bounded "
        "queue and the costmap's transform_tolerance applies to the robot pose"},
@@ -583,10 +694,17 @@ std::vector<UnknownKey> unknownKeys(const ParamValue& ns, const ParamReadLog& lo
 }
 
 std::string describeUnknownKey(const UnknownKey& key, const std::string& ns_name,
-                               const std::vector<std::string>& plugins)
+                               const std::vector<std::string>& plugins, const std::string& layer_class)
 {
   std::string text = "parameter '" + key.path + "' in " + ns_name;
   if (!key.known_elsewhere.empty()) return text + " is ignored: " + key.known_elsewhere;
+  if (key.is_namespace && key.path.find('/') == std::string::npos && !layer_class.empty())
+  {
+    text = "namespace '" + key.path + "' in " + ns_name + " is not read by this " + layer_class +
+           " (no observation source or other setting of that name): its parameters are not used";
+    if (!key.suggestion.empty()) text += " (did you mean `" + key.suggestion + "`?)";
+    return text;
+  }
   if (key.is_namespace && key.path.find('/') == std::string::npos)
   {
     std::string names;
@@ -601,5 +719,122 @@ std::string describeUnknownKey(const UnknownKey& key, const std::string& ns_name
   text += " is not a parameter of costmap_layers and is ignored";
   if (!key.suggestion.empty()) text += " (did you mean `" + key.suggestion + "`?)";
   return text;
+}
+namespace
+{
+/// costmap_2d reads the plugin named "a/b" from the namespace a/b, which a parameter tree holds nested
+/// (a: {b: {...}}): that map moves to the key "a/b", where everything here looks a plugin's parameters
+/// up; maps left empty on the way go too.
+void hoistNestedPluginNamespace(ParamValue& ns, const std::string& name)
+{
+  if (name.find('/') == std::string::npos || ns.find(name) != nullptr) return;
+  const ParamValue* nested = ns.findPath(name);
+  if (nested == nullptr || !nested->isMap()) return;
+  const ParamValue copy = *nested;
+  std::vector<std::string> parts;
+  std::string part;
+  for (const char c : name + "/")
+  {
+    if (c != '/')
+    {
+      part += c;
+      continue;
+    }
+    if (!part.empty()) parts.push_back(part);
+    part.clear();
+  }
+  // Erase the leaf, then each ancestor it leaves empty.
+  for (std::size_t depth = parts.size(); depth-- > 0;)
+  {
+    ParamValue* parent = &ns;
+    for (std::size_t k = 0; k < depth && parent != nullptr; ++k)
+      parent = parent->findMutable(parts[k]);
+    if (parent == nullptr) break;
+    const ParamValue* child = parent->find(parts[depth]);
+    if (depth + 1 < parts.size() && (child == nullptr || !child->isMap() || !child->entries().empty())) break;
+    parent->erase(parts[depth]);
+  }
+  ns.set(name, copy);
+}
+}  // namespace
+
+CompatResult prepareCostmapNamespace(ParamValue ns, const std::string& own_name,
+                                     const std::vector<ParentNamespace>& parents)
+{
+  const bool lifted = !own_name.empty() && liftOwnNamespace(ns, own_name);
+  // A Nav2 file keeps its parameters one level down, under ros__parameters (ROS 2's form).
+  const bool ros2 = liftOwnNamespace(ns, "ros__parameters");
+  {
+    const PluginLists named = parsePluginLists(ns);
+    for (const auto* list : {&named.plugins, &named.filters})
+      for (const auto& spec : *list)
+        hoistNestedPluginNamespace(ns, spec.name);
+  }
+  CompatResult r = applyCostmap2dRules(ns, parents);
+  if (ros2)
+    r.warnings.insert(r.warnings.begin(),
+                      "this namespace holds ROS 2's `ros__parameters:` level (a Nav2 file): its parameters apply "
+                      "to this costmap; remove that level from the file for ROS 1");
+  if (lifted)
+    r.notes.insert(r.notes.begin(), "this namespace holds a move_base file's `" + own_name +
+                                        ":` section: its parameters apply to this costmap");
+  const PluginLists lists = parsePluginLists(r.params);
+  if (lists.plugins.empty() && lists.filters.empty())
+    r.warnings.push_back("no plugins and no filters: the costmap has no layer and stays as it starts (all " +
+                         std::string("free, or unknown with track_unknown_space)"));
+  return r;
+}
+
+std::vector<ParentNamespace> parentsInTree(const ParamValue& root, const std::string& path)
+{
+  std::vector<std::string> parts;
+  std::string part;
+  for (const char c : path + "/")
+  {
+    if (c != '/')
+    {
+      part += c;
+      continue;
+    }
+    if (!part.empty()) parts.push_back(part);
+    part.clear();
+  }
+  std::vector<ParentNamespace> parents;
+  for (std::size_t depth = parts.size(); depth-- > 0;)
+  {
+    std::string name;
+    for (std::size_t k = 0; k < depth; ++k)
+      name += "/" + parts[k];
+    const ParamValue* at = depth == 0 ? &root : root.findPath(name.substr(1));
+    ParentNamespace parent{name.empty() ? "/" : name, ParamValue::makeMap()};
+    if (at != nullptr && at->isMap())
+      for (const auto& key : searchedKeys())
+        if (const ParamValue* v = at->find(key)) parent.values.set(key, *v);
+    parents.push_back(std::move(parent));
+  }
+  return parents;
+}
+
+std::vector<std::string> unusedParameterLines(const CompatResult& compat, const ParamReadLog& log,
+                                              const std::vector<std::pair<PluginSpec, const ParamValue*>>& layers,
+                                              const std::string& ns_name)
+{
+  std::vector<std::string> lines, names;
+  for (const auto& layer : layers)
+    names.push_back(layer.first.name);
+  for (const auto& u : unknownKeys(compat.params, log, "costmap", compat.consumed, names))
+    lines.push_back(describeUnknownKey(u, ns_name, names));
+  const std::string prefix = ns_name.empty() || ns_name.back() != '/' ? ns_name + "/" : ns_name;
+  for (const auto& [spec, params] : layers)
+  {
+    std::vector<std::string> known = {"plugin"};
+    const auto consumed = compat.layer_consumed.find(spec.name);
+    if (consumed != compat.layer_consumed.end())
+      known.insert(known.end(), consumed->second.begin(), consumed->second.end());
+    const std::string scope = pluginClassName(resolvePluginType(spec.type));
+    for (const auto& u : unknownKeys(*params, log, scope, known))
+      lines.push_back(describeUnknownKey(u, prefix + spec.name, {}, scope));
+  }
+  return lines;
 }
 }  // namespace costmap_layers

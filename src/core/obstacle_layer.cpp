@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "costmap_layers/core/cost_values.hpp"
+#include "costmap_layers/core/input_error.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
 #include "costmap_layers/core/limits.hpp"
 #include "costmap_layers/core/param_reader.hpp"
@@ -54,6 +55,12 @@ std::vector<std::string> sourceNames(const ParamReader& p)
   {
     if (std::count(names.begin(), names.end(), names[i]) > 1)
       p.fail("observation_sources", "names source '" + names[i] + "' twice");
+    if (names[i].find(',') != std::string::npos)
+      p.fail("observation_sources", "names source '" + shownText(names[i]) +
+                                        "': source names are separated by blanks (as in costmap_2d), not commas");
+    // Each name is also its parameter namespace (and the default topic).
+    const std::string problem = rosNameProblem(names[i], false);
+    if (!problem.empty()) p.fail("observation_sources", "must name sources by ROS names: " + problem);
   }
   return names;
 }
@@ -63,7 +70,7 @@ ObservationSourceConfig parseObservationSourceConfig(const ParamReader& p, const
 {
   ObservationSourceConfig c;
   c.name = name;
-  c.topic = p.getString("topic", name);
+  c.topic = p.getTopic("topic", name, true);
   if (c.topic.empty()) p.fail("topic", "must not be empty");
   c.sensor_frame = p.getString("sensor_frame", c.sensor_frame);
   c.observation_persistence =
@@ -94,7 +101,13 @@ ObstacleConfig parseObstacleConfig(const ParamReader& p, bool default_track_unkn
   ObstacleConfig c;
   c.footprint_clearing_enabled = p.getBool("footprint_clearing_enabled", c.footprint_clearing_enabled);
   c.max_obstacle_height = p.getDouble("max_obstacle_height", c.max_obstacle_height);
-  c.combination_method = p.getInt("combination_method", c.combination_method, 0, 2);
+  // 0 overwrite, 1 maximum, 2 maximum keeping unknown master cells (Nav2's), 99 nothing (costmap_2d's
+  // "Do nothing"; costmap_2d and Nav2 type names are translated to these by applyCostmap2dRules).
+  c.combination_method = p.getInt("combination_method", c.combination_method, 0, 99);
+  if (c.combination_method > 2 && c.combination_method != 99)
+    p.fail("combination_method",
+           "must be 0 (overwrite), 1 (maximum), 2 (maximum, unknown master cells stay unknown) "
+           "or 99 (nothing, as costmap_2d's \"Do nothing\")");
   c.track_unknown_space = p.getBool("track_unknown_space", default_track_unknown);
   static const ParamValue empty = ParamValue::makeMap();
   for (const auto& name : sourceNames(p))
@@ -146,6 +159,23 @@ void ObstacleLayer::onInitialize()
   if (config_.sources.empty())
     context_->report(Severity::Warn, "no_sources",
                      name_ + ": no observation_sources: the layer only clears the footprint");
+  // A listed source without its namespace runs on defaults alone: most likely a misspelt namespace.
+  for (const auto& s : config_.sources)
+  {
+    const ParamValue* ns = context_->params().find(s.name);
+    if (ns == nullptr)
+      context_->report(Severity::Warn, "sources/" + s.name,
+                       name_ + ": observation source '" + s.name + "' has no namespace '" + s.name +
+                           "' of parameters: it runs on the defaults (topic '" + s.topic + "', data_type " +
+                           (s.data_type == SensorDataType::LaserScan ? "LaserScan" : "PointCloud2") +
+                           ", marking and clearing as their defaults say)");
+    else if (ns->find("data_type") == nullptr)
+      context_->report(Severity::Info, "sources/" + s.name + "/data_type",
+                       name_ + ": observation source '" + s.name + "': data_type not set, reading " +
+                           (s.data_type == SensorDataType::LaserScan ? "LaserScan" : "PointCloud2") +
+                           " (costmap_2d's default is PointCloud, which this package does not read; Nav2's is "
+                           "LaserScan)");
+  }
 }
 
 void ObstacleLayer::matchSize()
@@ -526,6 +556,8 @@ void ObstacleLayer::updateCosts(Costmap2D& master_grid, int min_i, int min_j, in
       break;
     case 2:
       updateWithMaxWithoutUnknownOverwrite(master_grid, min_i, min_j, max_i, max_j);
+      break;
+    case 99:  // costmap_2d's "Do nothing": the layer keeps its marks to itself
       break;
     default:
       updateWithMax(master_grid, min_i, min_j, max_i, max_j);

@@ -55,7 +55,7 @@ HWY_EXPORT(ConvertTrinary);
 StaticConfig parseStaticConfig(const ParamReader& params, bool default_track_unknown)
 {
   StaticConfig cfg;
-  cfg.map_topic = params.getString("map_topic", cfg.map_topic);
+  cfg.map_topic = params.getTopic("map_topic", cfg.map_topic, true);
   if (cfg.map_topic.empty()) params.fail("map_topic", "must not be empty");
   cfg.first_map_only = params.getBool("first_map_only", cfg.first_map_only);
   cfg.subscribe_to_updates = params.getBool("subscribe_to_updates", cfg.subscribe_to_updates);
@@ -84,6 +84,13 @@ uint8_t interpretStaticValue(int8_t value, const StaticConfig& config)
 void StaticLayer::onInitialize()
 {
   config_ = parseStaticConfig(ParamReader(context_->params(), name_), layered_costmap_->isTrackingUnknown());
+  // costmap_2d clamps it without a word: say so.
+  if (const ParamValue* t = context_->params().find("lethal_cost_threshold");
+      t != nullptr && t->type() == ParamValue::Type::Int && t->asInt() != config_.lethal_cost_threshold)
+    context_->report(Severity::Warn, "lethal_cost_threshold",
+                     name_ + ": lethal_cost_threshold " + std::to_string(t->asInt()) +
+                         " is outside the occupancy range [0, 100]: " + std::to_string(config_.lethal_cost_threshold) +
+                         " used (as costmap_2d clamps it)");
   rebuildTable();
   current_ = false;  // until the first map
   addInput(InputPort::grid(InputKind::Map, config_.map_topic,

@@ -73,12 +73,9 @@ void CostmapNode::setUp()
   const std::string ns = private_nh_.getNamespace();
   ParamValue raw = readNamespace(private_nh_);
   const std::string own_name = ns.substr(ns.rfind('/') + 1);
-  if (!own_name.empty() && costmap_layers::liftOwnNamespace(raw, own_name))
-    ROS_INFO("costmap: %s/%s holds a move_base file's `%s:` section: its parameters apply to this costmap", ns.c_str(),
-             own_name.c_str(), own_name.c_str());
   // costmap_2d's conversions and look-ups; the tree that results is what everything below reads.
   params_ = std::make_unique<costmap_layers::CompatResult>(
-      costmap_layers::applyCostmap2dRules(raw, readParentNamespaces(ns)));
+      costmap_layers::prepareCostmapNamespace(std::move(raw), own_name, readParentNamespaces(ns)));
   for (const auto& w : params_->warnings)
     ROS_WARN("costmap %s: %s", ns.c_str(), w.c_str());
   for (const auto& n : params_->notes)
@@ -127,22 +124,15 @@ void CostmapNode::setUp()
     }
 
   // One warning per key that no parse asked for, in the costmap's namespace and in each layer's.
+  std::vector<std::pair<costmap_layers::PluginSpec, const ParamValue*>> layer_params;
   std::vector<std::string> names;
-  for (const auto* list : {&lists.plugins, &lists.filters})
-    for (const auto& spec : *list)
-      names.push_back(spec.name);
-  for (const auto& u : costmap_layers::unknownKeys(params, read_log, "costmap", params_->consumed, names))
-    ROS_WARN("costmap: %s", costmap_layers::describeUnknownKey(u, ns, names).c_str());
   for (const auto& [spec, context] : made)
   {
-    std::vector<std::string> known = {"plugin"};
-    const auto consumed = params_->layer_consumed.find(spec.name);
-    if (consumed != params_->layer_consumed.end())
-      known.insert(known.end(), consumed->second.begin(), consumed->second.end());
-    const std::string scope = costmap_layers::pluginClassName(costmap_layers::resolvePluginType(spec.type));
-    for (const auto& u : costmap_layers::unknownKeys(context->params(), read_log, scope, known))
-      ROS_WARN("costmap: %s", costmap_layers::describeUnknownKey(u, ns + "/" + spec.name).c_str());
+    layer_params.emplace_back(spec, &context->params());
+    names.push_back(spec.name);
   }
+  for (const auto& line : costmap_layers::unusedParameterLines(*params_, read_log, layer_params, ns))
+    ROS_WARN("costmap: %s", line.c_str());
   costmap_->setFootprint(config_.footprint.padded());
   const LayerReconfigure::RunLocked run_locked = [this](const std::function<void()>& fn)
   {

@@ -12,6 +12,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "costmap_layers/core/config_compat.hpp"
 #include "costmap_layers/core/costmap_builder.hpp"
 #include "costmap_layers/core/costmap_config.hpp"
 #include "costmap_layers/core/layer.hpp"
@@ -249,9 +250,25 @@ private:
 int run(const ToolArgs& a, std::ostream& out, std::ostream& err)
 {
   ParamValue root = io::loadParamsYamlFile(a.params);
-  const ParamValue* ns = a.ns.empty() ? &root : root.findPath(a.ns);
-  if (ns == nullptr || !ns->isMap())
+  const ParamValue* raw = a.ns.empty() ? &root : root.findPath(a.ns);
+  if (raw == nullptr || !raw->isMap())
     throw std::runtime_error(a.params + ": namespace '" + a.ns + "' not found (or not a map)");
+  // The costmap's namespace as costmap_node reads it from the parameter server: costmap_2d's rules
+  // (pre-Hydro keys, copyParentParameters, searchParam in the levels around --namespace), said the same.
+  std::string own_name = a.ns;
+  while (!own_name.empty() && own_name.back() == '/')
+    own_name.pop_back();
+  own_name = own_name.substr(own_name.rfind('/') + 1);
+  const CompatResult compat = prepareCostmapNamespace(*raw, own_name, parentsInTree(root, a.ns));
+  for (const auto& w : compat.warnings)
+    err << "costmap_tool: warning: " << w << "\n";
+  for (const auto& n : compat.notes)
+    err << "costmap_tool: info: " << n << "\n";
+  if (compat.converted_pre_hydro)
+    err << "costmap_tool: info: the same costmap as a plugin list (costmap_2d's form):\n" << compat.plugin_list_yaml;
+  const ParamValue* ns = &compat.params;
+  // Every parameter look-up until the layers are set up is noted, so that unused keys can be named.
+  ParamReadLog read_log;
   const CostmapConfig config = parseCostmapConfig(*ns);
   const PluginLists lists = parsePluginLists(*ns);
   int error_count = 0;
@@ -288,6 +305,12 @@ int run(const ToolArgs& a, std::ostream& out, std::ostream& err)
         contexts[spec.name] = ctx;
         return ctx;
       });
+  std::vector<std::pair<PluginSpec, const ParamValue*>> layer_params;
+  for (const auto* list : {&lists.plugins, &lists.filters})
+    for (const auto& spec : *list)
+      layer_params.emplace_back(spec, &contexts.at(spec.name)->params());
+  for (const auto& line : unusedParameterLines(compat, read_log, layer_params, a.ns.empty() ? "/" : a.ns))
+    err << "costmap_tool: warning: " << line << "\n";
   const Footprint footprint = config.footprint.padded();
   costmap->setFootprint(footprint);
 

@@ -518,3 +518,39 @@ plugins: [{name: static_layer, type: costmap_layers/StaticLayer}]
   EXPECT_EQ(jsonOf(r2).value("width", -1), w);
   EXPECT_EQ(jsonOf(r2).value("height", -1), h);
 }
+
+// The tool reads a costmap's namespace as costmap_node does (costmap_2d's rules): a pre-Hydro move_base
+// file (no plugins: static_map, the inflation keys at the costmap level) with the footprint one level
+// up (searchParam). Before, the tool built no layer from such a file and printed a free costmap.
+TEST(CostmapTool, ReadsAMoveBaseFileAsCostmapNodeDoes)
+{
+  TempDir dir;
+  std::vector<uint8_t> pixels(21 * 21, 254);
+  pixels[10 * 21 + 10] = 0;  // one lethal cell in the middle
+  const std::string map = writeMap(dir, "map", 21, 21, pixels, 0.1, 0.0, 0.0);
+  const std::string params = dir.write("params.yaml", R"(
+move_base:
+  footprint: [[0.25, 0.25], [0.25, -0.25], [-0.25, -0.25], [-0.25, 0.25]]
+  global_costmap:
+    global_frame: map
+    static_map: true
+    inflation_radius: 0.6
+    cost_scaling_factor: 5.0
+)");
+  const ToolResult r = runTool(
+      {"--map", map, "--params", params, "--namespace", "move_base/global_costmap", "--out-raw", dir.file("out.raw")},
+      dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("loading the pre-Hydro parameters"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("found in /move_base"), std::string::npos) << r.err;  // the footprint, by searchParam
+  const std::vector<uint8_t> cells = rawCells(dir.file("out.raw"));
+  ASSERT_EQ(cells.size(), 21u * 21u);
+  auto at = [&](int x) { return static_cast<int>(cells[static_cast<std::size_t>(10 * 21 + x)]); };
+  // Inscribed radius 0.26 m (the square's 0.25 plus costmap_2d's default footprint_padding 0.01),
+  // 0.6 m inflation, factor 5; costmap_2d's rule: 252 * exp(-5 * (d - 0.26)) truncated.
+  EXPECT_EQ(at(10), 254);
+  EXPECT_EQ(at(12), 253);  // 0.2 m
+  EXPECT_EQ(at(13), 206);  // 0.3 m: 252 * exp(-0.2) = 206.3
+  EXPECT_EQ(at(16), 46);   // 0.6 m: 252 * exp(-1.7) = 46.0
+  EXPECT_EQ(at(17), 0);    // 0.7 m, beyond inflation_radius
+}

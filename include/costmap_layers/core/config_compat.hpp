@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "costmap_layers/core/costmap_config.hpp"
 #include "costmap_layers/core/param_value.hpp"
 
 namespace costmap_layers
@@ -93,6 +94,24 @@ CompatResult applyCostmap2dRules(const ParamValue& ns, const std::vector<ParentN
 /// the common one does) and the nested key removed. @return true when it lifted.
 bool liftOwnNamespace(ParamValue& ns, const std::string& own_name);
 
+/// One costmap namespace made ready to build from, the same way in costmap_node and costmap_tool:
+/// liftOwnNamespace() (noted), then applyCostmap2dRules(); a costmap with no plugin and no filter is
+/// warned about (it would stay as it starts).
+/// @param own_name  the last component of the costmap's namespace ("" for none)
+CompatResult prepareCostmapNamespace(ParamValue ns, const std::string& own_name,
+                                     const std::vector<ParentNamespace>& parents = {});
+
+/// The namespaces around the one at `path` ("a/b/c") in a parameter tree, nearest first ("/a/b", "/a",
+/// "/"), each with the searchedKeys() it holds: what a host reads from the parameter server.
+std::vector<ParentNamespace> parentsInTree(const ParamValue& root, const std::string& path);
+
+/// One warning line per parameter no parse asked for while `log` recorded (the costmap and its layers
+/// set up): in the costmap's namespace (compat.params; its consumed keys are known) and in each layer's
+/// (`layers`: each plugin with the parameter map its layer read). ns_name names the costmap's namespace.
+std::vector<std::string> unusedParameterLines(const CompatResult& compat, const ParamReadLog& log,
+                                              const std::vector<std::pair<PluginSpec, const ParamValue*>>& layers,
+                                              const std::string& ns_name);
+
 /// A YAML rendering of a tree (maps in block style, lists and small maps inline).
 std::string toYaml(const ParamValue& value, int indent = 0);
 
@@ -121,6 +140,8 @@ std::vector<UnknownKey> unknownKeys(const ParamValue& ns, const ParamReadLog& lo
 /// One warning line for an unknown key (`plugins` lists the costmap's plugin names, for namespaces), e.g.
 /// "parameter 'inflaton_radius' in /move_base/global_costmap/inflation_layer is not used (did you mean
 /// `inflation_radius`?)".
+/// In a layer's namespace (layer_class set, e.g. "ObstacleLayer") a namespace key is one the layer does
+/// not read, e.g. a misspelt observation source.
 std::string describeUnknownKey(const UnknownKey& key, const std::string& ns_name,
-                               const std::vector<std::string>& plugins = {});
+                               const std::vector<std::string>& plugins = {}, const std::string& layer_class = "");
 }  // namespace costmap_layers

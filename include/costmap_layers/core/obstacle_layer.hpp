@@ -53,7 +53,8 @@ struct ObstacleConfig
 {
   bool footprint_clearing_enabled = true;
   double max_obstacle_height = 2.0;  ///< [m] hits above are never marked
-  /// 0: overwrite (own cost unless unknown), 1: max, 2: max without overwriting unknown master cells.
+  /// 0: overwrite (own cost unless unknown), 1: max, 2: max without overwriting unknown master cells,
+  /// 99: nothing (costmap_2d's "Do nothing").
   int combination_method = 1;
   bool track_unknown_space = false;  ///< default: the costmap's
   std::vector<ObservationSourceConfig> sources;
@@ -61,7 +62,7 @@ struct ObstacleConfig
 
 /// Reads one source from its own namespace. Throws std::invalid_argument naming the parameter.
 ObservationSourceConfig parseObservationSourceConfig(const ParamReader& params, const std::string& name);
-/// Reads footprint_clearing_enabled, max_obstacle_height, combination_method (0..2),
+/// Reads footprint_clearing_enabled, max_obstacle_height, combination_method (0, 1, 2 or 99),
 /// track_unknown_space and observation_sources (a space-separated string or a list of names; each
 /// name's parameters in the sub-namespace of that name). Throws std::invalid_argument.
 ObstacleConfig parseObstacleConfig(const ParamReader& params, bool default_track_unknown);

@@ -1,0 +1,329 @@
+// Drop-in configurations as other robots write them, where costmap_2d or Nav2 read a value in a way
+// this package must translate or at least name: frames written with tf's leading '/', costmap_2d's
+// combination_method 99 ("Do nothing") and Nav2's out-of-range values, Nav2's LaserScan default,
+// pre-Hydro values costmap_2d skips, plugin names with '/', ROS 2's ros__parameters level, topic names
+// roscpp would refuse, and the parameter lines costmap_node and costmap_tool share. Expected values
+// are written from costmap_2d's sources (costmap_2d_ros.cpp, plugins/obstacle_layer.cpp,
+// cfg/ObstaclePlugin.cfg) and Nav2's (nav2_costmap_2d/src/costmap_layer.cpp, plugins/obstacle_layer.cpp),
+// not from the code under test.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "costmap_layers/core/config_compat.hpp"
+#include "costmap_layers/core/cost_values.hpp"
+#include "costmap_layers/core/input_error.hpp"
+#include "costmap_layers/core/layered_costmap.hpp"
+#include "costmap_layers/core/obstacle_layer.hpp"
+#include "costmap_layers/core/param_reader.hpp"
+#include "costmap_layers/core/range_sensor_layer.hpp"
+#include "costmap_layers/core/static_layer.hpp"
+#include "fake_context.hpp"
+#include "sensor_test_helpers.hpp"
+
+using namespace costmap_layers;
+using namespace costmap_layers_test;
+
+namespace
+{
+bool anyContains(const std::vector<std::string>& lines, const std::vector<std::string>& parts)
+{
+  return std::any_of(lines.begin(), lines.end(),
+                     [&](const std::string& line)
+                     {
+                       return std::all_of(parts.begin(), parts.end(),
+                                          [&](const std::string& p) { return line.find(p) != std::string::npos; });
+                     });
+}
+
+ParamValue pluginList(std::initializer_list<std::pair<const char*, const char*>> plugins)
+{
+  ParamValue list = ParamValue::makeList();
+  for (const auto& [name, type] : plugins)
+    list.push(paramMap({{"name", S(name)}, {"type", S(type)}}));
+  return list;
+}
+
+std::string stringAt(const ParamValue& ns, const std::string& path)
+{
+  const ParamValue* v = ns.findPath(path);
+  return v != nullptr && v->type() == ParamValue::Type::String ? v->asString() : "<none>";
+}
+
+/// The failure message of f, or "" when it does not throw.
+template <class F>
+std::string failure(F f)
+{
+  try
+  {
+    f();
+  }
+  catch (const std::exception& e)
+  {
+    return e.what();
+  }
+  return "";
+}
+}  // namespace
+
+TEST(RosNames, RoscppsGrammar)
+{
+  for (const char* good : {"scan", "/scan", "~scan", "a/b_c/d9", "/a//b"})
+    EXPECT_EQ(rosNameProblem(good), "") << good;
+  EXPECT_NE(rosNameProblem("~scan", false), "");
+  EXPECT_NE(rosNameProblem(""), "");
+  const std::string comma = rosNameProblem("scan,");
+  EXPECT_NE(comma.find("','"), std::string::npos) << comma;
+  EXPECT_NE(comma.find("position 4"), std::string::npos) << comma;
+  for (const char* bad : {"1scan", "my map", "a-b", "a.b", "_a"})
+    EXPECT_NE(rosNameProblem(bad), "") << bad;
+  const std::string control = rosNameProblem(std::string("a\x01", 2));
+  EXPECT_NE(control.find("character code 1"), std::string::npos) << control;
+  // A megabyte name is quoted clipped.
+  EXPECT_LT(rosNameProblem(std::string(1 << 20, 'a') + "-").size(), 600u);
+}
+
+TEST(DropIn, FramesWithTfsLeadingSlashAreStrippedAndNamed)
+{
+  // TurtleBot2's and PR2's Indigo-era files: tf took "/map", tf2 does not (costmap_2d on tf2 waits
+  // for "/map" for ever).
+  ParamValue ns = paramMap({{"global_frame", S("/map")}, {"robot_base_frame", S("/base_footprint")}});
+  ns.set("plugins", pluginList({{"obstacles", "costmap_2d::ObstacleLayer"}}));
+  ns.set("obstacles", paramMap({{"observation_sources", S("scan")},
+                                {"scan", paramMap({{"data_type", S("LaserScan")}, {"sensor_frame", S("/laser")}})}}));
+  const CompatResult r = prepareCostmapNamespace(ns, "");
+  EXPECT_EQ(stringAt(r.params, "global_frame"), "map");
+  EXPECT_EQ(stringAt(r.params, "robot_base_frame"), "base_footprint");
+  EXPECT_EQ(stringAt(r.params, "obstacles/scan/sensor_frame"), "laser");
+  EXPECT_TRUE(anyContains(r.warnings, {"global_frame '/map'", "using 'map'"}));
+  EXPECT_TRUE(anyContains(r.warnings, {"robot_base_frame '/base_footprint'"}));
+  EXPECT_TRUE(anyContains(r.warnings, {"obstacles/scan/sensor_frame '/laser'"}));
+  // A frame without it is left alone and says nothing.
+  const CompatResult plain = prepareCostmapNamespace(paramMap({{"global_frame", S("odom")}}), "");
+  EXPECT_EQ(stringAt(plain.params, "global_frame"), "odom");
+  EXPECT_FALSE(anyContains(plain.warnings, {"global_frame"}));
+}
+
+TEST(DropIn, CombinationMethodAsEachStackReadsIt)
+{
+  // costmap_2d: ObstaclePlugin.cfg's enum is 0 Overwrite, 1 Maximum, 99 Nothing; updateCosts writes
+  // nothing for any value but 0 and 1. Nav2: 0, 1, 2, any other value warns and uses 1.
+  auto rules = [](const char* type, int64_t value)
+  {
+    ParamValue ns = ParamValue::makeMap();
+    ns.set("plugins", pluginList({{"obstacles", type}}));
+    ns.set("obstacles", paramMap({{"combination_method", I(value)}}));
+    return prepareCostmapNamespace(ns, "");
+  };
+  auto valueOf = [](const CompatResult& r) { return r.params.findPath("obstacles/combination_method")->asInt(); };
+  EXPECT_EQ(valueOf(rules("costmap_2d::ObstacleLayer", 99)), 99);
+  EXPECT_EQ(valueOf(rules("costmap_2d::ObstacleLayer", 0)), 0);
+  const CompatResult two = rules("costmap_2d::VoxelLayer", 2);
+  EXPECT_EQ(valueOf(two), 99);
+  EXPECT_TRUE(anyContains(two.warnings, {"obstacles/combination_method 2", "writes nothing", "taken as 99"}));
+  const CompatResult nav2 = rules("nav2_costmap_2d::ObstacleLayer", 5);
+  EXPECT_EQ(valueOf(nav2), 1);
+  EXPECT_TRUE(anyContains(nav2.warnings, {"obstacles/combination_method 5", "uses 1"}));
+  EXPECT_EQ(valueOf(rules("nav2_costmap_2d::ObstacleLayer", 2)), 2);
+  // This package's own type: 0, 1, 2 and 99; anything else is refused naming the parameter.
+  EXPECT_EQ(parseObstacleConfig(ParamReader(paramMap({{"combination_method", I(99)}}), "o"), false).combination_method,
+            99);
+  const std::string refused = failure(
+      [] {
+        parseObstacleConfig(ParamReader(paramMap({{"combination_method", I(3)}}), "o"), false);
+      });
+  EXPECT_NE(refused.find("'combination_method'"), std::string::npos) << refused;
+  EXPECT_NE(refused.find("(got 3)"), std::string::npos) << refused;
+}
+
+TEST(DropIn, CombinationMethod99WritesNothingIntoTheMaster)
+{
+  LayeredCostmap lc("map", false, false);
+  lc.resizeMap(10, 10, 1.0, 0.0, 0.0);
+  ParamValue src =
+      paramMap({{"data_type", S("PointCloud2")}, {"obstacle_max_range", D(100.0)}, {"raytrace_max_range", D(100.0)}});
+  ParamValue p = paramMap({{"observation_sources", S("cloud")}, {"combination_method", I(99)}});
+  p.set("cloud", src);
+  auto ctx = std::make_shared<FakeContext>(p);
+  auto layer = std::make_shared<ObstacleLayer>();
+  layer->initialize(&lc, "obstacles", ctx);
+  ctx->bind(*layer);
+  lc.addPlugin(layer);
+  PointCloud2Data cloud = makeCloud({{3.0, 3.0, 0.5}});
+  ASSERT_EQ(ctx->publishCloud("cloud", cloud, poseAt(0.0, 0.0, 0.5)), 1);
+  lc.updateMap(0.0, 0.0, 0.0);
+  // The layer marked the point in its own grid, and left the master as it was.
+  EXPECT_EQ(layer->costmap().getCost(3, 3), LETHAL_OBSTACLE);
+  for (unsigned y = 0; y < 10; ++y)
+    for (unsigned x = 0; x < 10; ++x)
+      EXPECT_EQ(lc.getCostmap().getCost(x, y), FREE_SPACE) << x << "," << y;
+}
+
+TEST(DropIn, Nav2SourcesReadLaserScanByDefault)
+{
+  // nav2_costmap_2d/plugins/obstacle_layer.cpp: declare_or_get_parameter(source + ".data_type", "LaserScan").
+  ParamValue ns = ParamValue::makeMap();
+  ns.set("plugins",
+         pluginList({{"obstacles", "nav2_costmap_2d::ObstacleLayer"}, {"voxels", "costmap_2d::VoxelLayer"}}));
+  ns.set("obstacles", paramMap({{"observation_sources", S("scan")}, {"scan", paramMap({{"topic", S("/scan")}})}}));
+  ns.set("voxels", paramMap({{"observation_sources", S("cam")}, {"cam", paramMap({{"topic", S("/cam")}})}}));
+  const CompatResult r = prepareCostmapNamespace(ns, "");
+  EXPECT_EQ(stringAt(r.params, "obstacles/scan/data_type"), "LaserScan");
+  EXPECT_TRUE(anyContains(r.notes, {"obstacles/scan", "data_type", "LaserScan", "Nav2"}));
+  // costmap_2d's types keep this package's default (the layer names it at start-up).
+  EXPECT_EQ(stringAt(r.params, "voxels/cam/data_type"), "<none>");
+}
+
+TEST(DropIn, PreHydroValuesCostmap2dSkipsAreNamed)
+{
+  // costmap_2d_ros.cpp loadOldParameters: getParam("static_map", bool) fails on a string or an int
+  // (no static layer); map_type other than "voxel" gives an ObstacleLayer.
+  ParamValue ns = paramMap({{"static_map", S("true")}, {"map_type", S("voxels")}});
+  const CompatResult r = prepareCostmapNamespace(ns, "");
+  const auto lists = parsePluginLists(r.params);
+  ASSERT_EQ(lists.plugins.size(), 2u);
+  EXPECT_EQ(lists.plugins[0].type, "costmap_2d::ObstacleLayer");
+  EXPECT_TRUE(anyContains(r.warnings, {"\"static_map\" is \"true\"", "no static layer"}));
+  EXPECT_TRUE(anyContains(r.warnings, {"\"map_type\" is \"voxels\"", "ObstacleLayer"}));
+  const CompatResult one = prepareCostmapNamespace(paramMap({{"static_map", I(1)}, {"map_type", S("costmap")}}), "");
+  EXPECT_TRUE(anyContains(one.warnings, {"\"static_map\" is 1"}));
+  EXPECT_FALSE(anyContains(one.warnings, {"\"map_type\" is"}));
+}
+
+TEST(DropIn, NestedPluginNamesAndRos2LevelAndNoPlugins)
+{
+  // costmap_2d reads the plugin "layers/static" from <costmap>/layers/static.
+  ParamValue ns = ParamValue::makeMap();
+  ns.set("plugins", pluginList({{"layers/static", "costmap_2d::StaticLayer"}}));
+  ns.set("layers", paramMap({{"static", paramMap({{"map_topic", S("/mymap")}})}}));
+  const CompatResult nested = prepareCostmapNamespace(ns, "");
+  ASSERT_NE(nested.params.find("layers/static"), nullptr);  // the key every look-up by plugin name uses
+  EXPECT_EQ(stringAt(*nested.params.find("layers/static"), "map_topic"), "/mymap");
+  EXPECT_EQ(nested.params.find("layers"), nullptr);  // left empty, gone: no "unused namespace" warning
+  ParamReadLog log;
+  const ParamValue* layer_params = nested.params.find("layers/static");
+  EXPECT_EQ(parseStaticConfig(ParamReader(*layer_params, "layers/static"), true).map_topic, "/mymap");
+  EXPECT_TRUE(unusedParameterLines(nested, log,
+                                   {{PluginSpec{"layers/static", "costmap_2d::StaticLayer"}, layer_params}},
+                                   "/move_base/global_costmap")
+                  .size() <= 1);  // at most the costmap's own keys nobody read here (plugins)
+
+  // A Nav2 file loaded with its ros__parameters level.
+  ParamValue ros2 = ParamValue::makeMap();
+  ros2.set("ros__parameters", paramMap({{"global_frame", S("odom")}, {"resolution", D(0.1)}}));
+  const CompatResult lifted = prepareCostmapNamespace(ros2, "");
+  EXPECT_EQ(stringAt(lifted.params, "global_frame"), "odom");
+  EXPECT_EQ(lifted.params.find("ros__parameters"), nullptr);
+  EXPECT_TRUE(anyContains(lifted.warnings, {"ros__parameters", "remove that level"}));
+
+  // plugins: [] builds a costmap with no layer: said.
+  ParamValue empty = ParamValue::makeMap();
+  empty.set("plugins", ParamValue::makeList());
+  EXPECT_TRUE(anyContains(prepareCostmapNamespace(empty, "").warnings, {"no plugins and no filters"}));
+  // The move_base section lift is a note, as the node logged it.
+  ParamValue mb = ParamValue::makeMap();
+  mb.set("global_costmap", paramMap({{"resolution", D(0.1)}}));
+  const CompatResult from_mb = prepareCostmapNamespace(mb, "global_costmap");
+  EXPECT_TRUE(anyContains(from_mb.notes, {"holds a move_base file's `global_costmap:` section"}));
+}
+
+TEST(DropIn, FootprintWinsOverRobotRadiusSaid)
+{
+  ParamValue ns = paramMap({{"footprint", S("[[0.1, 0.1], [0.1, -0.1], [-0.1, -0.1]]")}, {"robot_radius", D(0.3)}});
+  EXPECT_TRUE(anyContains(prepareCostmapNamespace(ns, "").notes, {"robot_radius 0.3 is not used"}));
+  ParamValue empty_fp = paramMap({{"footprint", S("[]")}, {"robot_radius", D(0.3)}});
+  EXPECT_FALSE(anyContains(prepareCostmapNamespace(empty_fp, "").notes, {"robot_radius"}));
+}
+
+TEST(DropIn, ParentsInATreeNearestFirst)
+{
+  ParamValue root = ParamValue::makeMap();
+  root.set("robot_radius", D(0.4));
+  root.set("move_base", paramMap({{"footprint", S("[[1, 1], [1, -1], [-1, 0]]")},
+                                  {"global_costmap", paramMap({{"resolution", D(0.05)}})}}));
+  const auto parents = parentsInTree(root, "move_base/global_costmap");
+  ASSERT_EQ(parents.size(), 2u);
+  EXPECT_EQ(parents[0].name, "/move_base");
+  EXPECT_NE(parents[0].values.find("footprint"), nullptr);
+  EXPECT_EQ(parents[1].name, "/");
+  ASSERT_NE(parents[1].values.find("robot_radius"), nullptr);
+  EXPECT_DOUBLE_EQ(parents[1].values.find("robot_radius")->asDouble(), 0.4);
+  EXPECT_TRUE(parentsInTree(root, "").empty());
+}
+
+TEST(DropIn, TopicNamesRoscppWouldRefuseAreNamedAtStartUp)
+{
+  // "scan, bump": costmap_2d splits on blanks, so the source is "scan," (and its default topic too).
+  const std::string comma = failure(
+      [] {
+        parseObstacleConfig(ParamReader(paramMap({{"observation_sources", S("scan, bump")}}), "o"), false);
+      });
+  EXPECT_NE(comma.find("'observation_sources'"), std::string::npos) << comma;
+  EXPECT_NE(comma.find("not commas"), std::string::npos) << comma;
+  ParamValue spaced = paramMap({{"observation_sources", S("scan")}});
+  spaced.set("scan", paramMap({{"topic", S("scan topic")}}));
+  const std::string topic = failure([&] { parseObstacleConfig(ParamReader(spaced, "o"), false); });
+  EXPECT_NE(topic.find("o/scan: parameter 'topic'"), std::string::npos) << topic;
+  const std::string map_topic = failure(
+      [] {
+        parseStaticConfig(ParamReader(paramMap({{"map_topic", S("my map")}}), "static"), true);
+      });
+  EXPECT_NE(map_topic.find("'map_topic'"), std::string::npos) << map_topic;
+  const std::string range = failure(
+      [] {
+        parseRangeSensorConfig(ParamReader(paramMap({{"topics", ParamValue::makeList({S("/sonar-1")})}}), "r"));
+      });
+  EXPECT_NE(range.find("'topics'"), std::string::npos) << range;
+  EXPECT_NE(range.find("/sonar-1"), std::string::npos) << range;
+  // Private and absolute names are names.
+  ParamValue fine = paramMap({{"observation_sources", S("a b")}});
+  fine.set("a", paramMap({{"topic", S("~scan")}}));
+  fine.set("b", paramMap({{"topic", S("/robot/scan")}}));
+  EXPECT_EQ(failure([&] { parseObstacleConfig(ParamReader(fine, "o"), false); }), "");
+}
+
+TEST(DropIn, ASourceWithoutItsNamespaceAndAMisspeltOneAreNamed)
+{
+  LayeredCostmap lc("map", false, false);
+  lc.resizeMap(10, 10, 1.0, 0.0, 0.0);
+  ParamValue p = paramMap({{"observation_sources", S("laser_scan_sensor")}});
+  p.set("laser_scan_senser", paramMap({{"data_type", S("LaserScan")}, {"topic", S("/scan")}}));
+  auto ctx = std::make_shared<FakeContext>(p);
+  auto layer = std::make_shared<ObstacleLayer>();
+  ParamReadLog log;
+  layer->initialize(&lc, "obstacles", ctx);
+  bool named = false;
+  for (const auto& r : ctx->reports)
+    named = named || (r.severity == Severity::Warn &&
+                      r.message.find("'laser_scan_sensor' has no namespace") != std::string::npos);
+  EXPECT_TRUE(named) << "no warning about the source without its namespace";
+  // The unused namespace is described as the layer's, with the nearest source name.
+  CompatResult compat;
+  compat.params = ParamValue::makeMap();
+  const auto lines =
+      unusedParameterLines(compat, log, {{PluginSpec{"obstacles", "costmap_2d::ObstacleLayer"}, &ctx->params()}},
+                           "/move_base/local_costmap");
+  EXPECT_TRUE(anyContains(lines, {"namespace 'laser_scan_senser' in /move_base/local_costmap/obstacles",
+                                  "not read by this ObstacleLayer", "`laser_scan_sensor`"}))
+      << (lines.empty() ? std::string("no line") : lines.front());
+  EXPECT_FALSE(anyContains(lines, {"names no plugin"}));
+}
+
+TEST(DropIn, LethalCostThresholdClampIsSaid)
+{
+  // costmap_2d's static_layer.cpp clamps it to [0, 100] silently.
+  LayeredCostmap lc("map", false, false);
+  auto ctx = std::make_shared<FakeContext>(paramMap({{"lethal_cost_threshold", I(254)}}));
+  auto layer = std::make_shared<StaticLayer>();
+  layer->initialize(&lc, "static", ctx);
+  EXPECT_EQ(layer->config().lethal_cost_threshold, 100);
+  bool said = false;
+  for (const auto& r : ctx->reports)
+    said = said || (r.key == "lethal_cost_threshold" && r.message.find("254") != std::string::npos &&
+                    r.message.find("100 used") != std::string::npos);
+  EXPECT_TRUE(said);
+}
