@@ -1,6 +1,7 @@
 #include "costmap_layers/core/param_reader.hpp"
 
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 #include <stdexcept>
 
@@ -75,7 +76,22 @@ double ParamReader::getDouble(const std::string& name, double def, double min, d
     return value;
   };
   if (v == nullptr) return noted(def);
-  if (!v->isNumber()) fail(name, "must be a number");
+  if (!v->isNumber())
+  {
+    // rosparam (PyYAML, YAML 1.1) reads 5e-2, 1e3 and -.5 as strings: say how to write them.
+    if (v->type() == ParamValue::Type::String && !v->asString().empty())
+    {
+      const std::string& text = v->asString();
+      char* end = nullptr;
+      std::strtod(text.c_str(), &end);
+      const bool plain = text.find_first_not_of("0123456789+-.eE") == std::string::npos;
+      if (plain && end != nullptr && *end == '\0')
+        fail(name,
+             "must be a number; rosparam (YAML 1.1) reads this as a string: write a float with a dot and, "
+             "for an exponent, its sign (5.0e-2, 1.0e+3, -0.5)");
+    }
+    fail(name, "must be a number");
+  }
   const double value = v->asDouble();
   if (!std::isfinite(value)) fail(name, "must be finite");
   if (value < min || value > max)

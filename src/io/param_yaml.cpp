@@ -112,7 +112,7 @@ ParamValue parseInt(const std::string& s)
   return ParamValue::makeInt(static_cast<int64_t>(magnitude));
 }
 
-std::optional<double> parseFloat(const std::string& s)
+std::optional<double> parseFloat(const std::string& s, bool rosparam_floats)
 {
   size_t pos = 0;
   bool negative = false;
@@ -166,6 +166,14 @@ std::optional<double> parseFloat(const std::string& s)
     if (exp_digits == 0) return std::nullopt;
   }
   if (pos != s.size() || (!dot && !exponent)) return std::nullopt;
+  if (rosparam_floats)
+  {
+    // PyYAML's float resolver: a dot always; an exponent with its sign; no sign before a leading dot.
+    const std::size_t e = s.find_first_of("eE");
+    const bool signed_leading_dot = (s[0] == '+' || s[0] == '-') && s.size() > 1 && s[1] == '.';
+    if (!dot || (e != std::string::npos && s[e + 1] != '+' && s[e + 1] != '-') || signed_leading_dot)
+      return std::nullopt;
+  }
   errno = 0;
   char* end = nullptr;
   const double v = std::strtod(clean.c_str(), &end);
@@ -176,7 +184,7 @@ std::optional<double> parseFloat(const std::string& s)
 class Converter
 {
 public:
-  explicit Converter(const std::string& what) : what_(what) {}
+  Converter(const std::string& what, bool rosparam_floats) : what_(what), rosparam_floats_(rosparam_floats) {}
 
   ParamValue convert(const YAML::Node& node, int depth)
   {
@@ -229,7 +237,7 @@ private:
     {
       ParamValue i = parseInt(text);
       if (i.isNumber()) return ParamValue::makeDouble(i.asDouble());
-      const auto f = parseFloat(text);
+      const auto f = parseFloat(text, false);
       if (!f) fail(node, "'" + text + "' is not a valid !!float");
       return ParamValue::makeDouble(*f);
     }
@@ -244,7 +252,7 @@ private:
       if (!isNullText(text)) fail(node, "'" + text + "' is not a valid !!null");
       return ParamValue();
     }
-    return typePlainScalar(text);
+    return typePlainScalar(text, rosparam_floats_);
   }
 
   ParamValue map(const YAML::Node& node, int depth)
@@ -292,11 +300,12 @@ private:
   }
 
   const std::string& what_;
+  bool rosparam_floats_;  ///< type plain floats as PyYAML does (see parseParamsYaml)
   uint64_t nodes_ = 0;
 };
 }  // namespace
 
-ParamValue typePlainScalar(const std::string& text)
+ParamValue typePlainScalar(const std::string& text, bool rosparam_floats)
 {
   if (isNullText(text)) return ParamValue();
   if (const auto b = parseBool(text)) return ParamValue::makeBool(*b);
@@ -305,12 +314,12 @@ ParamValue typePlainScalar(const std::string& text)
   {
     ParamValue i = parseInt(text);
     if (i.isNumber()) return i;
-    if (const auto f = parseFloat(text)) return ParamValue::makeDouble(*f);
+    if (const auto f = parseFloat(text, rosparam_floats)) return ParamValue::makeDouble(*f);
   }
   return ParamValue::makeString(text);
 }
 
-ParamValue parseParamsYaml(const std::string& text, const std::string& what)
+ParamValue parseParamsYaml(const std::string& text, const std::string& what, bool rosparam_floats)
 {
   YAML::Node root;
   try
@@ -324,7 +333,7 @@ ParamValue parseParamsYaml(const std::string& text, const std::string& what)
   }
   try
   {
-    return Converter(what).convert(root, 0);
+    return Converter(what, rosparam_floats).convert(root, 0);
   }
   catch (const YAML::Exception& e)
   {
@@ -332,10 +341,10 @@ ParamValue parseParamsYaml(const std::string& text, const std::string& what)
   }
 }
 
-ParamValue loadParamsYamlFile(const std::string& path, uint64_t max_bytes)
+ParamValue loadParamsYamlFile(const std::string& path, uint64_t max_bytes, bool rosparam_floats)
 {
   const std::vector<uint8_t> bytes = readRegularFile(path, "params file", max_bytes);
-  return parseParamsYaml(std::string(bytes.begin(), bytes.end()), "'" + path + "'");
+  return parseParamsYaml(std::string(bytes.begin(), bytes.end()), "'" + path + "'", rosparam_floats);
 }
 }  // namespace io
 }  // namespace costmap_layers

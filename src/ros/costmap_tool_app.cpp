@@ -249,7 +249,8 @@ private:
 
 int run(const ToolArgs& a, std::ostream& out, std::ostream& err)
 {
-  ParamValue root = io::loadParamsYamlFile(a.params);
+  // Typed as `rosparam load` types it (PyYAML's floats), so that the tool refuses what the node would.
+  ParamValue root = io::loadParamsYamlFile(a.params, io::kMaxParamsYamlBytes, true);
   const ParamValue* raw = a.ns.empty() ? &root : root.findPath(a.ns);
   if (raw == nullptr || !raw->isMap())
     throw std::runtime_error(a.params + ": namespace '" + a.ns + "' not found (or not a map)");

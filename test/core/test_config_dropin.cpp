@@ -327,3 +327,19 @@ TEST(DropIn, LethalCostThresholdClampIsSaid)
                     r.message.find("100 used") != std::string::npos);
   EXPECT_TRUE(said);
 }
+
+TEST(DropIn, ANumberRosparamReadsAsAStringSaysHowToWriteIt)
+{
+  const std::string hint = failure(
+      [] {
+        ParamReader(paramMap({{"inflation_radius", S("5e-1")}}), "inflation").getDouble("inflation_radius", 0.55);
+      });
+  EXPECT_NE(hint.find("'inflation_radius'"), std::string::npos) << hint;
+  EXPECT_NE(hint.find("5.0e-2"), std::string::npos) << hint;
+  const std::string plain = failure(
+      [] {
+        ParamReader(paramMap({{"inflation_radius", S("wide")}}), "inflation").getDouble("inflation_radius", 0.55);
+      });
+  EXPECT_NE(plain.find("must be a number"), std::string::npos) << plain;
+  EXPECT_EQ(plain.find("rosparam"), std::string::npos) << plain;
+}

@@ -129,6 +129,21 @@ TEST(ParamYaml, Floats)
     EXPECT_EQ(one(s).type(), Type::String) << s;
 }
 
+// What `rosparam load` puts on the parameter server: PyYAML's float resolver wants a dot, a signed
+// exponent, and no sign before a leading dot (yaml.safe_load('a: 5e-2') gives the string '5e-2').
+TEST(ParamYaml, FloatsAsRosparamTypesThem)
+{
+  auto typed = [](const std::string& text) { return parseParamsYaml("v: " + text, "t", true).find("v")->type(); };
+  for (const char* f : {"1.0", "-2.5", "+0.25", "1.", ".5", "1.0e+3", "2.5E-2", "1.e+3", "6.02e+23", ".inf", "-.inf",
+                        ".nan", "1_000.5"})
+    EXPECT_EQ(typed(f), Type::Double) << f;
+  for (const char* s : {"5e-2", "1e3", "1e+3", "1.0e1", "-.5", "+.5", "2.5E2"})
+    EXPECT_EQ(typed(s), Type::String) << s;
+  EXPECT_EQ(typed("42"), Type::Int);
+  // The default (costmap_layers' own files) keeps reading them as numbers.
+  EXPECT_EQ(parseParamsYaml("v: 5e-2", "t").find("v")->type(), Type::Double);
+}
+
 TEST(ParamYaml, NullsAndStrings)
 {
   for (const char* n : {"~", "null", "Null", "NULL", ""})

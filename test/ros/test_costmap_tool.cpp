@@ -554,3 +554,21 @@ move_base:
   EXPECT_EQ(at(16), 46);   // 0.6 m: 252 * exp(-1.7) = 46.0
   EXPECT_EQ(at(17), 0);    // 0.7 m, beyond inflation_radius
 }
+
+// costmap_tool types its --params as `rosparam load` does: 5e-1 is a string there, and the node would
+// refuse it; the tool refuses it too, saying how to write it.
+TEST(CostmapTool, NumbersRosparamReadsAsStringsAreRefusedAsByTheNode)
+{
+  TempDir dir;
+  const std::string map = writeMap(dir, "map", 5, 5, std::vector<uint8_t>(25, 254), 0.1, 0.0, 0.0);
+  const std::string params = dir.write("params.yaml", R"(
+plugins:
+  - {name: inflation, type: costmap_layers/InflationLayer}
+inflation:
+  inflation_radius: 5e-1
+)");
+  const ToolResult r = runTool({"--map", map, "--params", params}, dir);
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("'inflation_radius'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("reads this as a string"), std::string::npos) << r.err;
+}

@@ -13,7 +13,9 @@
 //           (010 = 8), as PyYAML; a value beyond int64 becomes a Double
 //   Double  1.0  -2.5  1.  .5  6.02e23  1.0e+3  .inf  -.inf  +.inf  .nan (also .Inf, .NAN, ...)
 //           Note: this accepts a little more than PyYAML, which requires a dot and a signed exponent
-//           and so reads "1e3", "1e-3" and "-.5" as strings; here they are numbers.
+//           and so reads "1e3", "1e-3" and "-.5" as strings; here they are numbers, unless
+//           rosparam_floats asks for PyYAML's rule (what a file loaded by `rosparam load` gets:
+//           costmap_tool reads its --params so, to refuse what costmap_node would refuse).
 //   String  everything else (e.g. "09", "1.2.3", "0o17", "y", "n", dates, and sexagesimal "1:30",
 //           which PyYAML would read as the number 90)
 // Quoted ('...' or "...") and block (| or >) scalars are always String: yaml-cpp gives them the
@@ -48,14 +50,15 @@ namespace io
 constexpr uint64_t kMaxYamlNodes = uint64_t{1} << 18;
 
 /// Parses YAML text; `what` names the source in error messages (e.g. a file name or "--params").
-ParamValue parseParamsYaml(const std::string& text, const std::string& what);
+ParamValue parseParamsYaml(const std::string& text, const std::string& what, bool rosparam_floats = false);
 
 /// Reads and parses a YAML file: a regular file of at most max_bytes (file_limits.hpp); an error
 /// names the path when it cannot be opened, is not a regular file or is too large.
-ParamValue loadParamsYamlFile(const std::string& path, uint64_t max_bytes = kMaxParamsYamlBytes);
+ParamValue loadParamsYamlFile(const std::string& path, uint64_t max_bytes = kMaxParamsYamlBytes,
+                              bool rosparam_floats = false);
 
 /// The typing rule for one plain (unquoted, untagged) scalar, exposed for tests and for tools that
 /// take "key:=value" arguments on a command line.
-ParamValue typePlainScalar(const std::string& text);
+ParamValue typePlainScalar(const std::string& text, bool rosparam_floats = false);
 }  // namespace io
 }  // namespace costmap_layers
