@@ -343,6 +343,27 @@ CompatResult applyCostmap2dRules(const ParamValue& ns_in, const std::vector<Pare
       if (spec.type == rule.type)
         for (const char* key : rule.keys)
           moveParameter(ns, spec.name, key, false, r);
+    if (spec.type == "nav2_costmap_2d::StaticLayer")
+      // Nav2's StaticLayer reads these at the costmap level only (node->get_parameter), not in its own
+      // namespace: the costmap's value is the one it uses.
+      for (const char* key :
+           {"lethal_cost_threshold", "unknown_cost_value", "trinary_costmap", "use_maximum", "track_unknown_space"})
+      {
+        const ParamValue* v = ns.find(key);
+        if (v == nullptr) continue;
+        const ParamValue value = *v;
+        ParamValue& layer = subMap(ns, spec.name);
+        const ParamValue* own = layer.find(key);
+        if (own != nullptr && own->toString() != value.toString())
+          r.warnings.push_back("'" + spec.name + "/" + key + "' " + own->toString() + " is replaced by the costmap's " +
+                               value.toString() + ": Nav2's StaticLayer reads " + key +
+                               " at the costmap level only (remove one of them)");
+        else if (own == nullptr && std::string(key) != "track_unknown_space")
+          r.notes.push_back(spec.name + ": " + key + " " + value.toString() +
+                            " taken from the costmap's namespace, where Nav2's StaticLayer reads it");
+        layer.set(key, value);
+        consume(r, key);
+      }
     if (spec.type == "costmap_2d::StaticLayer")
     {
       ParamValue& layer = subMap(ns, spec.name);

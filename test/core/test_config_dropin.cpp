@@ -343,3 +343,25 @@ TEST(DropIn, ANumberRosparamReadsAsAStringSaysHowToWriteIt)
   EXPECT_NE(plain.find("must be a number"), std::string::npos) << plain;
   EXPECT_EQ(plain.find("rosparam"), std::string::npos) << plain;
 }
+
+TEST(DropIn, Nav2StaticLayerKeysAtTheCostmapLevelApply)
+{
+  // nav2_costmap_2d/plugins/static_layer.cpp: node->get_parameter("lethal_cost_threshold", ...) and
+  // the same for unknown_cost_value, trinary_costmap, use_maximum, track_unknown_space.
+  ParamValue ns = paramMap({{"lethal_cost_threshold", I(65)}, {"trinary_costmap", B(false)}, {"use_maximum", B(true)}});
+  ns.set("plugins", pluginList({{"static_layer", "nav2_costmap_2d::StaticLayer"}}));
+  ns.set("static_layer", paramMap({{"use_maximum", B(false)}}));
+  const CompatResult r = prepareCostmapNamespace(ns, "");
+  const StaticConfig c = parseStaticConfig(ParamReader(*r.params.find("static_layer"), "static_layer"), true);
+  EXPECT_EQ(c.lethal_cost_threshold, 65);
+  EXPECT_FALSE(c.trinary_costmap);
+  EXPECT_TRUE(c.use_maximum);
+  EXPECT_TRUE(anyContains(r.warnings, {"'static_layer/use_maximum' false", "costmap level only"}));
+  EXPECT_TRUE(anyContains(r.notes, {"lethal_cost_threshold 65"}));
+  // Used up: not reported as unknown keys of the costmap.
+  EXPECT_NE(std::find(r.consumed.begin(), r.consumed.end(), "lethal_cost_threshold"), r.consumed.end());
+  // A costmap_2d::StaticLayer is not read that way (it has copyParentParameters for its own keys).
+  ParamValue c2d = paramMap({{"trinary_costmap", B(false)}});
+  c2d.set("plugins", pluginList({{"static_layer", "costmap_2d::StaticLayer"}}));
+  EXPECT_EQ(prepareCostmapNamespace(c2d, "").params.findPath("static_layer/trinary_costmap"), nullptr);
+}
