@@ -279,6 +279,10 @@ void translateObstacleDefaults(ParamValue& ns, const PluginSpec& spec, CompatRes
   for (const auto& source : sourceNamesOf(layer->find("observation_sources")))
   {
     ParamValue& src = subMap(*layer, source);
+    if (src.find("max_obstacle_height") == nullptr)
+      r.notes.push_back(spec.name + "/" + source +
+                        ": max_obstacle_height not set: 2.0 m, costmap_2d's default (Nav2's is 0.0, which keeps no "
+                        "point above the ground: set it to be sure)");
     if (src.find("data_type") != nullptr) continue;
     src.set("data_type", ParamValue::makeString("LaserScan"));
     r.notes.push_back(spec.name + "/" + source + ": data_type not set: LaserScan, Nav2's default");

@@ -174,6 +174,8 @@ TEST(DropIn, Nav2SourcesReadLaserScanByDefault)
   const CompatResult r = prepareCostmapNamespace(ns, "");
   EXPECT_EQ(stringAt(r.params, "obstacles/scan/data_type"), "LaserScan");
   EXPECT_TRUE(anyContains(r.notes, {"obstacles/scan", "data_type", "LaserScan", "Nav2"}));
+  // Nav2's per-source max_obstacle_height default (0.0) is not taken, but said.
+  EXPECT_TRUE(anyContains(r.notes, {"obstacles/scan: max_obstacle_height not set: 2.0 m", "Nav2's is 0.0"}));
   // costmap_2d's types keep this package's default (the layer names it at start-up).
   EXPECT_EQ(stringAt(r.params, "voxels/cam/data_type"), "<none>");
 }
