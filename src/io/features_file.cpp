@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "costmap_layers/core/speed_filter.hpp"
 #include "costmap_layers/io/param_yaml.hpp"
 
 namespace costmap_layers::io
@@ -32,5 +33,15 @@ SpeedLimitsData speedLimitsFromParams(const ParamValue& root, const std::string&
 SpeedLimitsData loadFeaturesFile(const std::string& path)
 {
   return speedLimitsFromParams(loadParamsYamlFile(path, kMaxFeaturesYamlBytes), path);
+}
+
+std::vector<std::string> featuresFileProblems(const SpeedLimitsData& limits)
+{
+  std::vector<SpeedLimitIssue> issues;
+  buildSpeedLimitTable(limits, SpeedFilterConfig{}, &issues);
+  std::vector<std::string> lines;
+  for (const auto& i : issues)
+    lines.push_back(std::string(i.error ? "error: " : "warning: ") + i.message);
+  return lines;
 }
 }  // namespace costmap_layers::io

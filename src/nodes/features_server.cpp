@@ -20,7 +20,17 @@ int main(int argc, char** argv)
   costmap_layers::SpeedLimits msg;
   try
   {
-    for (const auto& entry : costmap_layers::io::loadFeaturesFile(yaml).limits)
+    const costmap_layers::SpeedLimitsData data = costmap_layers::io::loadFeaturesFile(yaml);
+    // Published as written (each SpeedFilter drops a bad entry and keeps the rest, saying so); said
+    // here too, where the file is.
+    for (const auto& line : costmap_layers::io::featuresFileProblems(data))
+    {
+      if (line.rfind("error", 0) == 0)
+        ROS_ERROR("features_server: %s: %s", yaml.c_str(), line.c_str());
+      else
+        ROS_WARN("features_server: %s: %s", yaml.c_str(), line.c_str());
+    }
+    for (const auto& entry : data.limits)
     {
       costmap_layers::SpeedLimit limit;
       limit.area_id = entry.area_id;

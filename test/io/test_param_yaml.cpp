@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -12,9 +13,13 @@
 #include <string>
 #include <vector>
 
+#include "costmap_layers/io/features_file.hpp"
+
 using costmap_layers::ParamValue;
+using costmap_layers::io::featuresFileProblems;
 using costmap_layers::io::loadParamsYamlFile;
 using costmap_layers::io::parseParamsYaml;
+using costmap_layers::io::speedLimitsFromParams;
 using costmap_layers::io::typePlainScalar;
 using Type = costmap_layers::ParamValue::Type;
 
@@ -289,3 +294,28 @@ TEST(ParamYaml, Files)
   std::filesystem::remove_all(dir, ec);
 }
 }  // namespace
+
+// features_server says at load what every SpeedFilter will drop or remark (m/s rules, any mode):
+// an area id outside the mask's 1..100, a speed that is not a finite number >= 0, a repeated id.
+TEST(FeaturesFile, ProblemsEverySpeedFilterWouldReportAreListed)
+{
+  const ParamValue tree = parseParamsYaml(
+      "limits: [{area_id: 1, max_speed: 0.5}, {area_id: 0, max_speed: 0.3}, {area_id: 2, max_speed: -1.0},\n"
+      "         {area_id: 3, max_speed: .nan}, {area_id: 1, max_speed: 0.4}, {area_id: 101, max_speed: 1.0}]\n",
+      "features.yaml");
+  const std::vector<std::string> lines = featuresFileProblems(speedLimitsFromParams(tree, "features.yaml"));
+  auto has = [&](const std::string& a, const std::string& b)
+  {
+    return std::any_of(lines.begin(), lines.end(),
+                       [&](const std::string& l)
+                       { return l.find(a) != std::string::npos && l.find(b) != std::string::npos; });
+  };
+  EXPECT_EQ(lines.size(), 5u);
+  EXPECT_TRUE(has("error: limits[1] (area_id 0", "1..100"));
+  EXPECT_TRUE(has("error: limits[2] (area_id 2, max_speed -1)", ">= 0"));
+  EXPECT_TRUE(has("error: limits[3] (area_id 3, max_speed nan)", "finite"));
+  EXPECT_TRUE(has("warning: limits[4] (area_id 1", "repeats area id 1"));
+  EXPECT_TRUE(has("error: limits[5] (area_id 101", "1..100"));
+  const ParamValue good = parseParamsYaml("limits: [{area_id: 1, max_speed: 0.5}, {area_id: 2, max_speed: 0}]", "f");
+  EXPECT_TRUE(featuresFileProblems(speedLimitsFromParams(good, "f")).empty());
+}

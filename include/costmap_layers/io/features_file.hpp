@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "costmap_layers/core/grid_data.hpp"
 #include "costmap_layers/core/param_value.hpp"
@@ -14,4 +15,8 @@ namespace costmap_layers::io
 SpeedLimitsData speedLimitsFromParams(const ParamValue& root, const std::string& what);
 /// speedLimitsFromParams() on a YAML file.
 SpeedLimitsData loadFeaturesFile(const std::string& path);
+/// What every SpeedFilter will say about these limits whatever its mode (buildSpeedLimitTable's rules
+/// in m/s: area ids 1..100, finite speeds >= 0, repeated ids): one line per entry, "error: ..." for
+/// an entry a filter drops, "warning: ..." for one it takes with a remark. Empty when all is well.
+std::vector<std::string> featuresFileProblems(const SpeedLimitsData& limits);
 }  // namespace costmap_layers::io
