@@ -747,18 +747,12 @@ std::string describeUnknownKey(const UnknownKey& key, const std::string& ns_name
 }
 namespace
 {
-/// costmap_2d reads the plugin named "a/b" from the namespace a/b, which a parameter tree holds nested
-/// (a: {b: {...}}): that map moves to the key "a/b", where everything here looks a plugin's parameters
-/// up; maps left empty on the way go too.
-void hoistNestedPluginNamespace(ParamValue& ns, const std::string& name)
+/// The components of a namespace path ("a//b/" -> a, b).
+std::vector<std::string> pathParts(const std::string& path)
 {
-  if (name.find('/') == std::string::npos || ns.find(name) != nullptr) return;
-  const ParamValue* nested = ns.findPath(name);
-  if (nested == nullptr || !nested->isMap()) return;
-  const ParamValue copy = *nested;
   std::vector<std::string> parts;
   std::string part;
-  for (const char c : name + "/")
+  for (const char c : path + "/")
   {
     if (c != '/')
     {
@@ -768,6 +762,19 @@ void hoistNestedPluginNamespace(ParamValue& ns, const std::string& name)
     if (!part.empty()) parts.push_back(part);
     part.clear();
   }
+  return parts;
+}
+
+/// costmap_2d reads the plugin named "a/b" from the namespace a/b, which a parameter tree holds nested
+/// (a: {b: {...}}): that map moves to the key "a/b", where everything here looks a plugin's parameters
+/// up; maps left empty on the way go too.
+void hoistNestedPluginNamespace(ParamValue& ns, const std::string& name)
+{
+  if (name.find('/') == std::string::npos || ns.find(name) != nullptr) return;
+  const ParamValue* nested = ns.findPath(name);
+  if (nested == nullptr || !nested->isMap()) return;
+  const ParamValue copy = *nested;
+  const std::vector<std::string> parts = pathParts(name);
   // Erase the leaf, then each ancestor it leaves empty.
   for (std::size_t depth = parts.size(); depth-- > 0;)
   {
@@ -812,18 +819,7 @@ CompatResult prepareCostmapNamespace(ParamValue ns, const std::string& own_name,
 
 std::vector<ParentNamespace> parentsInTree(const ParamValue& root, const std::string& path)
 {
-  std::vector<std::string> parts;
-  std::string part;
-  for (const char c : path + "/")
-  {
-    if (c != '/')
-    {
-      part += c;
-      continue;
-    }
-    if (!part.empty()) parts.push_back(part);
-    part.clear();
-  }
+  const std::vector<std::string> parts = pathParts(path);
   std::vector<ParentNamespace> parents;
   for (std::size_t depth = parts.size(); depth-- > 0;)
   {

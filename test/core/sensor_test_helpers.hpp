@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <exception>
 #include <initializer_list>
 #include <string>
 #include <utility>
@@ -96,6 +97,21 @@ inline ParamValue paramMap(std::initializer_list<std::pair<const char*, ParamVal
     p.set(it.first, it.second);
   return p;
 }
+/// The message of the E that fn throws, or "" when it throws nothing.
+template <class E = std::exception, class Fn>
+std::string thrownMessage(Fn fn)
+{
+  try
+  {
+    fn();
+  }
+  catch (const E& e)
+  {
+    return e.what();
+  }
+  return "";
+}
+
 inline ParamValue S(const std::string& s)
 {
   return ParamValue::makeString(s);

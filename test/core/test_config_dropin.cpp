@@ -54,20 +54,6 @@ std::string stringAt(const ParamValue& ns, const std::string& path)
   return v != nullptr && v->type() == ParamValue::Type::String ? v->asString() : "<none>";
 }
 
-/// The failure message of f, or "" when it does not throw.
-template <class F>
-std::string failure(F f)
-{
-  try
-  {
-    f();
-  }
-  catch (const std::exception& e)
-  {
-    return e.what();
-  }
-  return "";
-}
 }  // namespace
 
 TEST(RosNames, RoscppsGrammar)
@@ -132,7 +118,7 @@ TEST(DropIn, CombinationMethodAsEachStackReadsIt)
   // This package's own type: 0, 1, 2 and 99; anything else is refused naming the parameter.
   EXPECT_EQ(parseObstacleConfig(ParamReader(paramMap({{"combination_method", I(99)}}), "o"), false).combination_method,
             99);
-  const std::string refused = failure(
+  const std::string refused = thrownMessage(
       [] {
         parseObstacleConfig(ParamReader(paramMap({{"combination_method", I(3)}}), "o"), false);
       });
@@ -260,7 +246,7 @@ TEST(DropIn, ParentsInATreeNearestFirst)
 TEST(DropIn, TopicNamesRoscppWouldRefuseAreNamedAtStartUp)
 {
   // "scan, bump": costmap_2d splits on blanks, so the source is "scan," (and its default topic too).
-  const std::string comma = failure(
+  const std::string comma = thrownMessage(
       [] {
         parseObstacleConfig(ParamReader(paramMap({{"observation_sources", S("scan, bump")}}), "o"), false);
       });
@@ -268,14 +254,14 @@ TEST(DropIn, TopicNamesRoscppWouldRefuseAreNamedAtStartUp)
   EXPECT_NE(comma.find("not commas"), std::string::npos) << comma;
   ParamValue spaced = paramMap({{"observation_sources", S("scan")}});
   spaced.set("scan", paramMap({{"topic", S("scan topic")}}));
-  const std::string topic = failure([&] { parseObstacleConfig(ParamReader(spaced, "o"), false); });
+  const std::string topic = thrownMessage([&] { parseObstacleConfig(ParamReader(spaced, "o"), false); });
   EXPECT_NE(topic.find("o/scan: parameter 'topic'"), std::string::npos) << topic;
-  const std::string map_topic = failure(
+  const std::string map_topic = thrownMessage(
       [] {
         parseStaticConfig(ParamReader(paramMap({{"map_topic", S("my map")}}), "static"), true);
       });
   EXPECT_NE(map_topic.find("'map_topic'"), std::string::npos) << map_topic;
-  const std::string range = failure(
+  const std::string range = thrownMessage(
       [] {
         parseRangeSensorConfig(ParamReader(paramMap({{"topics", ParamValue::makeList({S("/sonar-1")})}}), "r"));
       });
@@ -285,7 +271,7 @@ TEST(DropIn, TopicNamesRoscppWouldRefuseAreNamedAtStartUp)
   ParamValue fine = paramMap({{"observation_sources", S("a b")}});
   fine.set("a", paramMap({{"topic", S("~scan")}}));
   fine.set("b", paramMap({{"topic", S("/robot/scan")}}));
-  EXPECT_EQ(failure([&] { parseObstacleConfig(ParamReader(fine, "o"), false); }), "");
+  EXPECT_EQ(thrownMessage([&] { parseObstacleConfig(ParamReader(fine, "o"), false); }), "");
 }
 
 TEST(DropIn, ASourceWithoutItsNamespaceAndAMisspeltOneAreNamed)
@@ -332,13 +318,13 @@ TEST(DropIn, LethalCostThresholdClampIsSaid)
 
 TEST(DropIn, ANumberRosparamReadsAsAStringSaysHowToWriteIt)
 {
-  const std::string hint = failure(
+  const std::string hint = thrownMessage(
       [] {
         ParamReader(paramMap({{"inflation_radius", S("5e-1")}}), "inflation").getDouble("inflation_radius", 0.55);
       });
   EXPECT_NE(hint.find("'inflation_radius'"), std::string::npos) << hint;
   EXPECT_NE(hint.find("5.0e-2"), std::string::npos) << hint;
-  const std::string plain = failure(
+  const std::string plain = thrownMessage(
       [] {
         ParamReader(paramMap({{"inflation_radius", S("wide")}}), "inflation").getDouble("inflation_radius", 0.55);
       });

@@ -10,6 +10,7 @@
 
 #include "costmap_layers/core/costmap_2d.hpp"
 #include "costmap_layers/ros/conversions.hpp"
+#include "sensor_test_helpers.hpp"
 
 using namespace costmap_layers_ros;
 
@@ -26,15 +27,7 @@ geometry_msgs::Quaternion quat(double x, double y, double z, double w)
 template <class Fn>
 std::string thrown(Fn fn)
 {
-  try
-  {
-    fn();
-  }
-  catch (const std::invalid_argument& e)
-  {
-    return e.what();
-  }
-  return "";
+  return costmap_layers_test::thrownMessage<std::invalid_argument>(fn);
 }
 
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
