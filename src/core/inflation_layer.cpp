@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <thread>
 
 #include "costmap_layers/core/cost_values.hpp"
 #include "costmap_layers/core/costmap_2d.hpp"
@@ -19,7 +20,10 @@ InflationConfig parseInflationConfig(const ParamReader& params)
   cfg.cost_scaling_factor = params.getDouble("cost_scaling_factor", cfg.cost_scaling_factor, 0.0);
   cfg.inflate_unknown = params.getBool("inflate_unknown", cfg.inflate_unknown);
   cfg.inflate_around_unknown = params.getBool("inflate_around_unknown", cfg.inflate_around_unknown);
-  cfg.num_threads = params.getInt("num_threads", cfg.num_threads, 1, 64);
+  // Nav2's InflationLayer takes 0 or less (its default, -1) as "half the cores, at least one".
+  cfg.num_threads = params.getInt("num_threads", cfg.num_threads, std::numeric_limits<int>::min(), 64);
+  if (cfg.num_threads <= 0)
+    cfg.num_threads = std::max(1, static_cast<int>(std::min(128u, std::thread::hardware_concurrency())) / 2);
   return cfg;
 }
 

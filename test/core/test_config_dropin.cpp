@@ -16,6 +16,7 @@
 
 #include "costmap_layers/core/config_compat.hpp"
 #include "costmap_layers/core/cost_values.hpp"
+#include "costmap_layers/core/inflation_layer.hpp"
 #include "costmap_layers/core/input_error.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
 #include "costmap_layers/core/obstacle_layer.hpp"
@@ -352,4 +353,22 @@ TEST(DropIn, Nav2StaticLayerKeysAtTheCostmapLevelApply)
   ParamValue c2d = paramMap({{"trinary_costmap", B(false)}});
   c2d.set("plugins", pluginList({{"static_layer", "costmap_2d::StaticLayer"}}));
   EXPECT_EQ(prepareCostmapNamespace(c2d, "").params.findPath("static_layer/trinary_costmap"), nullptr);
+}
+
+TEST(DropIn, Nav2InflationNumThreadsMinusOneIsAuto)
+{
+  // nav2_costmap_2d/plugins/inflation_layer.cpp: num_threads default -1; <= 0 means half the cores,
+  // at least one (getOptimalThreadCount).
+  for (int64_t v : {-1, 0, -100})
+  {
+    const int n = parseInflationConfig(ParamReader(paramMap({{"num_threads", I(v)}}), "inflation")).num_threads;
+    EXPECT_GE(n, 1) << v;
+    EXPECT_LE(n, 64) << v;
+  }
+  EXPECT_EQ(parseInflationConfig(ParamReader(paramMap({{"num_threads", I(3)}}), "inflation")).num_threads, 3);
+  EXPECT_NE(thrownMessage(
+                [] {
+                  parseInflationConfig(ParamReader(paramMap({{"num_threads", I(65)}}), "inflation"));
+                }),
+            "");
 }

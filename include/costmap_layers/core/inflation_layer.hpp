@@ -27,7 +27,7 @@ struct InflationConfig
 };
 
 /// Reads inflation_radius (>= 0), cost_scaling_factor (>= 0), inflate_unknown, inflate_around_unknown
-/// and num_threads (1..64). Throws std::invalid_argument naming the parameter.
+/// and num_threads (1..64; 0 or less: half the cores, at least one, as Nav2's -1). Throws std::invalid_argument naming the parameter.
 InflationConfig parseInflationConfig(const ParamReader& params);
 
 class InflationLayer : public Layer
