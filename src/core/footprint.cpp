@@ -166,7 +166,9 @@ FootprintConfig parseFootprintConfig(const ParamReader& params)
 {
   FootprintConfig cfg;
   cfg.robot_radius = params.getDouble("robot_radius", cfg.robot_radius, 0.0, limits::kMaxDistance);
-  cfg.footprint_padding = params.getDouble("footprint_padding", cfg.footprint_padding, 0.0, limits::kMaxDistance);
+  // costmap_2d takes any padding; a negative one shrinks the footprint.
+  cfg.footprint_padding =
+      params.getDouble("footprint_padding", cfg.footprint_padding, -limits::kMaxDistance, limits::kMaxDistance);
   const ParamValue* fp = params.raw("footprint");
   if (fp == nullptr || fp->isNull()) return cfg;
   try
@@ -202,6 +204,21 @@ FootprintConfig parseFootprintConfig(const ParamReader& params)
   catch (const std::invalid_argument& e)
   {
     params.fail("footprint", std::string("is not a valid polygon: ") + e.what());
+  }
+  // A shrink as large as a vertex's distance from the robot's axes would move that vertex across
+  // them (costmap_2d's padFootprint would mirror it): refused.
+  if (cfg.footprint_padding < 0.0)
+  {
+    const Footprint base = cfg.footprint.empty() ? makeFootprintFromRadius(cfg.robot_radius) : cfg.footprint;
+    for (const auto& p : base)
+      if ((p.x() != 0.0 && std::abs(p.x()) <= -cfg.footprint_padding) ||
+          (p.y() != 0.0 && std::abs(p.y()) <= -cfg.footprint_padding))
+      {
+        std::ostringstream what;
+        what << "shrinks the footprint by more than its vertex (" << p.x() << ", " << p.y()
+             << ") is away from the robot's axes: that vertex would cross them";
+        params.fail("footprint_padding", what.str());
+      }
   }
   return cfg;
 }

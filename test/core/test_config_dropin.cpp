@@ -16,6 +16,7 @@
 
 #include "costmap_layers/core/config_compat.hpp"
 #include "costmap_layers/core/cost_values.hpp"
+#include "costmap_layers/core/footprint.hpp"
 #include "costmap_layers/core/inflation_layer.hpp"
 #include "costmap_layers/core/input_error.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
@@ -371,4 +372,29 @@ TEST(DropIn, Nav2InflationNumThreadsMinusOneIsAuto)
                   parseInflationConfig(ParamReader(paramMap({{"num_threads", I(65)}}), "inflation"));
                 }),
             "");
+}
+
+TEST(DropIn, NegativeFootprintPaddingShrinksAsInCostmap2d)
+{
+  // costmap_2d's Costmap2D.cfg gives footprint_padding no bounds; padFootprint moves each coordinate
+  // by the padding away from (or, negative, towards) the axis.
+  const FootprintConfig c = parseFootprintConfig(
+      ParamReader(paramMap({{"footprint", S("[[0.3, 0.2], [0.3, -0.2], [-0.3, -0.2], [-0.3, 0.2]]")},
+                            {"footprint_padding", D(-0.05)}}),
+                  "costmap"));
+  const Footprint fp = c.padded();
+  ASSERT_EQ(fp.size(), 4u);
+  EXPECT_DOUBLE_EQ(fp[0].x(), 0.25);
+  EXPECT_DOUBLE_EQ(fp[0].y(), 0.15);
+  EXPECT_DOUBLE_EQ(fp[2].x(), -0.25);
+  EXPECT_DOUBLE_EQ(fp[2].y(), -0.15);
+  // A shrink that would carry a vertex across an axis is refused, naming the parameter.
+  const std::string refused = thrownMessage(
+      []
+      {
+        parseFootprintConfig(ParamReader(
+            paramMap({{"footprint", S("[[0.3, 0.2], [0.3, -0.2], [-0.3, -0.2]]")}, {"footprint_padding", D(-0.2)}}),
+            "costmap"));
+      });
+  EXPECT_NE(refused.find("'footprint_padding'"), std::string::npos) << refused;
 }

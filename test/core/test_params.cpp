@@ -643,7 +643,9 @@ TEST(FootprintTest, InvalidFootprintsThrowNamingFootprint)
     EXPECT_TRUE(contains(msg, "'footprint'")) << v.toString() << ": " << msg;
   }
   EXPECT_THROW(parseCostmapConfig(one("robot_radius", num(-0.1))), std::invalid_argument);
-  EXPECT_THROW(parseCostmapConfig(one("footprint_padding", num(-0.01))), std::invalid_argument);
+  // A negative padding shrinks, as in costmap_2d (DropIn.NegativeFootprintPaddingShrinksAsInCostmap2d);
+  // one beyond the distance limit is refused.
+  EXPECT_THROW(parseCostmapConfig(one("footprint_padding", num(-1e9))), std::invalid_argument);
 }
 
 TEST(FootprintTest, ParseFootprintStringDirectly)
