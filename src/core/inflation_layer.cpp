@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <thread>
 
 #include "costmap_layers/core/cost_values.hpp"
@@ -20,8 +21,11 @@ InflationConfig parseInflationConfig(const ParamReader& params)
   cfg.cost_scaling_factor = params.getDouble("cost_scaling_factor", cfg.cost_scaling_factor, 0.0);
   cfg.inflate_unknown = params.getBool("inflate_unknown", cfg.inflate_unknown);
   cfg.inflate_around_unknown = params.getBool("inflate_around_unknown", cfg.inflate_around_unknown);
+  // Nav2's: >= 0 replaces the footprint's inscribed radius, anything below means "not set".
+  cfg.custom_inscribed_radius =
+      params.getDouble("custom_inscribed_radius", cfg.custom_inscribed_radius, -1.0, limits::kMaxDistance);
   // Nav2's InflationLayer takes 0 or less (its default, -1) as "half the cores, at least one".
-  cfg.num_threads = params.getInt("num_threads", cfg.num_threads, std::numeric_limits<int>::min(), 64);
+  cfg.num_threads = params.getInt("num_threads", cfg.num_threads, -1, 64);
   if (cfg.num_threads <= 0)
     cfg.num_threads = std::max(1, static_cast<int>(std::min(128u, std::thread::hardware_concurrency())) / 2);
   return cfg;
@@ -30,15 +34,35 @@ InflationConfig parseInflationConfig(const ParamReader& params)
 void InflationLayer::onInitialize()
 {
   config_ = parseInflationConfig(ParamReader(context_->params(), name_));
-  inscribed_radius_ = layered_costmap_->getInscribedRadius();
+  updateInscribedRadius();
   resolution_ = layered_costmap_->getCostmap().getResolution();
   rebuildTable();
   need_reinflation_ = true;
 }
 
+void InflationLayer::updateInscribedRadius()
+{
+  const double footprint = layered_costmap_->getInscribedRadius();
+  if (config_.custom_inscribed_radius < 0.0)
+  {
+    inscribed_radius_ = footprint;
+    return;
+  }
+  inscribed_radius_ = config_.custom_inscribed_radius;
+  // As Nav2 does: costs then no longer say where the footprint touches an obstacle.
+  std::ostringstream what;
+  what << name_ << ": custom_inscribed_radius " << config_.custom_inscribed_radius
+       << " m replaces the footprint's inscribed radius " << footprint
+       << " m: cells within it cost 253 (inscribed) and beyond it less, whatever the footprint; "
+          "planners reading 253 as 'the robot touches' may take a robot into collision";
+  if (context_) context_->report(Severity::Warn, "custom_inscribed_radius", what.str());
+}
+
 void InflationLayer::setConfig(const InflationConfig& config)
 {
+  const bool custom_changed = config.custom_inscribed_radius != config_.custom_inscribed_radius;
   config_ = config;
+  if (custom_changed) updateInscribedRadius();
   rebuildTable();
   need_reinflation_ = true;
 }
@@ -52,7 +76,7 @@ void InflationLayer::matchSize()
 
 void InflationLayer::onFootprintChanged()
 {
-  inscribed_radius_ = layered_costmap_->getInscribedRadius();
+  updateInscribedRadius();
   rebuildTable();
   need_reinflation_ = true;
 }

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -360,18 +361,20 @@ TEST(DropIn, Nav2InflationNumThreadsMinusOneIsAuto)
 {
   // nav2_costmap_2d/plugins/inflation_layer.cpp: num_threads default -1; <= 0 means half the cores,
   // at least one (getOptimalThreadCount).
-  for (int64_t v : {-1, 0, -100})
+  for (int64_t v : {-1, 0})
   {
     const int n = parseInflationConfig(ParamReader(paramMap({{"num_threads", I(v)}}), "inflation")).num_threads;
     EXPECT_GE(n, 1) << v;
     EXPECT_LE(n, 64) << v;
   }
   EXPECT_EQ(parseInflationConfig(ParamReader(paramMap({{"num_threads", I(3)}}), "inflation")).num_threads, 3);
-  EXPECT_NE(thrownMessage(
-                [] {
-                  parseInflationConfig(ParamReader(paramMap({{"num_threads", I(65)}}), "inflation"));
-                }),
-            "");
+  for (int64_t bad : {65, -2})
+    EXPECT_NE(thrownMessage(
+                  [&] {
+                    parseInflationConfig(ParamReader(paramMap({{"num_threads", I(bad)}}), "inflation"));
+                  }),
+              "")
+        << bad;
 }
 
 TEST(DropIn, NegativeFootprintPaddingShrinksAsInCostmap2d)
@@ -397,4 +400,35 @@ TEST(DropIn, NegativeFootprintPaddingShrinksAsInCostmap2d)
             "costmap"));
       });
   EXPECT_NE(refused.find("'footprint_padding'"), std::string::npos) << refused;
+}
+
+TEST(DropIn, Nav2CustomInscribedRadiusReplacesTheFootprintsAndIsWarned)
+{
+  // Nav2 integration/inflation_tests.cpp testCustomInscribedRadius: with custom_inscribed_radius below
+  // the footprint's inscribed radius, cells within the footprint's radius are no longer inscribed
+  // (253): the cost function starts at the custom radius, 252 * exp(-factor * (d - custom)).
+  LayeredCostmap lc("map", false, false);
+  lc.resizeMap(11, 11, 1.0, 0.0, 0.0);
+  lc.setFootprint({{1.0, 1.0}, {1.0, -1.0}, {-1.0, -1.0}, {-1.0, 1.0}});  // inscribed radius 1.0
+  auto run = [&lc](double custom)
+  {
+    auto ctx = std::make_shared<FakeContext>(paramMap(
+        {{"inflation_radius", D(5.0)}, {"cost_scaling_factor", D(1.0)}, {"custom_inscribed_radius", D(custom)}}));
+    auto layer = std::make_shared<InflationLayer>();
+    layer->initialize(&lc, "inflation", ctx);
+    Costmap2D& master = lc.getCostmap();
+    master.resetMaps();
+    master.setCost(5, 5, LETHAL_OBSTACLE);
+    layer->updateCosts(master, 0, 0, 11, 11);
+    bool warned = false;
+    for (const auto& r : ctx->reports)
+      warned = warned || (r.key == "custom_inscribed_radius" && r.severity == Severity::Warn);
+    return std::make_pair(static_cast<int>(master.getCost(6, 5)), warned);
+  };
+  const auto footprint = run(-1.0);
+  EXPECT_EQ(footprint.first, INSCRIBED_INFLATED_OBSTACLE);  // 1 m from the obstacle, within 1.0
+  EXPECT_FALSE(footprint.second);
+  const auto custom = run(0.0);
+  EXPECT_EQ(custom.first, static_cast<int>(252.0 * std::exp(-1.0 * (1.0 - 0.0))));  // 92
+  EXPECT_TRUE(custom.second);
 }

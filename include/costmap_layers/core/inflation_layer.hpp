@@ -24,10 +24,14 @@ struct InflationConfig
   bool inflate_unknown = false;         ///< an unknown cell takes any cost > 0, not only >= 253
   bool inflate_around_unknown = false;  ///< unknown cells are sources like lethal ones
   int num_threads = 1;                  ///< threads of one update (the window cut into bands of rows)
+  /// [m] Nav2's: >= 0 replaces the footprint's inscribed radius in the cost function (warned: a
+  /// safety risk); -1, the default, means the footprint's.
+  double custom_inscribed_radius = -1.0;
 };
 
-/// Reads inflation_radius (>= 0), cost_scaling_factor (>= 0), inflate_unknown, inflate_around_unknown
-/// and num_threads (1..64; 0 or less: half the cores, at least one, as Nav2's -1). Throws std::invalid_argument naming the parameter.
+/// Reads inflation_radius (>= 0), cost_scaling_factor (>= 0), inflate_unknown, inflate_around_unknown,
+/// num_threads (1..64; 0 or -1: half the cores, at least one, as Nav2's -1) and custom_inscribed_radius
+/// (-1 or [0, limit]). Throws std::invalid_argument naming the parameter.
 InflationConfig parseInflationConfig(const ParamReader& params);
 
 class InflationLayer : public Layer
@@ -65,6 +69,8 @@ protected:
 private:
   /// Rebuilds the cost table when the radius, factor, resolution or inscribed radius changed.
   void rebuildTable();
+  /// The footprint's inscribed radius, or custom_inscribed_radius when set (then warned).
+  void updateInscribedRadius();
 
   InflationConfig config_;
   double resolution_ = 0.0;
