@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "costmap_layers/core/input_error.hpp"
 #include "costmap_layers/core/limits.hpp"
 #include "costmap_layers/core/param_reader.hpp"
 
@@ -108,6 +109,10 @@ Footprint parseFootprintString(const std::string& text)
     {
       fail("cannot read a number at position " + std::to_string(i));
     }
+    // std::stod also reads hexadecimal ("0x10" = 16), inf and nan; costmap_2d reads decimal only.
+    const std::string token = text.substr(i, used);
+    if (token.find_first_not_of("0123456789+-.eE") != std::string::npos)
+      fail("'" + shownText(token) + "' at position " + std::to_string(i) + " is not a decimal number");
     if (!std::isfinite(v)) fail("values must be finite");
     numbers.push_back(v);
     ++in_group;

@@ -661,6 +661,12 @@ TEST(FootprintTest, ParseFootprintStringDirectly)
   EXPECT_TRUE(contains(msg, "\"][\"")) << msg;  // the text is named
   EXPECT_THROW(parseFootprintString(""), std::invalid_argument);
   EXPECT_THROW(parseFootprintString("[[1,2],[],[3,4],[5,6]]"), std::invalid_argument);
+  // costmap_2d's parseVVF reads decimal numbers only (array_parser.cpp): a hexadecimal typo is not a
+  // 16 m vertex.
+  const std::string hex = errorOf([] { parseFootprintString("[[0x10, 1], [-1, 1], [-1, -1]]"); });
+  EXPECT_TRUE(contains(hex, "'0x10'")) << hex;
+  EXPECT_TRUE(contains(hex, "not a decimal number")) << hex;
+  EXPECT_THROW(parseFootprintString("[[inf, 1], [-1, 1], [-1, -1]]"), std::invalid_argument);
 }
 
 TEST(FootprintTest, RadiiOfDegenerateFootprints)
