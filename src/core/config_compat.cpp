@@ -347,9 +347,10 @@ CompatResult applyCostmap2dRules(const ParamValue& ns_in, const std::vector<Pare
       if (spec.type == rule.type)
         for (const char* key : rule.keys)
           moveParameter(ns, spec.name, key, false, r);
+    // Nav2's StaticLayer reads these at the costmap level only (node->get_parameter), not in its own
+    // namespace: the costmap's value is the one it uses.
     if (spec.type == "nav2_costmap_2d::StaticLayer")
-      // Nav2's StaticLayer reads these at the costmap level only (node->get_parameter), not in its own
-      // namespace: the costmap's value is the one it uses.
+    {
       for (const char* key :
            {"lethal_cost_threshold", "unknown_cost_value", "trinary_costmap", "use_maximum", "track_unknown_space"})
       {
@@ -368,6 +369,7 @@ CompatResult applyCostmap2dRules(const ParamValue& ns_in, const std::vector<Pare
         layer.set(key, value);
         consume(r, key);
       }
+    }
     if (spec.type == "costmap_2d::StaticLayer")
     {
       ParamValue& layer = subMap(ns, spec.name);
@@ -725,8 +727,9 @@ std::string describeUnknownKey(const UnknownKey& key, const std::string& ns_name
   if (!key.known_elsewhere.empty()) return text + " is ignored: " + key.known_elsewhere;
   if (key.is_namespace && key.path.find('/') == std::string::npos && !layer_class.empty())
   {
+    const bool sources = layer_class == "ObstacleLayer" || layer_class == "VoxelLayer";
     text = "namespace '" + key.path + "' in " + ns_name + " is not read by this " + layer_class +
-           " (no observation source or other setting of that name): its parameters are not used";
+           (sources ? " (no observation source of that name)" : "") + ": its parameters are not used";
     if (!key.suggestion.empty()) text += " (did you mean `" + key.suggestion + "`?)";
     return text;
   }

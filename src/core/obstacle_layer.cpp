@@ -165,13 +165,13 @@ void ObstacleLayer::onInitialize()
     const ParamValue* ns = context_->params().find(s.name);
     if (ns == nullptr)
       context_->report(Severity::Warn, "sources/" + s.name,
-                       name_ + ": observation source '" + s.name + "' has no namespace '" + s.name +
-                           "' of parameters: it runs on the defaults (topic '" + s.topic + "', data_type " +
+                       name_ + ": observation source '" + shownText(s.name) + "' has no namespace of that name: " +
+                           "it runs on the defaults (topic '" + shownText(s.topic) + "', data_type " +
                            (s.data_type == SensorDataType::LaserScan ? "LaserScan" : "PointCloud2") +
                            ", marking and clearing as their defaults say)");
     else if (ns->find("data_type") == nullptr)
       context_->report(Severity::Info, "sources/" + s.name + "/data_type",
-                       name_ + ": observation source '" + s.name + "': data_type not set, reading " +
+                       name_ + ": observation source '" + shownText(s.name) + "': data_type not set, reading " +
                            (s.data_type == SensorDataType::LaserScan ? "LaserScan" : "PointCloud2") +
                            " (costmap_2d's default is PointCloud, which this package does not read; Nav2's is "
                            "LaserScan)");

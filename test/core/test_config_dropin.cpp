@@ -290,7 +290,7 @@ TEST(DropIn, ASourceWithoutItsNamespaceAndAMisspeltOneAreNamed)
   bool named = false;
   for (const auto& r : ctx->reports)
     named = named || (r.severity == Severity::Warn &&
-                      r.message.find("'laser_scan_sensor' has no namespace") != std::string::npos);
+                      r.message.find("'laser_scan_sensor' has no namespace of that name") != std::string::npos);
   EXPECT_TRUE(named) << "no warning about the source without its namespace";
   // The unused namespace is described as the layer's, with the nearest source name.
   CompatResult compat;
