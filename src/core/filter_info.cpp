@@ -55,18 +55,10 @@ InputError validateFilterInfo(const FilterInfoData& info)
       return InputError::of("filter_mask_topic", "filter_mask_topic '" + shown.substr(0, 200) +
                                                      "' is not a topic name (blank or control characters)");
     }
-  // ROS's grammar of graph resource names (roscpp refuses any other, after the info is in force): a
-  // letter or '/' first, then letters, digits, '_' and '/'. '~' (private names) is refused too: it
-  // would be the filter node's own namespace, not the sender's.
-  const std::string& t = info.filter_mask_topic;
-  const auto letter = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); };
-  bool name_ok = letter(t[0]) || t[0] == '/';
-  for (std::size_t k = 1; k < t.size() && name_ok; ++k)
-    name_ok = letter(t[k]) || (t[k] >= '0' && t[k] <= '9') || t[k] == '_' || t[k] == '/';
-  if (!name_ok)
-    return InputError::of("filter_mask_topic", "filter_mask_topic '" + t.substr(0, 200) +
-                                                   "' is not a ROS topic name (a letter or '/' first, then letters, "
-                                                   "digits, '_' and '/')");
+  // ROS's name rule (roscpp would refuse any other name, after the info is in force); '~' (a private
+  // name) is refused too: it would be the filter node's own namespace, not the sender's.
+  const std::string problem = rosNameProblem(info.filter_mask_topic, false);
+  if (!problem.empty()) return InputError::of("filter_mask_topic", "filter_mask_topic " + problem);
   if (!std::isfinite(info.base))
   {
     err << "base must be a finite number (got " << info.base << ")";
