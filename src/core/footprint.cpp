@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -70,7 +71,8 @@ void calculateMinAndMaxDistances(const Footprint& footprint, double& min_dist, d
 Footprint parseFootprintString(const std::string& text)
 {
   // Accept exactly nested brackets of numbers: [[x, y], [x, y], ...].
-  auto fail = [&text](const std::string& why) { throw std::invalid_argument("footprint \"" + text + "\": " + why); };
+  auto fail = [&text](const std::string& why)
+  { throw std::invalid_argument("footprint \"" + shownText(text) + "\": " + why); };
   std::vector<double> numbers;
   std::vector<int> group_sizes;
   int depth = 0;
@@ -99,17 +101,13 @@ Footprint parseFootprintString(const std::string& text)
       continue;
     }
     if (depth != 2) fail("numbers must stand inside [x, y] pairs");
-    std::size_t used = 0;
-    double v = 0.0;
-    try
-    {
-      v = std::stod(text.substr(i), &used);
-    }
-    catch (const std::exception&)
-    {
-      fail("cannot read a number at position " + std::to_string(i));
-    }
-    // std::stod also reads hexadecimal ("0x10" = 16), inf and nan; costmap_2d reads decimal only.
+    // strtod in place: a copy of the rest of the text per number would make a long string quadratic.
+    const char* start = text.c_str() + i;
+    char* end = nullptr;
+    const double v = std::strtod(start, &end);
+    const auto used = static_cast<std::size_t>(end - start);
+    if (used == 0) fail("cannot read a number at position " + std::to_string(i));
+    // strtod also reads hexadecimal ("0x10" = 16), inf and nan; costmap_2d reads decimal only.
     const std::string token = text.substr(i, used);
     if (token.find_first_not_of("0123456789+-.eE") != std::string::npos)
       fail("'" + shownText(token) + "' at position " + std::to_string(i) + " is not a decimal number");

@@ -669,6 +669,23 @@ TEST(FootprintTest, ParseFootprintStringDirectly)
   EXPECT_THROW(parseFootprintString("[[inf, 1], [-1, 1], [-1, -1]]"), std::invalid_argument);
 }
 
+// The worst a parameter can hold: a string of megabytes. It is read in one pass (a copy of the rest
+// of the text per number made 200,000 points take hours), and the error quotes it clipped.
+TEST(FootprintTest, LongFootprintStringsAreReadInOnePassAndQuotedClipped)
+{
+  std::string text = "[";
+  for (int k = 0; k < 200000; ++k)
+    text += "[" + std::to_string(k % 7) + ".5, -1.25],";
+  text += "[0, 0]]";
+  const Footprint fp = parseFootprintString(text);
+  ASSERT_EQ(fp.size(), 200001u);
+  EXPECT_DOUBLE_EQ(fp[3].x(), 3.5);
+  EXPECT_DOUBLE_EQ(fp[199999].y(), -1.25);
+  const std::string msg = errorOf([&] { parseFootprintString(text + "x"); });
+  EXPECT_LT(msg.size(), 300u) << msg.substr(0, 300);
+  EXPECT_TRUE(contains(msg, "numbers must stand inside")) << msg.substr(0, 300);
+}
+
 TEST(FootprintTest, RadiiOfDegenerateFootprints)
 {
   double lo = -1, hi = -1;
