@@ -6,7 +6,9 @@
 #include <std_srvs/Empty.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <thread>
 
 #include "costmap_layers/core/config_compat.hpp"
 #include "costmap_layers/core/costmap_builder.hpp"
@@ -19,6 +21,20 @@ namespace costmap_layers_ros
 {
 using costmap_layers::CellWindow;
 using costmap_layers::ParamValue;
+
+namespace
+{
+/// Seconds on the steady clock: the loop's pacing, its stall check and the publish schedule do not
+/// follow steps of the system clock (CLOCK_REALTIME, which ros::WallTime reads).
+double steadySeconds()
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+constexpr const char* kNoClock =
+    "/use_sim_time is true and no /clock has arrived: no update until it does (start the simulator, or "
+    "rosbag play --clock)";
+}  // namespace
 
 ParamValue readNamespace(const ros::NodeHandle& nh)
 {
@@ -149,6 +165,7 @@ void CostmapNode::setUp()
                                              sub != nullptr ? *sub : ParamValue::makeMap(), run_locked));
     }
 
+  pacer_ = std::make_unique<costmap_layers::LoopPacer>(1.0 / config_.update_frequency);
   schedule_ =
       std::make_unique<costmap_layers::PublishSchedule>(config_.publish_frequency, config_.always_send_full_costmap);
   // Not latched: a latched grid would be the one of the last resize. Each new subscriber gets the
@@ -198,12 +215,19 @@ void CostmapNode::setUpDiagnostics(const std::vector<std::string>& layer_names)
   }
   // A spinner thread, not the update loop, publishes them: they keep coming while the loop waits for tf.
   // Updater::update() itself publishes once per ~diagnostic_period (default 1 s).
-  diagnostics_timer_ = private_nh_.createWallTimer(ros::WallDuration(0.1),
-                                                   [this](const ros::WallTimerEvent&)
-                                                   {
-                                                     std::lock_guard<std::mutex> lock(update_mutex_);
-                                                     diagnostics_->update();
-                                                   });
+  // Paced here on the steady clock (force_update): Updater::update() waits for a deadline in ROS time,
+  // which a clock that goes back (rosbag play --loop, a system clock set back) or never starts (no
+  // /clock) would leave silent.
+  diagnostics_timer_ = private_nh_.createWallTimer(
+      ros::WallDuration(0.1),
+      [this](const ros::WallTimerEvent&)
+      {
+        std::lock_guard<std::mutex> lock(update_mutex_);
+        const double now = steadySeconds();
+        if (last_diagnostics_s_ >= 0.0 && now - last_diagnostics_s_ < diagnostics_->getPeriod()) return;
+        last_diagnostics_s_ = now;
+        diagnostics_->force_update();
+      });
 }
 
 void CostmapNode::costmapStatus(diagnostic_updater::DiagnosticStatusWrapper& stat)
@@ -220,9 +244,9 @@ void CostmapNode::costmapStatus(diagnostic_updater::DiagnosticStatusWrapper& sta
   stat.add("update period [s]", period);
   stat.add("last cycle [s]", last_cycle_s_);
   stat.add("longest cycle since last report [s]", worst_cycle_s_);
-  stat.add("last cycle ended", cycles_ == 0
-                                   ? std::string("never")
-                                   : costmap_layers::describeAge((ros::WallTime::now() - last_cycle_end_).toSec()));
+  const double now = steadySeconds();
+  stat.add("last cycle ended",
+           cycles_ == 0 ? std::string("never") : costmap_layers::describeAge(pacer_->sinceLastCycle(now)));
   std::string not_current;
   for (const auto* list : {&costmap_->getPlugins(), &costmap_->getFilters()})
     for (const auto& layer : *list)
@@ -230,6 +254,11 @@ void CostmapNode::costmapStatus(diagnostic_updater::DiagnosticStatusWrapper& sta
   stat.add("layers not current", not_current.empty() ? std::string("none") : not_current);
 
   stat.summary(DiagnosticStatus::OK, "updating");
+  if (waiting_for_clock_)
+    stat.mergeSummary(DiagnosticStatus::ERROR, kNoClock);
+  else if (const double stalled = pacer_->stalledFor(now); stalled > 0.0)
+    stat.mergeSummaryf(DiagnosticStatus::ERROR, "no update cycle for %.1f s (the update period is %.3f s)", stalled,
+                       period);
   if (!pose_error_.empty())
     stat.mergeSummary(DiagnosticStatus::ERROR, "no robot pose (" + config_.robot_base_frame + " in " +
                                                    config_.global_frame + "): " + pose_error_);
@@ -292,7 +321,7 @@ bool CostmapNode::updateOnce()
   const auto pose = robotPose();
   if (!pose) return false;
   std::lock_guard<std::mutex> lock(update_mutex_);
-  const ros::WallTime start = ros::WallTime::now();
+  const double start = steadySeconds();
   costmap_->updateMap(pose->x, pose->y, pose->yaw);
   last_x_ = pose->x;
   last_y_ = pose->y;
@@ -313,9 +342,10 @@ bool CostmapNode::updateOnce()
   footprint_pub_.publish(fp);
 
   // Publish once a cycle ran, even if no layer had anything to draw yet: the grid is valid then.
-  if (schedule_->due(ros::WallTime::now().toSec())) publish();
-  last_cycle_end_ = ros::WallTime::now();
-  last_cycle_s_ = (last_cycle_end_ - start).toSec();
+  if (schedule_->due(steadySeconds())) publish();
+  const double end = steadySeconds();
+  pacer_->noteCycleEnd(end);
+  last_cycle_s_ = end - start;
   worst_cycle_s_ = std::max(worst_cycle_s_, last_cycle_s_);
   ++cycles_;
   return true;
@@ -349,31 +379,56 @@ void CostmapNode::sendCurrentGrid(const ros::SingleSubscriberPublisher& subscrib
   subscriber.publish(msg);
 }
 
+bool CostmapNode::clockMissing()
+{
+  // costmap_2d's loop (ros::Rate in ROS time) does not run before the first /clock; this one runs on the
+  // steady clock, so it must not cycle either: every stamped reading would be "ahead of the clock" and
+  // dropped, and the costmap would go out with the static map alone, looking healthy.
+  const bool missing = ros::Time::isSimTime() && ros::Time::now().isZero();
+  {
+    std::lock_guard<std::mutex> lock(update_mutex_);
+    waiting_for_clock_ = missing;
+  }
+  if (missing) log_->log(costmap_layers::Severity::Warn, "clock", std::string("costmap: ") + kNoClock);
+  return missing;
+}
+
+void CostmapNode::sleepWhileOk(double seconds)
+{
+  // In slices, so that a shutdown does not wait for a long period.
+  const auto until = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                            std::chrono::duration<double>(seconds));
+  while (ros::ok())
+  {
+    const auto now = std::chrono::steady_clock::now();
+    if (now >= until) return;
+    std::this_thread::sleep_for(
+        std::min<std::chrono::steady_clock::duration>(until - now, std::chrono::milliseconds(100)));
+  }
+}
+
 void CostmapNode::run()
 {
+  while (ros::ok() && clockMissing())
+    sleepWhileOk(0.1);
   // As costmap_2d does: wait for the robot's transform before the first update, saying so.
   while (ros::ok() &&
          !tf_.canTransform(config_.global_frame, config_.robot_base_frame, ros::Time(0), ros::Duration(0.1)))
     log_->log(costmap_layers::Severity::Info, "waiting_for_tf",
               "costmap: waiting for the transform " + config_.robot_base_frame + " -> " + config_.global_frame);
   const double period = 1.0 / config_.update_frequency;
-  ros::WallTime next = ros::WallTime::now();
+  pacer_->start(steadySeconds());
   while (ros::ok())
   {
-    const ros::WallTime start = ros::WallTime::now();
-    updateOnce();
-    const double took = (ros::WallTime::now() - start).toSec();
+    const double start = steadySeconds();
+    if (!clockMissing()) updateOnce();
+    const double took = steadySeconds() - start;
     if (took > period)
       log_->log(costmap_layers::Severity::Warn, "rate",
                 "costmap: the update loop missed its desired rate of " + std::to_string(config_.update_frequency) +
                     " Hz: the cycle took " + std::to_string(took) + " s, " + std::to_string(took - period) +
                     " s longer than its period");
-    next += ros::WallDuration(period);
-    const ros::WallTime now = ros::WallTime::now();
-    if (next < now)
-      next = now;  // late: start the next cycle at once instead of bursting to catch up
-    else
-      (next - now).sleep();
+    sleepWhileOk(pacer_->waitAfterCycle(steadySeconds()));
   }
 }
 }  // namespace costmap_layers_ros

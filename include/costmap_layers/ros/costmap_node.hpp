@@ -15,6 +15,7 @@
 #include "costmap_layers/core/config_compat.hpp"
 #include "costmap_layers/core/costmap_config.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
+#include "costmap_layers/core/loop_pacer.hpp"
 #include "costmap_layers/core/publish_schedule.hpp"
 #include "costmap_layers/core/transform2d.hpp"
 #include "costmap_layers/ros/layer_ports.hpp"
@@ -49,6 +50,10 @@ public:
   void run();
   /// One cycle: robot pose, updateMap, publish when due. @return false when the pose was unavailable.
   bool updateOnce();
+  /// True (and said, throttled, and in the diagnostics) while /use_sim_time is true and no /clock came.
+  bool clockMissing();
+  /// Sleeps on the steady clock, in slices that end early at shutdown.
+  static void sleepWhileOk(double seconds);
 
   const costmap_layers::LayeredCostmap& costmap() const { return *costmap_; }
   const costmap_layers::CostmapConfig& config() const { return config_; }
@@ -90,11 +95,14 @@ private:
   bool cycled_once_ = false;                                   ///< a whole update cycle ran: the grid is worth sending
   std::unique_ptr<costmap_layers::PublishSchedule> schedule_;  ///< guarded by update_mutex_
   // For the costmap's diagnostics, guarded by update_mutex_.
-  uint64_t cycles_ = 0;           ///< update cycles run
-  double last_cycle_s_ = 0.0;     ///< how long the last cycle took [s]
-  double worst_cycle_s_ = 0.0;    ///< the longest cycle since the last diagnostics [s]
-  ros::WallTime last_cycle_end_;  ///< when the last cycle ended
-  std::string pose_error_;        ///< why the last attempt had no robot pose ("" = it had one)
+  uint64_t cycles_ = 0;         ///< update cycles run
+  double last_cycle_s_ = 0.0;   ///< how long the last cycle took [s]
+  double worst_cycle_s_ = 0.0;  ///< the longest cycle since the last diagnostics [s]
+  /// The loop's pacing and stall rule, on the steady clock (see steadySeconds()).
+  std::unique_ptr<costmap_layers::LoopPacer> pacer_;
+  bool waiting_for_clock_ = false;  ///< /use_sim_time is true and no /clock has arrived: no cycles
+  double last_diagnostics_s_ = -1;  ///< steady time of the last /diagnostics publish (-1: none yet)
+  std::string pose_error_;          ///< why the last attempt had no robot pose ("" = it had one)
   std::unique_ptr<diagnostic_updater::Updater> diagnostics_;
   ros::WallTimer diagnostics_timer_;
 };

@@ -1,0 +1,109 @@
+#!/usr/bin/env python3
+"""costmap_node under /use_sim_time. Before the first /clock it runs no update cycle (costmap_2d's loop
+does not run either) and says why in /diagnostics, instead of publishing a costmap built without any
+stamped input. Once /clock runs it updates and publishes. When /clock jumps back (rosbag play --loop),
+/diagnostics and the costmap keep coming. All waits here are on the wall clock: this process's
+ROS time is the simulated one it publishes."""
+import threading
+import time
+import unittest
+
+import rospy
+import rostest
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
+from nav_msgs.msg import OccupancyGrid
+from rosgraph_msgs.msg import Clock
+
+NODE = "costmap_node"
+LEVEL = {0: "OK", 1: "WARN", 2: "ERROR", 3: "STALE"}
+
+
+class SimClockTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node("test_sim_clock")
+        cls.lock = threading.Lock()
+        cls.status = None  # the latest "costmap_node: costmap" status
+        cls.status_count = 0
+        cls.grid_count = 0
+        cls.clock_pub = rospy.Publisher("/clock", Clock, queue_size=10)
+        rospy.Subscriber("/diagnostics", DiagnosticArray, cls.on_diagnostics, queue_size=50)
+        rospy.Subscriber("/" + NODE + "/costmap", OccupancyGrid, cls.on_grid, queue_size=10)
+
+    @classmethod
+    def on_diagnostics(cls, msg):
+        with cls.lock:
+            for s in msg.status:
+                if s.name == NODE + ": costmap":
+                    cls.status = s
+                    cls.status_count += 1
+
+    @classmethod
+    def on_grid(cls, _msg):
+        with cls.lock:
+            cls.grid_count += 1
+
+    def counts(self):
+        with self.lock:
+            return self.status_count, self.grid_count
+
+    def wait_for(self, predicate, timeout, what):
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline:
+            with self.lock:
+                s = self.status
+            if s is not None and predicate(s):
+                return s
+            time.sleep(0.05)
+        with self.lock:
+            s = self.status
+        seen = "nothing" if s is None else "%s: %s" % (LEVEL.get(s.level), s.message)
+        self.fail("%s (last seen: %s)" % (what, seen))
+
+    def run_clock(self, start_s, seconds):
+        """Publishes /clock from start_s at the wall clock's pace for `seconds` of wall time."""
+        t0 = time.monotonic()
+        while time.monotonic() - t0 < seconds:
+            self.clock_pub.publish(Clock(clock=rospy.Time.from_sec(start_s + time.monotonic() - t0)))
+            time.sleep(0.01)
+
+    def test_no_clock_then_clock_then_clock_back(self):
+        # No /clock: /diagnostics still comes, with an ERROR naming /clock; no costmap is published.
+        s = self.wait_for(lambda s: s.level == DiagnosticStatus.ERROR and "/clock" in s.message, 20.0,
+                          "an ERROR naming /clock while no /clock arrived")
+        self.assertIn("/use_sim_time", s.message)
+        time.sleep(1.5)
+        statuses, grids = self.counts()
+        self.assertGreaterEqual(statuses, 2, "/diagnostics must keep coming without /clock")
+        self.assertEqual(grids, 0, "no costmap before the first /clock")
+
+        # /clock runs from 100 s: cycles and a costmap, and the ERROR is gone.
+        runner = threading.Thread(target=self.run_clock, args=(100.0, 6.0))
+        runner.start()
+        try:
+            self.wait_for(lambda s: "/clock" not in s.message and
+                          any(kv.key == "cycles" and int(kv.value) > 0 for kv in s.values), 5.0,
+                          "update cycles once /clock runs")
+            deadline = time.monotonic() + 5.0
+            while self.counts()[1] == 0 and time.monotonic() < deadline:
+                time.sleep(0.05)
+            self.assertGreater(self.counts()[1], 0, "a costmap once /clock runs")
+        finally:
+            runner.join()
+
+        # /clock jumps back to 1 s (a bag played in a loop): both keep coming at their wall-clock pace.
+        statuses, grids = self.counts()
+        self.run_clock(1.0, 3.0)
+        statuses_after, grids_after = self.counts()
+        self.assertGreaterEqual(statuses_after - statuses, 3,
+                                "/diagnostics (period 0.5 s) must keep coming after /clock jumped back")
+        with self.lock:
+            s = self.status
+        seen = "%s: %s %s" % (LEVEL.get(s.level), s.message, {kv.key: kv.value for kv in s.values})
+        self.assertGreaterEqual(grids_after - grids, 2, "the costmap (2 Hz) must keep coming after the jump; " + seen)
+        self.assertNotIn("/clock", s.message)
+        self.assertNotEqual(s.level, DiagnosticStatus.ERROR, s.message)
+
+
+if __name__ == "__main__":
+    rostest.rosrun("costmap_layers", "test_sim_clock", SimClockTest)
