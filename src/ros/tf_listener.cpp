@@ -7,13 +7,23 @@
 
 namespace costmap_layers_ros
 {
-std::string tfStampProblem(const ros::Time& stamp, const ros::Duration& cache_length)
+std::string tfStampProblem(const ros::Time& stamp, const ros::Duration& cache_length, const ros::Time& now,
+                           bool is_static)
 {
   // The last instant ROS time holds, in nanoseconds; tf2 computes stamp + cache_length.
   constexpr uint64_t kLastNs = 0xFFFFFFFFull * 1000000000ull + 999999999ull;
   const uint64_t cache_ns = cache_length.toNSec() > 0 ? static_cast<uint64_t>(cache_length.toNSec()) : 0;
-  if (stamp.toNSec() <= kLastNs - cache_ns) return {};
-  char text[160];
+  char text[200];
+  if (stamp.toNSec() <= kLastNs - cache_ns)
+  {
+    // Both sides in nanoseconds below 2^63: no overflow.
+    if (is_static || now.isZero() || stamp.toNSec() <= now.toNSec() + cache_ns) return {};
+    std::snprintf(text, sizeof(text),
+                  "header.stamp %u.%09u s is more than tf's cache length (%.1f s) ahead of now (%u.%09u s): tf would "
+                  "refuse every later transform of this frame",
+                  stamp.sec, stamp.nsec, cache_length.toSec(), now.sec, now.nsec);
+    return text;
+  }
   std::snprintf(text, sizeof(text),
                 "header.stamp %u.%09u s is within tf's cache length (%.1f s) of the end of ROS time", stamp.sec,
                 stamp.nsec, cache_length.toSec());
@@ -66,7 +76,7 @@ void GuardedTfListener::receive(const ros::MessageEvent<const tf2_msgs::TFMessag
   for (std::size_t k = 0; k < msg.transforms.size(); ++k)
   {
     const geometry_msgs::TransformStamped& t = msg.transforms[k];
-    std::string problem = tfStampProblem(t.header.stamp, buffer_.getCacheLength());
+    std::string problem = tfStampProblem(t.header.stamp, buffer_.getCacheLength(), now, is_static);
     if (problem.empty())
     {
       try

@@ -109,6 +109,34 @@ TEST(TfVerdict, AReadingDecadesOlderThanTheClockIsTooOld)
   EXPECT_EQ(tfVerdict(buffer, "map", "base_link", ros::Time(t0 + 4.5), ros::Time(t0 + 5.0), 1.0), TfVerdict::Ready);
 }
 
+// One /tf stamped years ahead (2100) would freeze its frame: tf2 then refuses every real-time transform
+// of it as older than its newest minus the cache length. Refused when more than the cache length ahead
+// of now; a static transform, or no clock yet (now 0), is not judged by now.
+TEST(TfStampProblem, StampsMoreThanTheCacheLengthAheadOfNowAreRefused)
+{
+  const ros::Duration cache(10.0);
+  const ros::Time now(1796220000, 0);
+  const ros::Time year_2100(4102444800u, 0);
+  const std::string p = costmap_layers_ros::tfStampProblem(year_2100, cache, now);
+  EXPECT_NE(p.find("header.stamp 4102444800.000000000"), std::string::npos) << p;
+  EXPECT_NE(p.find("ahead of now (1796220000.000000000 s)"), std::string::npos) << p;
+  EXPECT_EQ(costmap_layers_ros::tfStampProblem(ros::Time(1796220010, 0), cache, now), "");  // exactly the cache length
+  EXPECT_NE(costmap_layers_ros::tfStampProblem(ros::Time(1796220010, 1), cache, now), "");  // one nanosecond more
+  EXPECT_EQ(costmap_layers_ros::tfStampProblem(ros::Time(5, 0), cache, now), "");           // old: tf2 judges it
+  EXPECT_EQ(costmap_layers_ros::tfStampProblem(year_2100, cache, now, true), "");           // static
+  EXPECT_EQ(costmap_layers_ros::tfStampProblem(year_2100, cache, ros::Time()), "");         // no clock yet
+  // now at the end of ROS time: no overflow in now + cache length.
+  EXPECT_EQ(
+      costmap_layers_ros::tfStampProblem(ros::Time(0xFFFFFFFFu - 11u, 0u), cache, ros::Time(0xFFFFFFFFu, 999999999u)),
+      "");
+
+  // On a buffer: the frame that took the 2100 transform refuses the real one that follows, which is
+  // what the listener now prevents.
+  tf2::BufferCore buffer{cache};
+  buffer.setTransform(tf("map", "base_link", year_2100.toSec(), 0.0), "test");
+  EXPECT_FALSE(buffer.setTransform(tf("map", "base_link", now.toSec(), 1.0), "test"));
+}
+
 // The node's tf listener takes a transform only when tf2 can add its cache length to the stamp.
 TEST(TfStampProblem, TheLastCacheLengthOfRosTimeIsRefused)
 {

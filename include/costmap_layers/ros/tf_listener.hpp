@@ -18,8 +18,11 @@
 namespace costmap_layers_ros
 {
 /// Why tf's buffer cannot take a transform stamped `stamp` when it keeps `cache_length` of them, or ""
-/// when it can.
-std::string tfStampProblem(const ros::Time& stamp, const ros::Duration& cache_length);
+/// when it can. With `now` (non-zero) and a transform that is not static, also a stamp more than the
+/// cache length ahead of now: tf2 would keep it and refuse every later transform of that frame as too
+/// old, freezing the frame (the robot's pose) until a restart.
+std::string tfStampProblem(const ros::Time& stamp, const ros::Duration& cache_length, const ros::Time& now = {},
+                           bool is_static = false);
 
 class GuardedTfListener
 {
