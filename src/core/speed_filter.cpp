@@ -176,7 +176,14 @@ std::string SpeedFilter::setOdometry(const OdometryData& odom)
   const uint64_t now = context_ ? context_->nowNs() : 0;
   if (error.ok())
   {
-    std::lock_guard<std::mutex> lock(motion_mutex_);
+    std::unique_lock<std::mutex> lock(motion_mutex_);
+    const uint64_t dropped_at = dropOdometryBeforeJumpLocked(now);
+    if (dropped_at != 0)
+    {
+      lock.unlock();
+      reportOdometryJump(dropped_at, now);
+      lock.lock();
+    }
     if (speeds_.empty() || !isOutOfOrder(odom.stamp_ns, speeds_.back().stamp_ns, now))
     {
       speeds_.push_back({now, odom.stamp_ns, odom.linear_x});
@@ -192,14 +199,34 @@ std::string SpeedFilter::setOdometry(const OdometryData& odom)
   return error.message;
 }
 
+uint64_t SpeedFilter::dropOdometryBeforeJumpLocked(uint64_t now)
+{
+  // Samples received after now belong to a timeline the clock left (a bag played in a loop, a restarted
+  // simulation): averaged with the new ones they would mix two robots' speeds, and the newest of them
+  // would count as fresh until the clock caught up. As the observation buffers do: drop them all.
+  if (speeds_.empty() || speeds_.back().received_ns <= now + kClockJumpBackToleranceNs) return 0;
+  const uint64_t from = speeds_.back().received_ns;
+  speeds_.clear();
+  return from;
+}
+
+void SpeedFilter::reportOdometryJump(uint64_t from_ns, uint64_t now)
+{
+  if (context_)
+    context_->report(Severity::Warn, "odom/clock",
+                     name_ + ": " + clockJumpMessage(from_ns, now) + ": the odometry received before is dropped");
+}
+
 std::optional<double> SpeedFilter::currentSpeed()
 {
   const uint64_t now = context_->nowNs();
   double sum = 0.0;
   std::size_t n = 0;
   uint64_t newest = 0;
+  uint64_t dropped_at = 0;
   {
     std::lock_guard<std::mutex> lock(motion_mutex_);
+    dropped_at = dropOdometryBeforeJumpLocked(now);
     if (!speeds_.empty()) newest = speeds_.back().received_ns;
     for (const SpeedSample& s : speeds_)
       if (s.received_ns + kSpeedWindowNs >= newest)
@@ -208,6 +235,7 @@ std::optional<double> SpeedFilter::currentSpeed()
         ++n;
       }
   }
+  if (dropped_at != 0) reportOdometryJump(dropped_at, now);
   if (n == 0)
   {
     context_->report(Severity::Error, "odom/missing",

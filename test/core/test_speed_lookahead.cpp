@@ -250,6 +250,45 @@ TEST(PathLookahead, OdometryMissingOrStaleLooksTheWholeMaxLookahead)
   EXPECT_GE(stale.ctx->countKey("odom/stale"), 1);
 }
 
+// The clock jumps back (a bag played in a loop): odometry received on the old timeline is dropped,
+// not averaged with the new (standing before, 2 m/s after would read 1 m/s: a 1 m look-ahead instead of
+// 4 m, the zone at x = 10 seen too late from 6.6), and not taken as fresh when none follows.
+TEST(PathLookahead, OdometryFromBeforeAClockJumpBackIsDropped)
+{
+  Rig rig;
+  rig.ctx->publishPath(straightPath());
+  rig.ctx->now_ns = 100'000'000'000;
+  for (int k = 0; k < 5; ++k, rig.ctx->now_ns += 50'000'000)
+    rig.ctx->publishOdometry(moving(0.0));
+  EXPECT_EQ(rig.at(6.6), 1.0);      // standing: 0.3 m ahead
+  rig.ctx->now_ns = 1'000'000'000;  // back to 1 s
+  for (int k = 0; k < 5; ++k, rig.ctx->now_ns += 50'000'000)
+    rig.ctx->publishOdometry(moving(2.0));
+  EXPECT_EQ(rig.at(6.6), 0.3);  // 2 m/s: 4 m ahead reaches the zone
+  EXPECT_DOUBLE_EQ(rig.filter->lastLookahead(), 4.0);
+  EXPECT_EQ(rig.ctx->countKey("odom/clock"), 1);
+
+  Rig quiet;
+  quiet.ctx->publishPath(straightPath());
+  quiet.ctx->now_ns = 100'000'000'000;
+  quiet.ctx->publishOdometry(moving(0.0));
+  EXPECT_EQ(quiet.at(6.6), 1.0);
+  quiet.ctx->now_ns = 1'000'000'000;  // back to 1 s, no odometry since
+  EXPECT_EQ(quiet.at(6.6), 0.3);      // missing: max_lookahead (5 m)
+  EXPECT_DOUBLE_EQ(quiet.filter->lastLookahead(), 5.0);
+  EXPECT_EQ(quiet.ctx->countKey("odom/clock"), 1);
+  EXPECT_GE(quiet.ctx->countKey("odom/missing"), 1);
+  // A step back within the tolerance (threads reading the clock a moment apart) drops nothing.
+  Rig jitter;
+  jitter.ctx->publishPath(straightPath());
+  jitter.ctx->now_ns = 100'000'000'000;
+  jitter.ctx->publishOdometry(moving(2.0));
+  jitter.ctx->now_ns -= 400'000'000;
+  EXPECT_EQ(jitter.at(6.6), 0.3);
+  EXPECT_DOUBLE_EQ(jitter.filter->lastLookahead(), 4.0);
+  EXPECT_EQ(jitter.ctx->countKey("odom/clock"), 0);
+}
+
 TEST(PathLookahead, PathInAnotherFrameBadPathsAndNoPlan)
 {
   Rig rig;

@@ -218,6 +218,10 @@ private:
   void warnValueOnce(int8_t v, const std::string& message);
   /// The robot's speed for the lookahead [m/s], or nullopt (reported) when odometry is missing or stale.
   std::optional<double> currentSpeed();
+  /// With motion_mutex_ held: drops every odometry sample received after now (the clock jumped back);
+  /// returns the newest dropped receipt time, or 0 when nothing was dropped.
+  uint64_t dropOdometryBeforeJumpLocked(uint64_t now);
+  void reportOdometryJump(uint64_t from_ns, uint64_t now);
   /// The strictest publication at the robot and along the path ahead (see the file comment).
   std::optional<Publication> lookahead(const OccupancyGridData& mask, const Transform2D& to_mask, double robot_x,
                                        double robot_y, const std::optional<Publication>& at_robot);
