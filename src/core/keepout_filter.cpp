@@ -20,7 +20,9 @@ void CostGridFilter::process(Costmap2D& master_grid, const CellWindow&, const Oc
   {
     const std::size_t invalid = computeCosts(mask, costs_);
     costs_for_ = current;
-    if (invalid > 0 && !warned_invalid_.exchange(true))
+    // Once per accepted mask (the node's log throttles by key): a later mask with other bad values is
+    // named too, as the other filters do.
+    if (invalid > 0)
       context_->report(Severity::Warn, "invalid_values",
                        name_ + ": the mask holds " + std::to_string(invalid) +
                            " values outside -1..100 (invalid in an OccupancyGrid); they are skipped");

@@ -213,7 +213,7 @@ TEST(KeepoutFilter, MaskOfAnotherResolution)
   EXPECT_EQ(master.getCost(9, 5), 51);   // (4.875, 3.875): mask cell (3, 1) = 20
 }
 
-TEST(KeepoutFilter, InvalidValuesSkippedAndWarnedOnce)
+TEST(KeepoutFilter, InvalidValuesSkippedAndWarnedOncePerMask)
 {
   Rig r;
   OccupancyGridData m = makeMask(3, 3, 1.0, 3.0, 3.0, 100);
@@ -231,9 +231,14 @@ TEST(KeepoutFilter, InvalidValuesSkippedAndWarnedOnce)
   EXPECT_EQ(r.ctx->reports[0].severity, Severity::Warn);
   EXPECT_NE(r.ctx->reports[0].message.find("3 values outside -1..100"), std::string::npos) << r.ctx->reports[0].message;
   EXPECT_NE(r.ctx->reports[0].message.find("keepout"), std::string::npos);
-  r.setMask(m);  // again: no second warning
-  r.filter->updateCosts(master, 0, 0, 10, 10);
+  r.filter->updateCosts(master, 0, 0, 10, 10);  // the same mask: no second warning
   EXPECT_EQ(r.ctx->reports.size(), 1u);
+  // A later mask with other bad values is named too (it was warned once per process before).
+  m.data[8] = 100;
+  r.setMask(m);
+  r.filter->updateCosts(master, 0, 0, 10, 10);
+  ASSERT_EQ(r.ctx->reports.size(), 2u);
+  EXPECT_NE(r.ctx->reports[1].message.find("2 values outside -1..100"), std::string::npos) << r.ctx->reports[1].message;
 }
 
 TEST(KeepoutFilter, ThroughALayeredCostmapAndToggle)

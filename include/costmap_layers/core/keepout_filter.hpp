@@ -28,7 +28,6 @@
 //                                 here a value outside 1..252 is a start-up error)
 #pragma once
 
-#include <atomic>
 #include <memory>
 #include <vector>
 
@@ -57,7 +56,6 @@ private:
   std::shared_ptr<const OccupancyGridData> costs_for_;  ///< the mask the costs were computed from
   std::vector<uint8_t> costs_;
   std::vector<uint8_t> scratch_;
-  std::atomic<bool> warned_invalid_{false};
 };
 
 struct KeepoutFilterConfig
