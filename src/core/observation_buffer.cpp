@@ -28,6 +28,14 @@ void ObservationBuffer::noteTimeLocked(uint64_t now_ns) const
   last_updated_ns_ = now_ns;
 }
 
+bool olderThanPersistence(uint64_t stamp_ns, uint64_t now_ns, double observation_persistence)
+{
+  if (!(observation_persistence > 0.0)) return false;
+  // Stamped a little ahead (within the tolerance) counts as age 0: it expires that much later.
+  const double age_ns = stamp_ns >= now_ns ? 0.0 : static_cast<double>(now_ns - stamp_ns);
+  return age_ns > observation_persistence * 1e9;
+}
+
 bool ObservationBuffer::add(std::shared_ptr<const Observation> observation, uint64_t now_ns)
 {
   if (!observation) return false;
@@ -54,15 +62,11 @@ void ObservationBuffer::purgeLocked(uint64_t now_ns)
   // Every entry is checked, not only the front ones: the buffer is in arrival order, and a reading can
   // arrive after a newer one.
   const bool keep_newest_only = config_.observation_persistence <= 0.0;
-  const double keep_ns = config_.observation_persistence * 1e9;
   auto stale = [&](const std::shared_ptr<const Observation>& o)
   {
     const uint64_t stamp = o->stamp_ns;
     if (isAheadOfNow(stamp, now_ns)) return true;  // from another time line, or a sender's bad clock
-    if (keep_newest_only) return false;
-    // Stamped a little ahead (within the tolerance) counts as age 0: it expires that much later.
-    const double age_ns = stamp >= now_ns ? 0.0 : static_cast<double>(now_ns - stamp);
-    return age_ns > keep_ns;
+    return !keep_newest_only && olderThanPersistence(stamp, now_ns, config_.observation_persistence);
   };
   observations_.erase(std::remove_if(observations_.begin(), observations_.end(), stale), observations_.end());
   if (keep_newest_only)

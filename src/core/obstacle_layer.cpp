@@ -295,6 +295,14 @@ std::string ObstacleLayer::bufferPoints(std::size_t source, const std::vector<Po
     context_->report(Severity::Warn, "future/" + s.name, sourceLabel(source) + ": reading rejected: " + error);
     return error;
   }
+  // costmap_2d buffers such a reading and purges it at once, counting it as an update: the source reads
+  // current while nothing is ever marked. Refused here, said, and counted as a rejection.
+  if (stamp_ns != 0 && olderThanPersistence(stamp_ns, now, s.observation_persistence))
+  {
+    const std::string error = olderThanPersistenceError(stamp_ns, now, s.observation_persistence);
+    context_->report(Severity::Warn, "old/" + s.name, sourceLabel(source) + ": reading rejected: " + error);
+    return error;
+  }
   auto obs = std::make_shared<Observation>();
   obs->origin_x = pose.origin_x;
   obs->origin_y = pose.origin_y;

@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "costmap_layers/core/input_error.hpp"
+
 namespace costmap_layers
 {
 namespace
@@ -25,6 +27,14 @@ std::string aheadOfNowError(uint64_t stamp_ns, uint64_t now_ns)
   return "header.stamp " + seconds(stamp_ns) + " is " + seconds(stamp_ns > now_ns ? stamp_ns - now_ns : 0) +
          " ahead of now " + seconds(now_ns) +
          " (clock skew between hosts, or a reading from before the clock jumped back)";
+}
+
+std::string olderThanPersistenceError(uint64_t stamp_ns, uint64_t now_ns, double observation_persistence)
+{
+  return "header.stamp " + seconds(stamp_ns) + " is " + seconds(now_ns > stamp_ns ? now_ns - stamp_ns : 0) +
+         " old at now " + seconds(now_ns) + ", more than observation_persistence (" +
+         valueText(observation_persistence) +
+         " s): it would expire on arrival (a sensor clock behind this host's, or a slow driver?)";
 }
 
 std::string clockJumpMessage(uint64_t from_ns, uint64_t to_ns)

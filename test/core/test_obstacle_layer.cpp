@@ -614,6 +614,37 @@ TEST(ObstacleLayer, ReadingStampedAheadOfNowIsRejectedNotAGhost)
   EXPECT_EQ(rig.layer->buffer(0).size(), 1u);
 }
 
+// A sensor whose stamps lag the clock by more than observation_persistence (a host clock behind, a slow
+// driver): costmap_2d buffers each reading and purges it at once, counting it as an update, so the
+// source reads current while nothing is ever marked. Here it is refused, said, and the source goes late.
+TEST(ObstacleLayer, ReadingOlderThanPersistenceOnArrivalIsRefusedAndSaid)
+{
+  ParamValue p = obstacleParams({{"footprint_clearing_enabled", B(false)}},
+                                {{"observation_persistence", D(1.0)}, {"expected_update_rate", D(1.0)}});
+  Rig rig(p, false, true);
+  rig.ctx->now_ns = 10'000'000'000;
+  rig.cloud({{5.5, 5.5, 0.5}}, poseAt(5.5, 2.5, 0.5), 10'000'000'000);
+  rig.update();
+  ASSERT_EQ(rig.master().getCost(5, 5), LETHAL_OBSTACLE);
+  ASSERT_TRUE(rig.layer->isCurrent());
+  rig.ctx->now_ns = 10'500'000'000;
+  rig.cloud({{7.5, 7.5, 0.5}}, poseAt(7.5, 2.5, 0.5), 8'000'000'000);  // 2.5 s old on arrival
+  rig.update();
+  EXPECT_EQ(rig.master().getCost(7, 7), NO_INFORMATION);
+  EXPECT_EQ(rig.ctx->countReports("header.stamp 8.000 s is 2.500 s old at now 10.500 s"), 1);
+  EXPECT_EQ(rig.ctx->countReports("observation_persistence (1 s)"), 1);
+  rig.ctx->now_ns = 11'200'000'000;  // 1.2 s after the last reading it kept: late
+  rig.update();
+  EXPECT_FALSE(rig.layer->isCurrent());
+  // Within persistence (0.9 s old) it is taken; a zero stamp (taken as now) always is.
+  rig.cloud({{7.5, 7.5, 0.5}}, poseAt(7.5, 2.5, 0.5), 10'300'000'000);
+  rig.cloud({{3.5, 7.5, 0.5}}, poseAt(3.5, 2.5, 0.5), 0);
+  rig.update();
+  EXPECT_EQ(rig.master().getCost(7, 7), LETHAL_OBSTACLE);
+  EXPECT_EQ(rig.master().getCost(3, 7), LETHAL_OBSTACLE);
+  EXPECT_TRUE(rig.layer->isCurrent());
+}
+
 TEST(ObstacleLayer, ClockJumpBackDropsBufferedReadingsWithOneWarning)
 {
   // A looping bag or a restarted simulator: /clock goes from 1000 s back to 5 s. The reading buffered at

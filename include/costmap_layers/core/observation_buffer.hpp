@@ -29,6 +29,10 @@ struct Observation
   double raytrace_min_range = 0.0, raytrace_max_range = 3.0;  ///< [m] clearing window from the origin
 };
 
+/// True when a reading stamped stamp_ns is older at now_ns than observation_persistence (> 0) allows:
+/// a buffer drops it (a reading stamped ahead counts as age 0). 0 (keep the newest) never expires one.
+bool olderThanPersistence(uint64_t stamp_ns, uint64_t now_ns, double observation_persistence);
+
 struct ObservationBufferConfig
 {
   /// [s] how long an observation is kept, measured from its stamp to the current time; 0 keeps only

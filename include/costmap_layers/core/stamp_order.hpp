@@ -42,6 +42,10 @@ inline bool isAheadOfNow(uint64_t stamp_ns, uint64_t now_ns)
 /// the field's name.
 std::string aheadOfNowError(uint64_t stamp_ns, uint64_t now_ns);
 
+/// "header.stamp 8.000 s is 2.000 s old at now 10.000 s, more than observation_persistence (1 s) ...": why
+/// a reading that would expire on arrival was refused; it starts with the field's name.
+std::string olderThanPersistenceError(uint64_t stamp_ns, uint64_t now_ns, double observation_persistence);
+
 /// "the clock jumped back from 1000.000 s to 3.000 s": the start of the one warning a layer reports.
 std::string clockJumpMessage(uint64_t from_ns, uint64_t to_ns);
 
