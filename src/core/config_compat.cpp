@@ -437,6 +437,13 @@ CompatResult applyCostmap2dRules(const ParamValue& ns_in, const std::vector<Pare
   if (footprint != nullptr && radius != nullptr && givesPolygon(*footprint))
     r.notes.push_back("robot_radius " + radius->toString() +
                       " is not used: footprint is set too, and the footprint wins (as in costmap_2d)");
+  // costmap_2d refuses every pose not stamped exactly now with 0 (a costmap that never updates); here 0
+  // leaves the age unchecked. Either way not what a user means by 0.
+  const ParamValue* tolerance = ns.find("transform_tolerance");
+  if (tolerance != nullptr && tolerance->isNumber() && tolerance->asDouble() == 0.0)
+    r.warnings.push_back(
+        "transform_tolerance 0: the robot's transform is used however old it is (costmap_2d "
+        "would refuse every transform not stamped exactly now); set the age you accept, e.g. 0.3");
   return r;
 }
 

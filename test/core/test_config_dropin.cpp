@@ -222,6 +222,16 @@ TEST(DropIn, NestedPluginNamesAndRos2LevelAndNoPlugins)
   EXPECT_TRUE(anyContains(from_mb.notes, {"holds a move_base file's `global_costmap:` section"}));
 }
 
+TEST(DropIn, TransformToleranceZeroIsSaid)
+{
+  EXPECT_TRUE(anyContains(prepareCostmapNamespace(paramMap({{"transform_tolerance", D(0.0)}}), "").warnings,
+                          {"transform_tolerance 0: the robot's transform is used however old it is"}));
+  EXPECT_TRUE(anyContains(prepareCostmapNamespace(paramMap({{"transform_tolerance", I(0)}}), "").warnings,
+                          {"transform_tolerance 0"}));
+  EXPECT_FALSE(anyContains(prepareCostmapNamespace(paramMap({{"transform_tolerance", D(0.3)}}), "").warnings,
+                           {"transform_tolerance"}));
+}
+
 TEST(DropIn, FootprintWinsOverRobotRadiusSaid)
 {
   ParamValue ns = paramMap({{"footprint", S("[[0.1, 0.1], [0.1, -0.1], [-0.1, -0.1]]")}, {"robot_radius", D(0.3)}});
