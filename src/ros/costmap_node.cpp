@@ -213,9 +213,8 @@ void CostmapNode::setUpDiagnostics(const std::vector<std::string>& layer_names)
     diagnostics_->add("layer " + name, [this, name, k](diagnostic_updater::DiagnosticStatusWrapper& stat)
                       { layerStatus(name, k, stat); });
   }
-  // A spinner thread, not the update loop, publishes them: they keep coming while the loop waits for tf.
-  // Updater::update() itself publishes once per ~diagnostic_period (default 1 s).
-  // Paced here on the steady clock (force_update): Updater::update() waits for a deadline in ROS time,
+  // A spinner thread, not the update loop, publishes them, once per ~diagnostic_period (default 1 s):
+  // they keep coming while the loop waits for tf or /clock. Paced here on the steady clock (force_update): Updater::update() waits for a deadline in ROS time,
   // which a clock that goes back (rosbag play --loop, a system clock set back) or never starts (no
   // /clock) would leave silent.
   diagnostics_timer_ = private_nh_.createWallTimer(
