@@ -560,7 +560,7 @@ TEST(LanesFilter, CostsAreComputedOnlyForANewMask)
   EXPECT_EQ(idle.filter->costComputations(), 0u);
 }
 
-TEST(LanesFilter, InvalidValuesSkippedAndWarnedOnce)
+TEST(LanesFilter, InvalidValuesSkippedAndWarnedOncePerMask)
 {
   Rig rig;
   OccupancyGridData m = straightLane();
@@ -572,8 +572,12 @@ TEST(LanesFilter, InvalidValuesSkippedAndWarnedOnce)
   EXPECT_EQ(master.getCost(31, 3), 5);
   EXPECT_EQ(master.getCost(32, 3), 254);
   EXPECT_EQ(rig.ctx->countReports("2 values outside -1..100"), 1);
-  rig.apply(m, master);
-  EXPECT_EQ(rig.ctx->reports.size(), 1u);
+  rig.filter->updateCosts(master, 0, 0, static_cast<int>(master.getSizeInCellsX()),
+                          static_cast<int>(master.getSizeInCellsY()));
+  EXPECT_EQ(rig.ctx->reports.size(), 1u);  // the same mask: once
+  rig.apply(m, master);                    // a mask received again is warned again (the node throttles)
+  EXPECT_EQ(rig.ctx->countReports("2 values outside -1..100"), 2);
+  EXPECT_EQ(rig.ctx->reports.size(), 2u);
   EXPECT_FALSE(rig.filter->isClearable());
 }
 

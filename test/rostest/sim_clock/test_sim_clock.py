@@ -78,11 +78,11 @@ class SimClockTest(unittest.TestCase):
         self.assertEqual(grids, 0, "no costmap before the first /clock")
 
         # /clock runs from 100 s: cycles and a costmap, and the ERROR is gone.
-        runner = threading.Thread(target=self.run_clock, args=(100.0, 6.0))
+        runner = threading.Thread(target=self.run_clock, args=(100.0, 10.0))
         runner.start()
         try:
             self.wait_for(lambda s: "/clock" not in s.message and
-                          any(kv.key == "cycles" and int(kv.value) > 0 for kv in s.values), 5.0,
+                          any(kv.key == "cycles" and int(kv.value) > 0 for kv in s.values), 8.0,
                           "update cycles once /clock runs")
             deadline = time.monotonic() + 5.0
             while self.counts()[1] == 0 and time.monotonic() < deadline:
