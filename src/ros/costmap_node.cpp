@@ -214,9 +214,9 @@ void CostmapNode::setUpDiagnostics(const std::vector<std::string>& layer_names)
                       { layerStatus(name, k, stat); });
   }
   // A spinner thread, not the update loop, publishes them, once per ~diagnostic_period (default 1 s):
-  // they keep coming while the loop waits for tf or /clock. Paced here on the steady clock (force_update): Updater::update() waits for a deadline in ROS time,
-  // which a clock that goes back (rosbag play --loop, a system clock set back) or never starts (no
-  // /clock) would leave silent.
+  // they keep coming while the loop waits for tf or /clock. Paced here on the steady clock (force_update):
+  // Updater::update() waits for a deadline in ROS time, which a clock that goes back (rosbag play --loop, a system
+  // clock set back) or never starts (no /clock) would leave silent.
   diagnostics_timer_ = private_nh_.createWallTimer(
       ros::WallDuration(0.1),
       [this](const ros::WallTimerEvent&)
