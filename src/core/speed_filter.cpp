@@ -204,8 +204,8 @@ uint64_t SpeedFilter::dropOdometryBeforeJumpLocked(uint64_t now)
   // Samples received after now belong to a timeline the clock left (a bag played in a loop, a restarted
   // simulation): averaged with the new ones they would mix two robots' speeds, and the newest of them
   // would count as fresh until the clock caught up. As the observation buffers do: drop them all.
-  if (speeds_.empty() || speeds_.back().received_ns <= now + kClockJumpBackToleranceNs) return 0;
-  const uint64_t from = speeds_.back().received_ns;
+  const uint64_t from = odom_clock_.latest();
+  if (!odom_clock_.jumpedBack(now)) return 0;
   speeds_.clear();
   return from;
 }

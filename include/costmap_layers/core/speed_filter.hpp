@@ -88,6 +88,7 @@
 #include <vector>
 
 #include "costmap_layers/core/costmap_filter.hpp"
+#include "costmap_layers/core/stamp_order.hpp"
 
 namespace costmap_layers
 {
@@ -218,8 +219,8 @@ private:
   void warnValueOnce(int8_t v, const std::string& message);
   /// The robot's speed for the lookahead [m/s], or nullopt (reported) when odometry is missing or stale.
   std::optional<double> currentSpeed();
-  /// With motion_mutex_ held: drops every odometry sample received after now (the clock jumped back);
-  /// returns the newest dropped receipt time, or 0 when nothing was dropped.
+  /// With motion_mutex_ held: when the clock jumped back (ClockWatch), drops every odometry sample and
+  /// returns the latest time seen before the jump; else 0.
   uint64_t dropOdometryBeforeJumpLocked(uint64_t now);
   void reportOdometryJump(uint64_t from_ns, uint64_t now);
   /// The strictest publication at the robot and along the path ahead (see the file comment).
@@ -244,6 +245,7 @@ private:
   std::string path_topic_, odom_topic_;
   // ... inputs (guarded by motion_mutex_) ...
   mutable std::mutex motion_mutex_;
+  ClockWatch odom_clock_;  ///< the odometry's clock: a jump back drops speeds_
   std::shared_ptr<const PathData> path_;
   struct SpeedSample
   {
