@@ -418,10 +418,10 @@ public:
   using Ptr = typename Msg::ConstPtr;
   static constexpr std::size_t kQueue = 10;     ///< readings that may wait for tf at once
   static constexpr double kRetryPeriod = 0.02;  ///< [s] how often waiting readings are retried
-  /// [s] how far a reading's stamp may lie ahead of now. tf's canTransform() is true at any stamp
-  /// between a frame and itself, so without this a reading from the future would pass (and, buffered,
-  /// look fresh until the clock caught up with it).
-  static constexpr double kMaxAhead = 1.0;
+  /// [s] how far a reading's stamp may lie ahead of now (see kGateMaxAhead). tf's canTransform() is true
+  /// at any stamp between a frame and itself, so without this a reading from the future would pass (and,
+  /// buffered, look fresh until the clock caught up with it).
+  static constexpr double kMaxAhead = kGateMaxAhead;
 
   static std::shared_ptr<TfGate> create(ros::NodeHandle& nh, const std::string& topic, tf2_ros::Buffer& tf,
                                         std::string target, std::string sensor_frame,
@@ -570,7 +570,7 @@ void LayerPorts::subscribeSensor(const std::string& topic, const std::string& se
         break;
       case TfVerdict::Future:
         key += "future";
-        why = std::string(when) + " is more than " + std::to_string(TfGate<Msg>::kMaxAhead) +
+        why = std::string(when) + " is more than " + costmap_layers::valueText(TfGate<Msg>::kMaxAhead) +
               " s ahead of the clock (a wrong sensor clock, or the clock jumped back)";
         break;
       default:

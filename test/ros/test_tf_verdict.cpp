@@ -152,6 +152,22 @@ TEST(TfStampProblem, TheLastCacheLengthOfRosTimeIsRefused)
   EXPECT_THROW(ros::Time(0xFFFFFFFFu - 9u, 0u) + cache, std::runtime_error);
 }
 
+// The gate's "ahead of now" rule is the layers' (0.5 s): a reading 0.6 s ahead is refused at the gate,
+// where it used to pass (1 s) and be refused again by the layer under another key.
+TEST(TfVerdict, TheGateRefusesWhatTheLayersWouldRefuseAsAheadOfNow)
+{
+  Rig r;
+  auto gate = [&r](double stamp)
+  {
+    return costmap_layers_ros::gateVerdict(r.buffer, "map", "laser", "", ros::Time(stamp), ros::Time(119.0),
+                                           costmap_layers_ros::kGateMaxAhead);
+  };
+  EXPECT_EQ(gate(119.4), TfVerdict::Ready);
+  EXPECT_EQ(gate(119.5), TfVerdict::Ready);  // exactly the tolerance
+  EXPECT_EQ(gate(119.6), TfVerdict::Future);
+  EXPECT_EQ(gate(119.9), TfVerdict::Future);
+}
+
 // A source with sensor_frame: the gate lets a reading through only when tf can place the sensor frame
 // at the stamp too, so that its delivery never waits for tf under the gate's lock.
 TEST(TfVerdict, TheGateWaitsForTheSensorFrameToo)

@@ -7,8 +7,15 @@
 
 #include <string>
 
+#include "costmap_layers/core/stamp_order.hpp"
+
 namespace costmap_layers_ros
 {
+/// [s] How far ahead of now the tf gate lets a sensor reading's stamp lie: the layers' own rule
+/// (kFutureStampToleranceNs), so that what passes the gate is not refused again by the layer under
+/// another key.
+constexpr double kGateMaxAhead = static_cast<double>(costmap_layers::kFutureStampToleranceNs) * 1e-9;
+
 enum class TfVerdict
 {
   Ready,      ///< tf can transform the reading's frame at its stamp
