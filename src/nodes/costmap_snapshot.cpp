@@ -20,8 +20,9 @@ int main(int argc, char** argv)
   ros::NodeHandle nh, pnh("~");
   const std::string topic = pnh.param<std::string>("topic", "/costmap_node/costmap");
   const std::string output = pnh.param<std::string>("output", "costmap.png");
+  // Both in wall time: under /use_sim_time a stopped or absent /clock must not hang the tool.
   const double wait = pnh.param("wait", 0.0);         // [s] to keep applying updates after the first grid
-  const double timeout = pnh.param("timeout", 30.0);  // [s] to wait for the first grid
+  const double timeout = pnh.param("timeout", 30.0);  // [s] to wait for the first grid (not after it)
   // NaN would make both waits endless (every comparison with it is false).
   for (const auto& [name, value] : {std::pair<const char*, double>{"wait", wait}, {"timeout", timeout}})
   {
@@ -36,7 +37,7 @@ int main(int argc, char** argv)
   std::mutex mutex;
   nav_msgs::OccupancyGrid grid;
   bool have_grid = false;
-  ros::Time first;
+  ros::SteadyTime first;
   auto sub = nh.subscribe<nav_msgs::OccupancyGrid>(
       topic, 1,
       [&](const nav_msgs::OccupancyGrid::ConstPtr& msg)
@@ -58,7 +59,7 @@ int main(int argc, char** argv)
         }
         std::lock_guard<std::mutex> lock(mutex);
         grid = *msg;
-        if (!have_grid) first = ros::Time::now();
+        if (!have_grid) first = ros::SteadyTime::now();
         have_grid = true;
       });
   auto updates = nh.subscribe<map_msgs::OccupancyGridUpdate>(
@@ -80,14 +81,14 @@ int main(int argc, char** argv)
                       grid.data.begin() + (static_cast<std::size_t>(u->y) + j) * grid.info.width + u->x);
       });
 
-  const ros::WallTime start = ros::WallTime::now();
-  ros::Rate rate(20);
+  const ros::SteadyTime start = ros::SteadyTime::now();
+  ros::WallRate rate(20);
   while (ros::ok())
   {
     ros::spinOnce();
     {
       std::lock_guard<std::mutex> lock(mutex);
-      if (have_grid && (ros::Time::now() - first).toSec() >= wait)
+      if (have_grid && (ros::SteadyTime::now() - first).toSec() >= wait)
       {
         try
         {
@@ -103,7 +104,12 @@ int main(int argc, char** argv)
         return 0;
       }
     }
-    if ((ros::WallTime::now() - start).toSec() > timeout)
+    bool waiting_for_first;
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      waiting_for_first = !have_grid;
+    }
+    if (waiting_for_first && (ros::SteadyTime::now() - start).toSec() > timeout)
     {
       ROS_ERROR("costmap_snapshot: no costmap on %s within %.1f s", topic.c_str(), timeout);
       return 1;
