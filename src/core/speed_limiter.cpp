@@ -37,7 +37,7 @@ std::optional<std::string> checkMaxSpeed(double max_speed)
   return s.str();
 }
 
-CommandWatchdog::Event CommandWatchdog::check(uint64_t now_ns)
+CommandWatchdog::Event CommandWatchdog::check(uint64_t now_ns, uint64_t steady_ns)
 {
   // Noted even while stale; commandReceived() notes its times too, so a jump back below the last
   // command is seen here.
@@ -47,6 +47,12 @@ CommandWatchdog::Event CommandWatchdog::check(uint64_t now_ns)
   {
     last_command_ns_ = now_ns;
     return Event::ClockJumpedBack;
+  }
+  if (now_ns == last_command_ns_ && steady_ns > last_command_steady_ns_ &&
+      static_cast<double>(steady_ns - last_command_steady_ns_) * 1e-9 > timeout_s_)
+  {
+    stale_ = true;
+    return Event::WentStaleNoClock;
   }
   if (now_ns <= last_command_ns_) return Event::None;  // a step back within the tolerance
   if (static_cast<double>(now_ns - last_command_ns_) * 1e-9 <= timeout_s_) return Event::None;

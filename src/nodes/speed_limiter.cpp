@@ -74,22 +74,29 @@ int main(int argc, char** argv)
         }
         std::lock_guard<std::mutex> lock(mutex);
         out.publish(toMsg(costmap_layers::limitTwist(in, limit)));
-        input_watch.commandReceived(ros::Time::now().toNSec());
+        input_watch.commandReceived(ros::Time::now().toNSec(), ros::SteadyTime::now().toNSec());
       });
-  auto watchdog =
-      nh.createTimer(ros::Duration(0.05),
-                     [&](const ros::TimerEvent&)
-                     {
-                       std::lock_guard<std::mutex> lock(mutex);
-                       const auto event = input_watch.check(ros::Time::now().toNSec());
-                       if (event == costmap_layers::CommandWatchdog::Event::ClockJumpedBack)
-                         ROS_WARN("speed_limiter: the clock jumped back: the %.2f s command timeout restarts now",
-                                  cfg.command_timeout);
-                       if (event != costmap_layers::CommandWatchdog::Event::WentStale) return;
-                       if (cfg.publish_zero_when_stale) out.publish(geometry_msgs::Twist());
-                       ROS_WARN("speed_limiter: no command on cmd_vel_in for %.2f s: %s", cfg.command_timeout,
-                                cfg.publish_zero_when_stale ? "published a zero command" : "stopped publishing");
-                     });
+  // A steady timer: a ROS-time timer never fires under /use_sim_time while /clock is absent or paused,
+  // and the watchdog must still see commands stop then (CommandWatchdog times a clock that does not
+  // move on the steady clock).
+  using Event = costmap_layers::CommandWatchdog::Event;
+  auto watchdog = nh.createSteadyTimer(
+      ros::WallDuration(0.05),
+      [&](const ros::SteadyTimerEvent&)
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        const auto event = input_watch.check(ros::Time::now().toNSec(), ros::SteadyTime::now().toNSec());
+        if (event == Event::ClockJumpedBack)
+          ROS_WARN("speed_limiter: the clock jumped back: the %.2f s command timeout restarts now",
+                   cfg.command_timeout);
+        if (event != Event::WentStale && event != Event::WentStaleNoClock) return;
+        if (cfg.publish_zero_when_stale) out.publish(geometry_msgs::Twist());
+        ROS_WARN("speed_limiter: no command on cmd_vel_in for %.2f s%s: %s", cfg.command_timeout,
+                 event == Event::WentStaleNoClock ? " of wall time (the ROS clock has not moved: /use_sim_time "
+                                                    "without /clock, or a paused one)"
+                                                  : "",
+                 cfg.publish_zero_when_stale ? "published a zero command" : "stopped publishing");
+      });
   ros::spin();
   return 0;
 }

@@ -112,3 +112,31 @@ TEST(CommandWatchdog, ExtremeTimes)
   EXPECT_EQ(w.check(0), CommandWatchdog::Event::None);
   EXPECT_EQ(w.check(UINT64_MAX), CommandWatchdog::Event::WentStale);
 }
+
+// Simulated time with no /clock (ROS time 0) or a paused /clock: the clock cannot time the input, so
+// the steady clock does, and only while the clock has not moved since the command.
+TEST(CommandWatchdog, AClockThatDoesNotMoveIsTimedOnTheSteadyClock)
+{
+  CommandWatchdog w(0.5);
+  w.commandReceived(0, 100 * kSec);  // no /clock: ROS time 0
+  EXPECT_EQ(w.check(0, 100 * kSec + 500'000'000), CommandWatchdog::Event::None);
+  EXPECT_EQ(w.check(0, 100 * kSec + 500'000'001), CommandWatchdog::Event::WentStaleNoClock);
+  EXPECT_EQ(w.check(0, 200 * kSec), CommandWatchdog::Event::None);  // once
+  EXPECT_TRUE(w.stale());
+
+  // A paused simulation at 42 s: the same.
+  w.commandReceived(42 * kSec, 300 * kSec);
+  EXPECT_EQ(w.check(42 * kSec, 300 * kSec + 400'000'000), CommandWatchdog::Event::None);
+  EXPECT_EQ(w.check(42 * kSec, 300 * kSec + 600'000'000), CommandWatchdog::Event::WentStaleNoClock);
+
+  // A simulation at a tenth of real time moves: 2 s of steady time are 0.2 s of its own, not stale.
+  w.commandReceived(50 * kSec, 400 * kSec);
+  EXPECT_EQ(w.check(50 * kSec + 200'000'000, 402 * kSec), CommandWatchdog::Event::None);
+  EXPECT_EQ(w.check(50 * kSec + 400'000'000, 404 * kSec), CommandWatchdog::Event::None);
+  EXPECT_EQ(w.check(50 * kSec + 600'000'000, 406 * kSec), CommandWatchdog::Event::WentStale);
+
+  // Without a steady clock (0) nothing changes: ROS time 0 throughout stays fresh, as before.
+  CommandWatchdog plain(0.5);
+  plain.commandReceived(0);
+  EXPECT_EQ(plain.check(0), CommandWatchdog::Event::None);
+}

@@ -37,35 +37,42 @@ std::optional<std::string> checkMaxSpeed(double max_speed);
 /// the clock back (now more than kClockJumpBackToleranceNs before the last command or the latest check)
 /// restarts the timeout at the jump: the input goes stale command_timeout s later unless a command
 /// arrives, instead of staying fresh until the clock is back at the last command's time. A jump forward
-/// makes it stale. Not thread-safe: the node holds its mutex.
+/// makes it stale. A clock that does not move at all (simulated time with no /clock, or a paused one) cannot
+/// time anything: when it has not moved since the last command, command_timeout s of the steady clock
+/// make the input stale (a simulation slower than real time still moves, and is timed on its own clock).
+/// Not thread-safe: the node holds its mutex.
 class CommandWatchdog
 {
 public:
   enum class Event
   {
     None,
-    WentStale,       ///< no command for more than command_timeout: publish the zero command (once)
-    ClockJumpedBack  ///< the timeout restarted at now_ns (worth one warning)
+    WentStale,        ///< no command for more than command_timeout: publish the zero command (once)
+    ClockJumpedBack,  ///< the timeout restarted at now_ns (worth one warning)
+    WentStaleNoClock  ///< as WentStale, timed on the steady clock: the clock has not moved since the command
   };
 
   /// @param command_timeout [s]; the node refuses values that are not > 0.
   explicit CommandWatchdog(double command_timeout) : timeout_s_(command_timeout) {}
 
-  /// A command arrived at now_ns: the input is fresh.
-  void commandReceived(uint64_t now_ns)
+  /// A command arrived at now_ns (steady_ns on a steady clock, 0 without one): the input is fresh.
+  void commandReceived(uint64_t now_ns, uint64_t steady_ns = 0)
   {
     clock_.jumpedBack(now_ns);
     last_command_ns_ = now_ns;
+    last_command_steady_ns_ = steady_ns;
     stale_ = false;
   }
-  /// Called periodically. WentStale once when the input goes stale, then None until the next command.
-  Event check(uint64_t now_ns);
+  /// Called periodically (steady_ns as for commandReceived). WentStale or WentStaleNoClock once when the
+  /// input goes stale, then None until the next command.
+  Event check(uint64_t now_ns, uint64_t steady_ns = 0);
   /// True before the first command and after WentStale until the next command.
   bool stale() const { return stale_; }
 
 private:
   double timeout_s_;
   uint64_t last_command_ns_ = 0;
+  uint64_t last_command_steady_ns_ = 0;
   bool stale_ = true;
   ClockWatch clock_;
 };

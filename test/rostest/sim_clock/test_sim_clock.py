@@ -2,7 +2,8 @@
 """costmap_node under /use_sim_time. Before the first /clock it runs no update cycle (costmap_2d's loop
 does not run either) and says why in /diagnostics, instead of publishing a costmap built without any
 stamped input. Once /clock runs it updates and publishes. When /clock jumps back (rosbag play --loop),
-/diagnostics and the costmap keep coming. All waits here are on the wall clock: this process's
+/diagnostics and the costmap keep coming. speed_limiter's command timeout works without /clock too (its
+watchdog is timed on the steady clock while the ROS clock does not move). All waits here are on the wall clock: this process's
 ROS time is the simulated one it publishes."""
 import threading
 import time
@@ -11,6 +12,7 @@ import unittest
 import rospy
 import rostest
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
+from geometry_msgs.msg import Twist
 from nav_msgs.msg import OccupancyGrid
 from rosgraph_msgs.msg import Clock
 
@@ -29,6 +31,14 @@ class SimClockTest(unittest.TestCase):
         cls.clock_pub = rospy.Publisher("/clock", Clock, queue_size=10)
         rospy.Subscriber("/diagnostics", DiagnosticArray, cls.on_diagnostics, queue_size=50)
         rospy.Subscriber("/" + NODE + "/costmap", OccupancyGrid, cls.on_grid, queue_size=10)
+        cls.commands = []  # what speed_limiter sent on /cmd_vel
+        cls.cmd_pub = rospy.Publisher("/cmd_vel_in", Twist, queue_size=10)
+        rospy.Subscriber("/cmd_vel", Twist, cls.on_command, queue_size=50)
+
+    @classmethod
+    def on_command(cls, msg):
+        with cls.lock:
+            cls.commands.append(msg.linear.x)
 
     @classmethod
     def on_diagnostics(cls, msg):
@@ -76,6 +86,25 @@ class SimClockTest(unittest.TestCase):
         statuses, grids = self.counts()
         self.assertGreaterEqual(statuses, 2, "/diagnostics must keep coming without /clock")
         self.assertEqual(grids, 0, "no costmap before the first /clock")
+
+        # speed_limiter without /clock: a command passes, and 0.5 s after it stops a zero command follows.
+        deadline = time.monotonic() + 10.0
+        while self.cmd_pub.get_num_connections() == 0 and time.monotonic() < deadline:
+            time.sleep(0.05)
+        self.assertGreater(self.cmd_pub.get_num_connections(), 0, "speed_limiter never subscribed cmd_vel_in")
+        command = Twist()
+        command.linear.x = 0.4
+        self.cmd_pub.publish(command)
+        deadline = time.monotonic() + 5.0
+        while time.monotonic() < deadline:
+            with self.lock:
+                sent = list(self.commands)
+            if len(sent) >= 2:
+                break
+            time.sleep(0.05)
+        self.assertEqual(sent[:2], [0.4, 0.0],
+                         "speed_limiter must forward the command, then send a zero one when commands stop, "
+                         "with no /clock (got %s)" % sent)
 
         # /clock runs from 100 s: cycles and a costmap, and the ERROR is gone.
         runner = threading.Thread(target=self.run_clock, args=(100.0, 10.0))
