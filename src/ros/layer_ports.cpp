@@ -140,7 +140,7 @@ LayerPorts::LayerPorts(ros::NodeHandle public_nh, ros::NodeHandle private_nh, co
         // the topic over and over gets kMovesLogged lines per kMovePeriod and then a count.
         constexpr std::size_t kMovesLogged = 10;
         constexpr double kMovePeriod = 10.0;  // [s]
-        const double now = ros::WallTime::now().toSec();
+        const double now = ros::SteadyTime::now().toSec();  // a step of the system clock must not silence it
         while (!move_log_times_.empty() && !(now - move_log_times_.front() < kMovePeriod))
           move_log_times_.pop_front();
         if (move_log_times_.size() >= kMovesLogged)
@@ -193,7 +193,9 @@ std::string LayerPorts::resolveTopic(const std::string& topic) const
 void LayerPorts::Receipts::note()
 {
   count.fetch_add(1);
-  last.store(ros::Time::now().toSec());
+  // Arrival on the steady clock: the age shown is real time since the message came, also under
+  // /use_sim_time or after a clock jump (ROS time behind the last arrival would read 0 s for as long).
+  last.store(ros::SteadyTime::now().toSec());
 }
 
 std::shared_ptr<LayerPorts::Receipts> LayerPorts::receiptsFor(const std::string& topic)
@@ -209,7 +211,7 @@ std::shared_ptr<LayerPorts::Receipts> LayerPorts::receiptsFor(const std::string&
 std::vector<std::pair<std::string, std::string>> LayerPorts::receipts() const
 {
   std::vector<std::pair<std::string, std::string>> out;
-  const double now = ros::Time::now().toSec();
+  const double now = ros::SteadyTime::now().toSec();
   std::lock_guard<std::mutex> lock(receipts_mutex_);
   for (const auto& [topic, r] : receipts_)
   {

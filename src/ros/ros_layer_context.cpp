@@ -37,7 +37,7 @@ void logToRosconsole(Severity severity, const std::string& message)
 ThrottledLog::ThrottledLog(double period, Sink sink, Clock clock)
     : period_(period),
       sink_(sink ? std::move(sink) : Sink(logToRosconsole)),
-      clock_(clock ? std::move(clock) : Clock([] { return ros::WallTime::now().toSec(); }))
+      clock_(clock ? std::move(clock) : Clock([] { return ros::SteadyTime::now().toSec(); }))
 {
 }
 

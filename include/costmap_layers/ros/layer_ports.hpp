@@ -41,7 +41,7 @@ public:
   /// Per subscribed topic (resolved name): "N message(s), last X s ago" or "nothing yet", counted when a
   /// message arrives (before tf or validation), for /diagnostics.
   std::vector<std::pair<std::string, std::string>> receipts() const;
-  /// How many messages arrived on a topic and when (ros::Time, seconds; 0 = never). Any thread.
+  /// How many messages arrived on a topic and when (ros::SteadyTime, seconds; 0 = never). Any thread.
   struct Receipts
   {
     std::atomic<uint64_t> count{0};

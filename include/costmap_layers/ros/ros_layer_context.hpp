@@ -27,7 +27,7 @@ public:
   using Clock = std::function<double()>;  ///< [s], monotonic
   static constexpr std::size_t kMaxKeys = 1024;
 
-  /// By default messages go to rosconsole and time is the wall clock; tests pass their own.
+  /// By default messages go to rosconsole and time is the steady clock; tests pass their own.
   explicit ThrottledLog(double period = 5.0, Sink sink = {}, Clock clock = {});
   void log(costmap_layers::Severity severity, const std::string& key, const std::string& message);
   std::size_t keyCount() const;

@@ -3,7 +3,8 @@
 does not run either) and says why in /diagnostics, instead of publishing a costmap built without any
 stamped input. Once /clock runs it updates and publishes. When /clock jumps back (rosbag play --loop),
 /diagnostics and the costmap keep coming. speed_limiter's command timeout works without /clock too (its
-watchdog is timed on the steady clock while the ROS clock does not move). All waits here are on the wall clock: this process's
+watchdog is timed on the steady clock while the ROS clock does not move), and the age of the last message
+on a layer's topic in /diagnostics is real time, not 0 s while /clock is behind the arrival. All waits here are on the wall clock: this process's
 ROS time is the simulated one it publishes."""
 import threading
 import time
@@ -13,7 +14,7 @@ import rospy
 import rostest
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from geometry_msgs.msg import Twist
-from nav_msgs.msg import OccupancyGrid
+from nav_msgs.msg import MapMetaData, OccupancyGrid
 from rosgraph_msgs.msg import Clock
 
 NODE = "costmap_node"
@@ -26,6 +27,7 @@ class SimClockTest(unittest.TestCase):
         rospy.init_node("test_sim_clock")
         cls.lock = threading.Lock()
         cls.status = None  # the latest "costmap_node: costmap" status
+        cls.static_status = None  # the latest "costmap_node: layer static" status
         cls.status_count = 0
         cls.grid_count = 0
         cls.clock_pub = rospy.Publisher("/clock", Clock, queue_size=10)
@@ -33,6 +35,7 @@ class SimClockTest(unittest.TestCase):
         rospy.Subscriber("/" + NODE + "/costmap", OccupancyGrid, cls.on_grid, queue_size=10)
         cls.commands = []  # what speed_limiter sent on /cmd_vel
         cls.cmd_pub = rospy.Publisher("/cmd_vel_in", Twist, queue_size=10)
+        cls.map_pub = rospy.Publisher("/map", OccupancyGrid, queue_size=1, latch=True)
         rospy.Subscriber("/cmd_vel", Twist, cls.on_command, queue_size=50)
 
     @classmethod
@@ -47,6 +50,8 @@ class SimClockTest(unittest.TestCase):
                 if s.name == NODE + ": costmap":
                     cls.status = s
                     cls.status_count += 1
+                elif s.name == NODE + ": layer static":
+                    cls.static_status = s
 
     @classmethod
     def on_grid(cls, _msg):
@@ -117,6 +122,14 @@ class SimClockTest(unittest.TestCase):
             while self.counts()[1] == 0 and time.monotonic() < deadline:
                 time.sleep(0.05)
             self.assertGreater(self.counts()[1], 0, "a costmap once /clock runs")
+            # The map arrives while the ROS clock reads about 100 s.
+            grid = OccupancyGrid(info=MapMetaData(resolution=0.1, width=40, height=40))
+            grid.header.frame_id = "map"
+            grid.info.origin.orientation.w = 1.0
+            grid.data = [0] * (40 * 40)
+            grid.data[20 * 40 + 20] = 100
+            self.map_pub.publish(grid)
+            self.wait_static(lambda v: v.startswith("1 message"), 5.0, "the map's receipt")
         finally:
             runner.join()
 
@@ -132,6 +145,23 @@ class SimClockTest(unittest.TestCase):
         self.assertGreaterEqual(grids_after - grids, 2, "the costmap (2 Hz) must keep coming after the jump; " + seen)
         self.assertNotIn("/clock", s.message)
         self.assertNotEqual(s.level, DiagnosticStatus.ERROR, s.message)
+        # The map came >= 3 s of real time ago, at ROS time ~105 s; ROS time now reads ~4 s.
+        self.wait_static(lambda v: float(v.split("last ")[1].split(" s ago")[0]) >= 2.5, 3.0,
+                         "the map's receipt age in real time after /clock went back")
+
+    def wait_static(self, predicate, timeout, what):
+        """Waits for the static layer's "received on /map" value to satisfy predicate."""
+        deadline = time.monotonic() + timeout
+        value = None
+        while time.monotonic() < deadline:
+            with self.lock:
+                s = self.static_status
+            values = {} if s is None else {kv.key: kv.value for kv in s.values}
+            value = values.get("received on /map")
+            if value is not None and predicate(value):
+                return value
+            time.sleep(0.05)
+        self.fail("%s (last seen: %s)" % (what, value))
 
 
 if __name__ == "__main__":
