@@ -190,9 +190,28 @@ void Costmap2D::updateOrigin(double new_origin_x, double new_origin_y)
   const int cell_ox = clampCellShift(shift_x, size_x_);
   const int cell_oy = clampCellShift(shift_y, size_y_);
   if (cell_ox == 0 && cell_oy == 0) return;
-  const double new_grid_ox = origin_x_ + shift_x * resolution_;
-  const double new_grid_oy = origin_y_ + shift_y * resolution_;
+  shiftCells(cell_ox, cell_oy);
+  origin_x_ += shift_x * resolution_;
+  origin_y_ += shift_y * resolution_;
+}
 
+std::pair<int, int> Costmap2D::followOrigin(double lattice_origin_x, double lattice_origin_y)
+{
+  // Both origins lie on one lattice up to rounding, so the shift is rounded, never floored: a floor
+  // of -0.9999999 would put every kept cell one cell off the grid followed.
+  const double shift_x = std::round((lattice_origin_x - origin_x_) / resolution_);
+  const double shift_y = std::round((lattice_origin_y - origin_y_) / resolution_);
+  if (!std::isfinite(shift_x) || !std::isfinite(shift_y)) return {0, 0};
+  const int cell_ox = clampCellShift(shift_x, size_x_);
+  const int cell_oy = clampCellShift(shift_y, size_y_);
+  if (cell_ox != 0 || cell_oy != 0) shiftCells(cell_ox, cell_oy);
+  origin_x_ = lattice_origin_x;
+  origin_y_ = lattice_origin_y;
+  return {cell_ox, cell_oy};
+}
+
+void Costmap2D::shiftCells(int cell_ox, int cell_oy)
+{
   const int size_x = static_cast<int>(size_x_);
   const int size_y = static_cast<int>(size_y_);
   // Overlap of the old and new windows, in old cells.
@@ -224,8 +243,6 @@ void Costmap2D::updateOrigin(double new_origin_x, double new_origin_y)
     owned_.swap(next);
     cells_ = owned_.data();
   }
-  origin_x_ = new_grid_ox;
-  origin_y_ = new_grid_oy;
 }
 
 void Costmap2D::polygonOutlineCells(const std::vector<MapLocation>& polygon, std::vector<MapLocation>& cells) const

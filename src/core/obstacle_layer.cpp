@@ -347,16 +347,18 @@ void ObstacleLayer::clearStaticObservations(bool marking, bool clearing)
   if (clearing) static_clearing_.clear();
 }
 
-void ObstacleLayer::moveOrigin(double new_origin_x, double new_origin_y)
+void ObstacleLayer::moveOrigin(double master_origin_x, double master_origin_y)
 {
-  costmap_.updateOrigin(new_origin_x, new_origin_y);
+  costmap_.followOrigin(master_origin_x, master_origin_y);
 }
 
 void ObstacleLayer::updateBounds(double robot_x, double robot_y, double robot_yaw, double* min_x, double* min_y,
                                  double* max_x, double* max_y)
 {
+  // The master has moved already (LayeredCostmap::updateMap, or costmap_2d's under move_base, which
+  // truncates where this package floors): the own grid takes its origin, cell for cell.
   if (layered_costmap_->isRolling())
-    moveOrigin(robot_x - costmap_.getSizeInMetersX() / 2, robot_y - costmap_.getSizeInMetersY() / 2);
+    moveOrigin(layered_costmap_->getCostmap().getOriginX(), layered_costmap_->getCostmap().getOriginY());
   useExtraBounds(min_x, min_y, max_x, max_y);
 
   const uint64_t now = context_->nowNs();

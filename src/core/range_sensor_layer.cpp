@@ -302,11 +302,11 @@ void RangeSensorLayer::applyReading(const Pending& reading)
   }
 }
 
-void RangeSensorLayer::updateBounds(double robot_x, double robot_y, double /*robot_yaw*/, double* min_x, double* min_y,
-                                    double* max_x, double* max_y)
+void RangeSensorLayer::updateBounds(double /*robot_x*/, double /*robot_y*/, double /*robot_yaw*/, double* min_x,
+                                    double* min_y, double* max_x, double* max_y)
 {
-  if (layered_costmap_->isRolling())
-    costmap_.updateOrigin(robot_x - costmap_.getSizeInMetersX() / 2, robot_y - costmap_.getSizeInMetersY() / 2);
+  if (layered_costmap_->isRolling())  // the master has moved already: follow it (see ObstacleLayer)
+    costmap_.followOrigin(layered_costmap_->getCostmap().getOriginX(), layered_costmap_->getCostmap().getOriginY());
   useExtraBounds(min_x, min_y, max_x, max_y);
   uint64_t dropped = 0;
   {

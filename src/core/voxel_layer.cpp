@@ -41,17 +41,11 @@ void VoxelLayer::reset()
   voxels_.reset();
 }
 
-void VoxelLayer::moveOrigin(double new_origin_x, double new_origin_y)
+void VoxelLayer::moveOrigin(double master_origin_x, double master_origin_y)
 {
-  // The same whole-cell shift Costmap2D::updateOrigin applies to the 2-D grid.
-  const double res = costmap_.getResolution();
-  const double shift_x = std::floor((new_origin_x - costmap_.getOriginX()) / res);
-  const double shift_y = std::floor((new_origin_y - costmap_.getOriginY()) / res);
-  if (!std::isfinite(shift_x) || !std::isfinite(shift_y)) return;  // as Costmap2D::updateOrigin
-  const int dx = Costmap2D::clampCellShift(shift_x, costmap_.getSizeInCellsX());
-  const int dy = Costmap2D::clampCellShift(shift_y, costmap_.getSizeInCellsY());
-  costmap_.updateOrigin(new_origin_x, new_origin_y);
-  voxels_.shift(dx, dy);
+  // The columns move by the same whole-cell shift as the 2-D grid.
+  const auto [dx, dy] = costmap_.followOrigin(master_origin_x, master_origin_y);
+  if (dx != 0 || dy != 0) voxels_.shift(dx, dy);
 }
 
 void VoxelLayer::raytraceFreespace(const Observation& obs, double* min_x, double* min_y, double* max_x, double* max_y)

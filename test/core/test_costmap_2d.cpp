@@ -427,6 +427,41 @@ TEST(Costmap2DOrigin, ManyShiftsMatchNaiveComputation)
   }
 }
 
+// followOrigin: the origin of a grid on the same lattice, reached by a sum of float steps (as a master
+// moved by costmap_2d's rule is): rounded to whole cells, never floored, and taken exactly.
+TEST(Costmap2DOrigin, FollowOriginRoundsToTheLatticeAndTakesTheOriginExactly)
+{
+  const Costmap2D before = numberedGrid(7, 6, 0.05, 0.0, 0.0);
+  // -0.05 * 3 summed as 0 - 0.05 - 0.05 - 0.05 is -0.15000000000000002: the floor of its shift is -4.
+  const double target_x = 0.0 - 0.05 - 0.05 - 0.05, target_y = 0.0 + 0.05 + 0.05;
+  ASSERT_EQ(std::floor((target_x - 0.0) / 0.05), -4.0);
+  Costmap2D g = before;
+  const std::pair<int, int> shift = g.followOrigin(target_x, target_y);
+  EXPECT_EQ(shift, std::make_pair(-3, 2));
+  EXPECT_EQ(g.getOriginX(), target_x);
+  EXPECT_EQ(g.getOriginY(), target_y);
+  for (unsigned y = 0; y < 6; ++y)
+    for (unsigned x = 0; x < 7; ++x)
+    {
+      const int ox = static_cast<int>(x) - 3, oy = static_cast<int>(y) + 2;  // the old cell now here
+      const bool kept = ox >= 0 && oy >= 0 && ox < 7 && oy < 6;
+      EXPECT_EQ(g.getCost(x, y), kept ? before.getCost(ox, oy) : 0) << x << "," << y;
+    }
+  // Less than half a cell away: no cell moves, the origin is taken.
+  Costmap2D h = before;
+  EXPECT_EQ(h.followOrigin(0.024, -0.024), std::make_pair(0, 0));
+  EXPECT_EQ(h.getOriginX(), 0.024);
+  for (unsigned int i = 0; i < h.cellCount(); ++i)
+    EXPECT_EQ(h.getCost(i), before.getCost(i));
+  // A non-finite origin moves nothing; a far one keeps no cell and is taken.
+  EXPECT_EQ(h.followOrigin(std::nan(""), 0.0), std::make_pair(0, 0));
+  EXPECT_EQ(h.getOriginX(), 0.024);
+  EXPECT_EQ(h.followOrigin(1e12, 0.0).first, 8);
+  EXPECT_EQ(h.getOriginX(), 1e12);
+  for (unsigned int i = 0; i < h.cellCount(); ++i)
+    EXPECT_EQ(h.getCost(i), 0);
+}
+
 // ---------------------------------------------------------------- polygons
 
 TEST(Costmap2DPolygons, OutlineOfSquare)

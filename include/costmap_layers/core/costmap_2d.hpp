@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -108,6 +109,11 @@ public:
   /// Moves the origin (snapped to whole cells of the current grid), keeping the cells that the old and
   /// new windows share and setting the rest to the default value (for rolling windows).
   void updateOrigin(double new_origin_x, double new_origin_y);
+  /// Moves the grid onto the origin of a grid on the same lattice (a rolling layer's own grid following
+  /// the master, whichever rule moved the master: costmap_2d truncates, updateOrigin floors). The shift
+  /// is rounded to whole cells, the origin becomes exactly the one given. Returns the shift applied in
+  /// cells (clamped as clampCellShift; {0, 0} for a non-finite origin, which moves nothing).
+  std::pair<int, int> followOrigin(double lattice_origin_x, double lattice_origin_y);
 
   /// Cells on the outline of a polygon given in map cells (consecutive vertices joined, closed).
   void polygonOutlineCells(const std::vector<MapLocation>& polygon, std::vector<MapLocation>& cells) const;
@@ -131,6 +137,9 @@ public:
 private:
   /// Size, resolution, origin and default value of other (not the cells).
   void copyGeometry(const Costmap2D& other);
+  /// Moves the cells by a whole-cell shift of the origin (clamped), the new ones at the default value;
+  /// the origin itself is the caller's.
+  void shiftCells(int cell_ox, int cell_oy);
   template <class ActionType>
   static void bresenham(ActionType& at, unsigned int abs_da, unsigned int abs_db, int error_b, int offset_a,
                         int offset_b, unsigned int offset, unsigned int max_length);

@@ -102,8 +102,8 @@ public:
 protected:
   void onInitialize() override;
 
-  /// Moves the rolling window (the own grid; VoxelLayer also moves its columns).
-  virtual void moveOrigin(double new_origin_x, double new_origin_y);
+  /// Moves the rolling window onto the master's origin (the own grid; VoxelLayer also moves its columns).
+  virtual void moveOrigin(double master_origin_x, double master_origin_y);
   /// Clears the cells from the observation's origin towards each of its points.
   virtual void raytraceFreespace(const Observation& observation, double* min_x, double* min_y, double* max_x,
                                  double* max_y);
