@@ -152,12 +152,20 @@ void LayerBridge::updateCosts(costmap_2d::Costmap2D& master_grid, int min_i, int
 
 void LayerBridge::matchSize()
 {
-  if (host_) viewMaster();  // the core layers' matchSize runs when the geometry changed
+  if (!host_) return;
+  viewMaster();  // the core layers' matchSize runs when the geometry changed
+  // costmap_2d has reset its master (Costmap2D::resizeMap), also for the same geometry (every
+  // dynamic_reconfigure of a costmap whose size is not locked): what the layer drew is gone.
+  full_update_ = true;
 }
 
 void LayerBridge::onFootprintChanged()
 {
   if (!host_) return;
+  // costmap_2d calls this from its footprint subscriber with no lock, while the map update thread may
+  // be inside the core layers (the inflation layer's cost table, the footprint the obstacle layer
+  // clears): the costmap's mutex (recursive; updateMap holds it) keeps them apart.
+  boost::unique_lock<costmap_2d::Costmap2D::mutex_t> lock(*layered_costmap_->getCostmap()->getMutex());
   costmap_layers::Footprint footprint;
   for (const auto& p : layered_costmap_->getFootprint())
     footprint.emplace_back(p.x, p.y);

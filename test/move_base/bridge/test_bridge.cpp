@@ -1,0 +1,172 @@
+// LayerBridge inside a real costmap_2d::LayeredCostmap (the navigation underlay's), driven as
+// Costmap2DROS drives it: the map update thread's updateMap, the footprint subscriber's setFootprint on
+// another thread, a rolling window moved by costmap_2d's own rule, and resizeMap from a reconfigure.
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+#include <tf2_ros/buffer.h>
+
+#include <costmap_2d/cost_values.h>
+#include <costmap_2d/footprint.h>
+#include <costmap_2d/layered_costmap.h>
+#include <atomic>
+#include <cmath>
+#include <memory>
+#include <thread>
+#include <vector>
+
+#include "costmap_layers/core/inflation_layer.hpp"
+#include "costmap_layers/core/obstacle_layer.hpp"
+#include "costmap_layers/move_base/layer_bridge.hpp"
+
+using costmap_layers::move_base::LayerBridge;
+
+namespace
+{
+/// A bridged core layer added to lc as costmap_2d adds plugins; name is ~/<costmap>/<layer>.
+template <class Core>
+std::shared_ptr<Core> addBridged(costmap_2d::LayeredCostmap& lc, tf2_ros::Buffer& tf, const std::string& name,
+                                 const std::string& class_name)
+{
+  auto core = std::make_shared<Core>();
+  boost::shared_ptr<costmap_2d::Layer> plugin(new LayerBridge(core, class_name));
+  lc.addPlugin(plugin);
+  plugin->initialize(&lc, name, &tf);
+  return core;
+}
+
+costmap_layers::Observation pointsSeenFrom(double ox, double oy, const std::vector<std::pair<float, float>>& xy)
+{
+  costmap_layers::Observation o;
+  o.origin_x = ox;
+  o.origin_y = oy;
+  o.origin_z = 0.1;
+  for (const auto& [x, y] : xy)
+    o.points.push_back({x, y, 0.1f});
+  o.obstacle_max_range = o.raytrace_max_range = 100.0;
+  return o;
+}
+
+std::vector<geometry_msgs::Point> circle(double radius, int n)
+{
+  std::vector<geometry_msgs::Point> out;
+  for (int k = 0; k < n; ++k)
+  {
+    geometry_msgs::Point p;
+    p.x = radius * std::cos(2 * M_PI * k / n);
+    p.y = radius * std::sin(2 * M_PI * k / n);
+    out.push_back(p);
+  }
+  return out;
+}
+}  // namespace
+
+// costmap_2d's footprint subscriber calls setFootprint, which reaches every plugin's
+// onFootprintChanged, on a spinner thread without a lock while the update thread runs updateMap. The
+// bridged inflation layer replaced its cost table under the running update (a segfault in the audit's
+// run, 4 of 4). Footprints of 16 and 400 points alternate as fast as they can for 2 s.
+TEST(Bridge, FootprintChangesWhileTheMapUpdatesAreSafe)
+{
+  ros::NodeHandle("~").setParam("race/inflation/inflation_radius", 1.0);
+  tf2_ros::Buffer tf;
+  costmap_2d::LayeredCostmap lc("map", false, false);
+  lc.resizeMap(200, 200, 0.05, 0.0, 0.0);
+  auto obstacles = addBridged<costmap_layers::ObstacleLayer>(lc, tf, "race/obstacles", "ObstacleLayer");
+  addBridged<costmap_layers::InflationLayer>(lc, tf, "race/inflation", "InflationLayer");
+  std::vector<std::pair<float, float>> wall;
+  for (int k = 0; k < 200; ++k)
+    wall.emplace_back(3.0f + 0.02f * k, 6.0f);
+  obstacles->addStaticObservation(pointsSeenFrom(5.0, 5.0, wall), true, false);
+  const auto small = circle(0.1, 16), big = circle(0.3, 400);
+  lc.setFootprint(small);
+
+  std::atomic<bool> stop{false};
+  std::atomic<unsigned> switches{0};
+  std::thread subscriber(
+      [&]
+      {
+        while (!stop)
+          lc.setFootprint((switches.fetch_add(1) & 1) ? big : small);
+      });
+  unsigned cycles = 0;
+  const ros::WallTime t0 = ros::WallTime::now();
+  while ((ros::WallTime::now() - t0).toSec() < 2.0)
+  {
+    lc.updateMap(5.0 + 0.001 * (cycles % 7), 5.0, 0.0);
+    ++cycles;
+  }
+  stop = true;
+  subscriber.join();
+  EXPECT_GT(cycles, 20u);
+  EXPECT_GT(switches.load(), 20u);
+
+  // Afterwards the costmap is the one of the last footprint: the inscribed radius 0.3 m of the big
+  // circle (the polygon's inscribed radius is slightly less) makes the cell 0.25 m from the wall inscribed.
+  lc.setFootprint(big);
+  lc.updateMap(5.0, 5.0, 0.0);
+  unsigned mx, my;
+  ASSERT_TRUE(lc.getCostmap()->worldToMap(4.0, 6.0 - 0.25, mx, my));
+  EXPECT_EQ(lc.getCostmap()->getCost(mx, my), costmap_2d::INSCRIBED_INFLATED_OBSTACLE);
+  lc.setFootprint(small);
+  lc.updateMap(5.0, 5.0, 0.0);
+  EXPECT_LT(lc.getCostmap()->getCost(mx, my), costmap_2d::INSCRIBED_INFLATED_OBSTACLE);
+}
+
+// costmap_2d moves a rolling master by int() of the shift, from robot - (size - 0.5) * resolution / 2;
+// the bridged obstacle layer's own grid must stay on the master's cells, whichever way the robot goes.
+TEST(Bridge, RollingObstacleMarksStayOnTheirCells)
+{
+  tf2_ros::Buffer tf;
+  costmap_2d::LayeredCostmap lc("odom", true, false);
+  lc.resizeMap(40, 40, 0.05, 0.0, 0.0);
+  auto obstacles = addBridged<costmap_layers::ObstacleLayer>(lc, tf, "rolling/obstacles", "ObstacleLayer");
+  obstacles->addStaticObservation(pointsSeenFrom(1.0, 1.0, {{1.52f, 1.02f}, {0.52f, 1.02f}}), true, false);
+  const double path[][2] = {{1.0, 1.0},   {0.93, 0.97}, {0.86, 0.90}, {0.86, 0.90}, {0.83, 0.88},
+                            {0.95, 1.01}, {1.30, 1.02}, {0.61, 0.66}, {0.58, 0.64}, {1.0, 1.0}};
+  for (const auto& p : path)
+  {
+    lc.updateMap(p[0], p[1], 0.0);
+    const costmap_2d::Costmap2D& master = *lc.getCostmap();
+    unsigned expected = 0;
+    for (const auto& [wx, wy] : {std::pair<double, double>{1.52, 1.02}, {0.52, 1.02}})
+    {
+      unsigned mx, my;
+      if (!master.worldToMap(wx, wy, mx, my)) continue;
+      ++expected;
+      EXPECT_EQ(master.getCost(mx, my), costmap_2d::LETHAL_OBSTACLE) << "robot " << p[0] << ": point " << wx;
+    }
+    unsigned lethal = 0;
+    for (unsigned j = 0; j < master.getSizeInCellsY(); ++j)
+      for (unsigned i = 0; i < master.getSizeInCellsX(); ++i)
+        lethal += master.getCost(i, j) == costmap_2d::LETHAL_OBSTACLE;
+    EXPECT_EQ(lethal, expected) << "robot " << p[0] << ", " << p[1];
+  }
+}
+
+// Costmap2DROS::reconfigureCB resizes the master on every reconfigure while its size is not locked, to
+// the same geometry too: costmap_2d resets the master's cells, so the bridged layer must draw again
+// what only its grid remembers.
+TEST(Bridge, AResizeToTheSameGeometryIsRedrawn)
+{
+  tf2_ros::Buffer tf;
+  costmap_2d::LayeredCostmap lc("map", false, false);
+  lc.resizeMap(40, 40, 0.05, 0.0, 0.0);
+  auto obstacles = addBridged<costmap_layers::ObstacleLayer>(lc, tf, "resize/obstacles", "ObstacleLayer");
+  obstacles->addStaticObservation(pointsSeenFrom(1.0, 1.0, {{1.52f, 1.02f}}), true, false);
+  lc.updateMap(1.0, 1.0, 0.0);
+  obstacles->clearStaticObservations(true, true);  // from now on only the layer's grid has the mark
+  lc.updateMap(1.0, 1.0, 0.0);
+  unsigned mx, my;
+  ASSERT_TRUE(lc.getCostmap()->worldToMap(1.52, 1.02, mx, my));
+  ASSERT_EQ(lc.getCostmap()->getCost(mx, my), costmap_2d::LETHAL_OBSTACLE);
+  lc.resizeMap(40, 40, 0.05, 0.0, 0.0);
+  ASSERT_EQ(lc.getCostmap()->getCost(mx, my), costmap_2d::FREE_SPACE);  // costmap_2d reset the master
+  lc.updateMap(1.0, 1.0, 0.0);
+  EXPECT_EQ(lc.getCostmap()->getCost(mx, my), costmap_2d::LETHAL_OBSTACLE);
+}
+
+int main(int argc, char** argv)
+{
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "test_bridge");
+  return RUN_ALL_TESTS();
+}
