@@ -242,11 +242,14 @@ std::shared_ptr<const OccupancyGridData> CostmapFilter::getMask() const
   return mask_;
 }
 
-bool CostmapFilter::maskBoundsInGlobal(const OccupancyGridData& mask, double& x0, double& y0, double& x1, double& y1)
+bool CostmapFilter::maskBoundsInGlobal(const OccupancyGridData& mask, const std::optional<Transform2D>& to_mask,
+                                       double& x0, double& y0, double& x1, double& y1)
 {
   const std::string& global = context_->globalFrame();
   Transform2D from_mask;  // mask frame -> global frame
-  if (!mask.frame_id.empty() && mask.frame_id != global)
+  if (to_mask)
+    from_mask = to_mask->inverse();
+  else if (!mask.frame_id.empty() && mask.frame_id != global)
   {
     std::string error;
     const auto t = context_->lookupTransform(global, mask.frame_id, &error);
@@ -328,17 +331,17 @@ void CostmapFilter::updateBounds(double robot_x, double robot_y, double robot_ya
   if (!active_mask_ || !filter_enabled_) processInactive();
   changed = changed || redraw_requested_;
   redraw_requested_ = false;
-  // A filter that writes no cost (SpeedFilter) asks for no redraw. A rolling window moves onto cells
-  // nobody else may ask for: a filter that writes costs asks for its mask's extent every cycle then
-  // (the costmap clips it to the window), as costmap_2d's static layer does when rolling.
-  if (!drawsCosts()) return;
-  const bool rolling_redraw = layered_costmap_->isRolling() && active_mask_ && filter_enabled_;
-  if (!changed && !rolling_redraw) return;
-  for (const auto* m : {&active_mask_, &old})
+  // A filter that writes no cost (SpeedFilter) asks for no redraw.
+  if (drawsCosts()) requestMaskExtent(changed, old, min_x, min_y, max_x, max_y);
+}
+
+void CostmapFilter::requestMaskExtent(bool changed, const std::shared_ptr<const OccupancyGridData>& old, double* min_x,
+                                      double* min_y, double* max_x, double* max_y)
+{
+  auto add = [&](const OccupancyGridData& mask, const std::optional<Transform2D>& to_mask)
   {
-    if (!*m) continue;
     double x0, y0, x1, y1;
-    if (!maskBoundsInGlobal(**m, x0, y0, x1, y1))
+    if (!maskBoundsInGlobal(mask, to_mask, x0, y0, x1, y1))
     {
       // Extent unknown without the transform: redraw everything rather than leave stale costs.
       x0 = y0 = -std::numeric_limits<float>::max();
@@ -348,7 +351,41 @@ void CostmapFilter::updateBounds(double robot_x, double robot_y, double robot_ya
     *min_y = std::min(*min_y, y0);
     *max_x = std::max(*max_x, x1);
     *max_y = std::max(*max_y, y1);
+  };
+  // Where the mask in force was drawn (nullopt: nowhere yet). A replaced mask is cleared where it was
+  // drawn, not where the transform of this cycle would put it.
+  const std::optional<Transform2D> drawn_with = drawn_with_;
+  if (old) add(*old, drawn_with);
+  if (changed) drawn_with_.reset();
+  if (!active_mask_ || !filter_enabled_)
+  {
+    if (changed && active_mask_) add(*active_mask_, drawn_with);  // switched off: its costs go
+    drawn_with_.reset();
+    draw_incomplete_ = false;
+    return;
   }
+  if (!have_transform_)
+  {
+    // Nothing can be drawn: whatever the other layers redraw this cycle lacks the mask, so the whole
+    // extent is drawn again once the transform is back (without it, a mask that came before its frame's
+    // transform was never drawn, and a tf gap left a lasting hole in a keepout zone).
+    draw_incomplete_ = true;
+    if (changed) add(*active_mask_, std::nullopt);
+    return;
+  }
+  // A transform that changed since the drawing (a non-rolling costmap in another frame than the mask:
+  // localisation moves map -> odom) moves the mask: drawn anew there, cleared at the old place.
+  constexpr double kSameTransform = 1e-9;  // [m], [rad]: tf's repeated answers for an unchanged transform
+  const bool moved = drawn_with && (std::abs(drawn_with->x - to_mask_.x) > kSameTransform ||
+                                    std::abs(drawn_with->y - to_mask_.y) > kSameTransform ||
+                                    std::abs(drawn_with->yaw - to_mask_.yaw) > kSameTransform);
+  // A rolling window moves onto cells nobody else may ask for: the extent every cycle (the costmap clips
+  // it to the window), as costmap_2d's static layer does when rolling.
+  if (!changed && drawn_with_ && !draw_incomplete_ && !moved && !layered_costmap_->isRolling()) return;
+  add(*active_mask_, to_mask_);
+  if (moved) add(*active_mask_, drawn_with);
+  drawn_with_ = to_mask_;
+  draw_incomplete_ = false;
 }
 
 void CostmapFilter::updateCosts(Costmap2D& master_grid, int min_i, int min_j, int max_i, int max_j)

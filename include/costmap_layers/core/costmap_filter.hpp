@@ -140,8 +140,15 @@ protected:
   void requestRedraw() { redraw_requested_ = true; }
 
 private:
-  /// The mask's extent as a box in the global frame [m], when the transform is known.
-  bool maskBoundsInGlobal(const OccupancyGridData& mask, double& x0, double& y0, double& x1, double& y1);
+  /// The mask's extent as a box in the global frame [m], when the transform is known: the one given
+  /// (global frame -> mask frame, as to_mask_), or else looked up now.
+  bool maskBoundsInGlobal(const OccupancyGridData& mask, const std::optional<Transform2D>& to_mask, double& x0,
+                          double& y0, double& x1, double& y1);
+  /// updateBounds' request for the mask's extent: where the mask is to be drawn, where a mask was drawn
+  /// that is to be cleared (replaced, switched off, or placed elsewhere by a changed transform), and
+  /// again after a cycle that could not draw it (no transform).
+  void requestMaskExtent(bool changed, const std::shared_ptr<const OccupancyGridData>& old, double* min_x,
+                         double* min_y, double* max_x, double* max_y);
 
   /// setMask() for a mask delivered by the subscription of mask generation `generation`: masks of an
   /// older generation (a topic no longer in force) are ignored.
@@ -167,6 +174,10 @@ private:
   std::shared_ptr<const FilterInfoData> active_info_;     ///< the info of this cycle (update thread only)
   bool have_transform_ = false;
   bool redraw_requested_ = false;  ///< update thread only (requestRedraw())
+  /// The transform the active mask was last drawn with (update thread; nullopt: not drawn yet), and
+  /// whether a cycle skipped drawing since (no transform: the cells updated then lack the mask).
+  std::optional<Transform2D> drawn_with_;
+  bool draw_incomplete_ = false;
   double robot_x_ = 0, robot_y_ = 0, robot_yaw_ = 0;
   Transform2D to_mask_;
   GridSampler mapping_;
