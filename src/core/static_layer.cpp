@@ -109,6 +109,12 @@ void StaticLayer::rebuildTable()
     table_[b] = interpretStaticValue(static_cast<int8_t>(static_cast<uint8_t>(b)), config_);
 }
 
+bool StaticLayer::mapAccepted() const
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  return accepted_any_;
+}
+
 std::string StaticLayer::setMap(std::shared_ptr<const OccupancyGridData> map)
 {
   InputError error = map ? validateGrid(*map) : InputError::of("data", "no map");

@@ -9,6 +9,7 @@
 #include "costmap_layers/core/config_compat.hpp"
 #include "costmap_layers/core/footprint.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
+#include "costmap_layers/core/static_layer.hpp"
 #include "costmap_layers/ros/conversions.hpp"
 #include "costmap_layers/ros/costmap_node.hpp"
 #include "costmap_layers/ros/layer_ports.hpp"
@@ -102,9 +103,29 @@ void LayerBridge::setUp()
         fn();
         full_update_ = true;
       });
+  if (const auto* static_layer = dynamic_cast<const costmap_layers::StaticLayer*>(core_.get()))
+    waitForMap(*static_layer, nh);
   enabled_ = true;  // costmap_2d skips disabled plugins; the core layer's own switch is honoured below
   current_ = core_->isCurrent();
   ROS_INFO("%s: costmap_layers %s hosted in costmap_2d", nh.getNamespace().c_str(), class_name_.c_str());
+}
+
+void LayerBridge::waitForMap(const costmap_layers::StaticLayer& layer, const ros::NodeHandle& nh)
+{
+  // As costmap_2d's StaticLayer: move_base does not come up before the map. Otherwise the global
+  // planner, which does not ask whether the costmap is current, plans on a costmap without walls.
+  if (!layer.enabled() || layer.mapAccepted()) return;
+  const std::string topic = ros::NodeHandle().resolveName(layer.config().map_topic);
+  ROS_INFO("%s: waiting for the map on %s (as costmap_2d's static layer, move_base starts once it has come)",
+           nh.getNamespace().c_str(), topic.c_str());
+  ros::WallRate rate(20.0);  // wall time: under /use_sim_time the map may come before /clock
+  while (ros::ok() && !layer.mapAccepted())
+  {
+    ros::spinOnce();
+    rate.sleep();
+    ROS_WARN_THROTTLE(5.0, "%s: still waiting for the map on %s (is map_server running, and is map_topic right?)",
+                      nh.getNamespace().c_str(), topic.c_str());
+  }
 }
 
 void LayerBridge::viewMaster()

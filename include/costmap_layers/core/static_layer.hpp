@@ -78,6 +78,8 @@ public:
 
   /// True once a map has been interpreted (on the update thread).
   bool mapReceived() const { return map_received_; }
+  /// True once a map has been accepted (setMap(); any thread), before the update thread has seen it.
+  bool mapAccepted() const;
   /// The frame of the map in force.
   const std::string& mapFrame() const { return map_frame_; }
   /// ERROR while no map was accepted (naming the topic and the last rejection), WARN when the latest map

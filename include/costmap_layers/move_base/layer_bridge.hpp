@@ -13,7 +13,8 @@
 namespace costmap_layers
 {
 class LayeredCostmap;
-}
+class StaticLayer;
+}  // namespace costmap_layers
 namespace costmap_layers_ros
 {
 class LayerPorts;
@@ -57,6 +58,9 @@ protected:
 
 private:
   void setUp();
+  /// Blocks start-up until the static layer has a map (costmap_2d's StaticLayer does), spinning the
+  /// global queue its subscription is on.
+  void waitForMap(const costmap_layers::StaticLayer& layer, const ros::NodeHandle& nh);
   /// Points the core master at move_base's master grid (its memory moves on a resize).
   void viewMaster();
   void expandToWholeMap(double* min_x, double* min_y, double* max_x, double* max_y) const;

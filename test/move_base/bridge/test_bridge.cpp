@@ -8,6 +8,7 @@
 #include <costmap_2d/cost_values.h>
 #include <costmap_2d/footprint.h>
 #include <costmap_2d/layered_costmap.h>
+#include <nav_msgs/OccupancyGrid.h>
 #include <atomic>
 #include <cmath>
 #include <memory>
@@ -16,6 +17,7 @@
 
 #include "costmap_layers/core/inflation_layer.hpp"
 #include "costmap_layers/core/obstacle_layer.hpp"
+#include "costmap_layers/core/static_layer.hpp"
 #include "costmap_layers/move_base/layer_bridge.hpp"
 
 using costmap_layers::move_base::LayerBridge;
@@ -162,6 +164,43 @@ TEST(Bridge, AResizeToTheSameGeometryIsRedrawn)
   ASSERT_EQ(lc.getCostmap()->getCost(mx, my), costmap_2d::FREE_SPACE);  // costmap_2d reset the master
   lc.updateMap(1.0, 1.0, 0.0);
   EXPECT_EQ(lc.getCostmap()->getCost(mx, my), costmap_2d::LETHAL_OBSTACLE);
+}
+
+// costmap_2d's StaticLayer does not return from initialize before it has a map, so move_base does not
+// come up (and its global planner, which does not ask isCurrent(), plans nothing) without walls. The
+// bridged one returned at once: the global costmap stayed all free until the map came.
+TEST(Bridge, TheStaticLayerWaitsForTheMapAsCostmap2dsDoes)
+{
+  ros::NodeHandle nh;
+  ros::NodeHandle("~").setParam("waiting/static/map_topic", "/bridge_test_map");
+  ros::Publisher map_pub = nh.advertise<nav_msgs::OccupancyGrid>("/bridge_test_map", 1, true);
+  nav_msgs::OccupancyGrid map;
+  map.header.frame_id = "map";
+  map.info.resolution = 0.1f;
+  map.info.width = 30;
+  map.info.height = 20;
+  map.info.origin.orientation.w = 1.0;
+  map.data.assign(600, 0);
+  map.data[5 * 30 + 7] = 100;
+  std::atomic<bool> published{false};
+  std::thread late_map_server(
+      [&]
+      {
+        ros::WallDuration(0.5).sleep();
+        published = true;
+        map_pub.publish(map);
+      });
+  tf2_ros::Buffer tf;
+  costmap_2d::LayeredCostmap lc("map", false, false);
+  lc.resizeMap(100, 100, 0.05, 0.0, 0.0);
+  auto layer = addBridged<costmap_layers::StaticLayer>(lc, tf, "waiting/static", "StaticLayer");
+  EXPECT_TRUE(published.load()) << "initialize returned before the map was published";
+  EXPECT_TRUE(layer->mapAccepted());
+  late_map_server.join();
+  lc.updateMap(0.0, 0.0, 0.0);
+  EXPECT_EQ(lc.getCostmap()->getSizeInCellsX(), 30u);
+  EXPECT_EQ(lc.getCostmap()->getSizeInCellsY(), 20u);
+  EXPECT_EQ(lc.getCostmap()->getCost(7, 5), costmap_2d::LETHAL_OBSTACLE);
 }
 
 int main(int argc, char** argv)
