@@ -55,11 +55,17 @@ import glob, sys, xml.etree.ElementTree as ET
 n = 0
 for f in glob.glob(sys.argv[1] + "/**/rosunit-move_base_integration.xml", recursive=True):
     n += sum(1 for _ in ET.parse(f).getroot().iter("testcase"))
-print(n)
+b = 0  # LayerBridge in costmap_2d's own LayeredCostmap (test/move_base/bridge)
+for f in glob.glob(sys.argv[1] + "/**/rosunit-bridge.xml", recursive=True):
+    b += sum(1 for _ in ET.parse(f).getroot().iter("testcase"))
+print(n, b)
 PY
 )
-    if [ "$n" -gt 0 ]; then
-      echo "move_base integration: $n test cases run (costmap_2d from $costmap_2d_at)"
+    b=${n#* }
+    n=${n% *}
+    if [ "$n" -gt 0 ] && [ "$b" -gt 0 ]; then
+      echo "move_base integration: $n test cases run, and $b of LayerBridge in costmap_2d's LayeredCostmap" \
+        "(costmap_2d from $costmap_2d_at)"
     else
       echo "move_base integration: FAILED to run: costmap_2d and move_base are there but no move_base test result" >&2
       move_base_rc=1
