@@ -18,6 +18,7 @@
 #include "costmap_layers/core/static_layer.hpp"
 #include "fake_context.hpp"
 #include "sensor_test_helpers.hpp"
+#include "ten_by_ten.hpp"
 
 using namespace costmap_layers;
 using namespace costmap_layers_test;
@@ -25,22 +26,6 @@ using namespace costmap_layers_test;
 namespace
 {
 constexpr double kMaxZ = 1.0;  // costmap_2d's testing_helper.h MAX_Z
-
-/// costmap_2d's test/TenByTen.pgm as map_server reads it: 20 occupied cells, (x, y) with y the row.
-OccupancyGridData tenByTen()
-{
-  OccupancyGridData m;
-  m.frame_id = "map";
-  m.width = 10;
-  m.height = 10;
-  m.resolution = 1.0;
-  m.data.assign(100, 0);
-  const int cells[][2] = {{7, 0}, {8, 0}, {9, 0}, {7, 1}, {8, 1}, {9, 1}, {3, 2}, {4, 2}, {5, 2}, {4, 5},
-                          {7, 5}, {8, 5}, {9, 5}, {4, 6}, {7, 6}, {8, 6}, {9, 6}, {7, 7}, {8, 7}, {9, 7}};
-  for (const auto& c : cells)
-    m.data[static_cast<std::size_t>(c[1] * 10 + c[0])] = 100;
-  return m;
-}
 
 /// costmap_2d's setRadii: a rectangle of half-length `length` along y and half-width `width` along x.
 Footprint rectangle(double length, double width)

@@ -20,6 +20,7 @@
 #include "costmap_layers/core/static_layer.hpp"
 #include "fake_context.hpp"
 #include "sensor_test_helpers.hpp"
+#include "ten_by_ten.hpp"
 
 using namespace costmap_layers;
 using namespace costmap_layers_test;
@@ -27,22 +28,6 @@ using namespace costmap_layers_test;
 namespace
 {
 constexpr double MAX_Z = 1.0;
-
-/// costmap_2d's 10 x 10 test map: 20 lethal cells, (x, y) with y the row.
-OccupancyGridData staticMap()
-{
-  OccupancyGridData m;
-  m.frame_id = "map";
-  m.width = 10;
-  m.height = 10;
-  m.resolution = 1.0;
-  m.data.assign(100, 0);
-  const int cells[][2] = {{7, 0}, {8, 0}, {9, 0}, {7, 1}, {8, 1}, {9, 1}, {3, 2}, {4, 2}, {5, 2}, {4, 5},
-                          {7, 5}, {8, 5}, {9, 5}, {4, 6}, {7, 6}, {8, 6}, {9, 6}, {7, 7}, {8, 7}, {9, 7}};
-  for (const auto& c : cells)
-    m.data[static_cast<std::size_t>(c[1] * 10 + c[0])] = 100;
-  return m;
-}
 
 /// One cloud source "cloud" with generous ranges (costmap_2d's test helper uses 100 m).
 ParamValue obstacleParams(std::initializer_list<std::pair<const char*, ParamValue>> layer_extra = {},
@@ -84,7 +69,7 @@ struct Rig
       static_layer->initialize(&lc, "static_layer", static_ctx);
       static_ctx->bind(*static_layer);
       lc.addPlugin(static_layer);
-      static_ctx->publishGrid(GridKind::Map, staticMap());
+      static_ctx->publishGrid(GridKind::Map, tenByTen());
     }
     ctx = std::make_shared<FakeContext>(std::move(params));
     layer = std::make_shared<ObstacleLayer>();
