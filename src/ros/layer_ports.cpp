@@ -139,7 +139,7 @@ LayerPorts::LayerPorts(ros::NodeHandle public_nh, ros::NodeHandle private_nh, co
         // Each move is logged (each one matters), ending with the layer's stable key; a sender moving
         // the topic over and over gets kMovesLogged lines per kMovePeriod and then a count.
         constexpr std::size_t kMovesLogged = 10;
-        constexpr double kMovePeriod = 10.0;  // [s]
+        constexpr double kMovePeriod = 10.0;                // [s]
         const double now = ros::SteadyTime::now().toSec();  // a step of the system clock must not silence it
         while (!move_log_times_.empty() && !(now - move_log_times_.front() < kMovePeriod))
           move_log_times_.pop_front();
