@@ -15,6 +15,13 @@ void CostmapLayer::matchSize()
                      master.getOriginY());
 }
 
+std::pair<int, int> CostmapLayer::followRollingMaster()
+{
+  if (!layered_costmap_->isRolling()) return {0, 0};
+  const Costmap2D& master = layered_costmap_->getCostmap();
+  return costmap_.followOrigin(master.getOriginX(), master.getOriginY());
+}
+
 void CostmapLayer::touch(double x, double y, double* min_x, double* min_y, double* max_x, double* max_y)
 {
   *min_x = std::min(x, *min_x);

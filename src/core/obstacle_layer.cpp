@@ -347,18 +347,11 @@ void ObstacleLayer::clearStaticObservations(bool marking, bool clearing)
   if (clearing) static_clearing_.clear();
 }
 
-void ObstacleLayer::moveOrigin(double master_origin_x, double master_origin_y)
-{
-  costmap_.followOrigin(master_origin_x, master_origin_y);
-}
-
 void ObstacleLayer::updateBounds(double robot_x, double robot_y, double robot_yaw, double* min_x, double* min_y,
                                  double* max_x, double* max_y)
 {
-  // The master has moved already (LayeredCostmap::updateMap, or costmap_2d's under move_base, which
-  // truncates where this package floors): the own grid takes its origin, cell for cell.
-  if (layered_costmap_->isRolling())
-    moveOrigin(layered_costmap_->getCostmap().getOriginX(), layered_costmap_->getCostmap().getOriginY());
+  const auto [shift_x, shift_y] = followRollingMaster();
+  if (shift_x != 0 || shift_y != 0) onGridShifted(shift_x, shift_y);
   useExtraBounds(min_x, min_y, max_x, max_y);
 
   const uint64_t now = context_->nowNs();

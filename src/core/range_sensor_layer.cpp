@@ -305,8 +305,7 @@ void RangeSensorLayer::applyReading(const Pending& reading)
 void RangeSensorLayer::updateBounds(double /*robot_x*/, double /*robot_y*/, double /*robot_yaw*/, double* min_x,
                                     double* min_y, double* max_x, double* max_y)
 {
-  if (layered_costmap_->isRolling())  // the master has moved already: follow it (see ObstacleLayer)
-    costmap_.followOrigin(layered_costmap_->getCostmap().getOriginX(), layered_costmap_->getCostmap().getOriginY());
+  followRollingMaster();
   useExtraBounds(min_x, min_y, max_x, max_y);
   uint64_t dropped = 0;
   {

@@ -41,11 +41,9 @@ void VoxelLayer::reset()
   voxels_.reset();
 }
 
-void VoxelLayer::moveOrigin(double master_origin_x, double master_origin_y)
+void VoxelLayer::onGridShifted(int cells_x, int cells_y)
 {
-  // The columns move by the same whole-cell shift as the 2-D grid.
-  const auto [dx, dy] = costmap_.followOrigin(master_origin_x, master_origin_y);
-  if (dx != 0 || dy != 0) voxels_.shift(dx, dy);
+  voxels_.shift(cells_x, cells_y);  // the columns move with the 2-D cells
 }
 
 void VoxelLayer::raytraceFreespace(const Observation& obs, double* min_x, double* min_y, double* max_x, double* max_y)

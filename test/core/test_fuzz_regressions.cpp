@@ -58,7 +58,7 @@ TEST(FuzzRegressions, ShiftWithinTheGridStillKeepsTheOverlap)
 }
 
 // The same far-away pose through LayeredCostmap with a filter (the fuzzed path) and a VoxelLayer, whose
-// moveOrigin computed the same shift for its columns.
+// columns move by the same shift as its grid.
 TEST(FuzzRegressions, RollingCostmapWithVoxelLayerAndFilterAtAFarAwayPose)
 {
   LayeredCostmap lc("map", true, false);

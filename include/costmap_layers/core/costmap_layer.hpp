@@ -36,6 +36,10 @@ protected:
   static void touch(double x, double y, double* min_x, double* min_y, double* max_x, double* max_y);
   /// Adds the extra bounds requested with addExtraBounds() and forgets them.
   void useExtraBounds(double* min_x, double* min_y, double* max_x, double* max_y);
+  /// In a rolling costmap, moves the own grid onto the master's origin, cell for cell (call it in
+  /// updateBounds: the master has moved already, by LayeredCostmap::updateMap, or under move_base by
+  /// costmap_2d, which truncates the shift where this package floors it). Returns the shift in cells.
+  std::pair<int, int> followRollingMaster();
 
   Costmap2D costmap_;
 

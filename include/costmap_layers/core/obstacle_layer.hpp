@@ -102,8 +102,8 @@ public:
 protected:
   void onInitialize() override;
 
-  /// Moves the rolling window onto the master's origin (the own grid; VoxelLayer also moves its columns).
-  virtual void moveOrigin(double master_origin_x, double master_origin_y);
+  /// The rolling window's own grid moved by this many cells (VoxelLayer moves its columns with it).
+  virtual void onGridShifted(int /*cells_x*/, int /*cells_y*/) {}
   /// Clears the cells from the observation's origin towards each of its points.
   virtual void raytraceFreespace(const Observation& observation, double* min_x, double* min_y, double* max_x,
                                  double* max_y);

@@ -35,7 +35,7 @@ public:
 
 protected:
   void onInitialize() override;
-  void moveOrigin(double master_origin_x, double master_origin_y) override;
+  void onGridShifted(int cells_x, int cells_y) override;
   void raytraceFreespace(const Observation& observation, double* min_x, double* min_y, double* max_x,
                          double* max_y) override;
   void markObservation(const Observation& observation, double* min_x, double* min_y, double* max_x,
