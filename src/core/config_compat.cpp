@@ -116,7 +116,8 @@ ParamValue& subMap(ParamValue& ns, const std::string& name)
 
 /// costmap_2d's move_parameter: the value of `key` in ns, when set, into ns/<layer>/<key>
 /// (replacing what was there); with erase the costmap-level key goes away.
-void moveParameter(ParamValue& ns, const std::string& layer, const std::string& key, bool erase, CompatResult& r)
+void moveParameter(ParamValue& ns, const std::string& layer, const std::string& key, bool erase, CompatResult& r,
+                   const std::string& type = "")
 {
   const ParamValue* v = ns.find(key);
   if (v == nullptr) return;
@@ -126,8 +127,9 @@ void moveParameter(ParamValue& ns, const std::string& layer, const std::string& 
   {
     if (old->toString() != value.toString())
       r.warnings.push_back("'" + key + "' " + value.toString() + " of the costmap's namespace replaces '" + layer +
-                           "/" + key + "' " + old->toString() +
-                           ", as costmap_2d copies it into a layer of this type (remove one of them)");
+                           "/" + key + "' " + old->toString() + ", as costmap_2d copies it into " +
+                           (type.empty() ? std::string("a layer of this type") : "a " + type) +
+                           " (remove one of them)");
   }
   target.set(key, value);
   if (erase) ns.erase(key);
@@ -301,6 +303,64 @@ const std::vector<CopyRule>& copyRules()
   };
   return rules;
 }
+
+/// costmap_2d's copyParentParameters for one plugin, by its type name exactly as written, and the
+/// default costmap_2d's StaticLayer has where this package's differs (track_unknown_space true).
+void copyParentParameters(ParamValue& ns, const PluginSpec& spec, CompatResult& r)
+{
+  for (const auto& rule : copyRules())
+    if (spec.type == rule.type)
+      for (const char* key : rule.keys)
+        moveParameter(ns, spec.name, key, false, r, spec.type);
+  if (spec.type == "costmap_2d::StaticLayer")
+  {
+    ParamValue& layer = subMap(ns, spec.name);
+    if (layer.find("track_unknown_space") == nullptr)
+    {
+      layer.set("track_unknown_space", ParamValue::makeBool(true));
+      r.notes.push_back(spec.name + ": track_unknown_space not set: true, costmap_2d's StaticLayer default");
+    }
+  }
+}
+
+/// costmap_2d's ObstacleLayer looks up obstacle_range and raytrace_range with searchParam from each
+/// observation source's namespace: the source, the layer, the costmap, then its parents.
+void searchSourceRanges(ParamValue& ns, const PluginSpec& spec, const std::vector<ParentNamespace>& parents,
+                        CompatResult& r)
+{
+  const std::string cls = pluginClassName(resolvePluginType(spec.type));
+  if ((cls != "ObstacleLayer" && cls != "VoxelLayer") || typeDialect(spec.type) == TypeDialect::Nav2) return;
+  const ParamValue* layer_ro = ns.find(spec.name);
+  if (layer_ro == nullptr) return;
+  std::vector<const ParamValue*> parent_chain;
+  for (const auto& p : parents)
+    parent_chain.push_back(&p.values);
+  const std::vector<std::string> sources = sourceNamesOf(layer_ro->find("observation_sources"));
+  for (const char* key : {"obstacle_range", "raytrace_range"})
+    if (layer_ro->find(key) != nullptr) r.layer_consumed[spec.name].push_back(key);
+  for (const auto& source : sources)
+  {
+    for (const auto& [key, nav2_name] : {std::pair<std::string, std::string>{"obstacle_range", "obstacle_max_range"},
+                                         {"raytrace_range", "raytrace_max_range"}})
+    {
+      const ParamValue* layer = ns.find(spec.name);
+      const ParamValue* src = layer->find(source);
+      if (src != nullptr && (src->find(key) != nullptr || src->find(nav2_name) != nullptr)) continue;
+      std::vector<const ParamValue*> chain = {layer, &ns};
+      chain.insert(chain.end(), parent_chain.begin(), parent_chain.end());
+      std::size_t at = 0;
+      const ParamValue* v = searchParam(chain, key, &at);
+      if (v == nullptr) continue;
+      const ParamValue value = *v;
+      if (at == 1) consume(r, key);
+      ParamValue& src_map = subMap(subMap(ns, spec.name), source);
+      src_map.set(key, value);
+      const std::string found_in = at == 0 ? spec.name : at == 1 ? "the costmap's namespace" : parents[at - 2].name;
+      r.notes.push_back(spec.name + "/" + source + ": " + key + " " + value.toString() + " found in " + found_in +
+                        " (costmap_2d looks it up with searchParam)");
+    }
+  }
+}
 }  // namespace
 
 CompatResult applyCostmap2dRules(const ParamValue& ns_in, const std::vector<ParentNamespace>& parents)
@@ -343,10 +403,7 @@ CompatResult applyCostmap2dRules(const ParamValue& ns_in, const std::vector<Pare
   for (const auto& spec : lists.plugins)
   {
     translateObstacleDefaults(ns, spec, r);
-    for (const auto& rule : copyRules())
-      if (spec.type == rule.type)
-        for (const char* key : rule.keys)
-          moveParameter(ns, spec.name, key, false, r);
+    copyParentParameters(ns, spec, r);
     // Nav2's StaticLayer reads these at the costmap level only (node->get_parameter), not in its own
     // namespace: the costmap's value is the one it uses.
     if (spec.type == "nav2_costmap_2d::StaticLayer")
@@ -370,23 +427,12 @@ CompatResult applyCostmap2dRules(const ParamValue& ns_in, const std::vector<Pare
         consume(r, key);
       }
     }
-    if (spec.type == "costmap_2d::StaticLayer")
-    {
-      ParamValue& layer = subMap(ns, spec.name);
-      if (layer.find("track_unknown_space") == nullptr)
-      {
-        layer.set("track_unknown_space", ParamValue::makeBool(true));
-        r.notes.push_back(spec.name + ": track_unknown_space not set: true, costmap_2d's StaticLayer default");
-      }
-    }
   }
 
   // 4. searchParam.
   std::vector<const ParamValue*> parent_chain;
   for (const auto& p : parents)
     parent_chain.push_back(&p.values);
-  auto where = [&](std::size_t index, std::size_t local_levels, const std::vector<std::string>& local_names)
-  { return index < local_levels ? local_names[index] : parents[index - local_levels].name; };
   for (const char* key : {"footprint", "robot_radius"})
   {
     if (ns.find(key) != nullptr) continue;
@@ -400,37 +446,7 @@ CompatResult applyCostmap2dRules(const ParamValue& ns_in, const std::vector<Pare
     }
   }
   for (const auto& spec : lists.plugins)
-  {
-    const std::string cls = pluginClassName(resolvePluginType(spec.type));
-    if ((cls != "ObstacleLayer" && cls != "VoxelLayer") || typeDialect(spec.type) == TypeDialect::Nav2) continue;
-    const ParamValue* layer_ro = ns.find(spec.name);
-    if (layer_ro == nullptr) continue;
-    const std::vector<std::string> sources = sourceNamesOf(layer_ro->find("observation_sources"));
-    for (const char* key : {"obstacle_range", "raytrace_range"})
-      if (layer_ro->find(key) != nullptr) r.layer_consumed[spec.name].push_back(key);
-    for (const auto& source : sources)
-    {
-      for (const auto& [key, nav2_name] : {std::pair<std::string, std::string>{"obstacle_range", "obstacle_max_range"},
-                                           {"raytrace_range", "raytrace_max_range"}})
-      {
-        const ParamValue* layer = ns.find(spec.name);
-        const ParamValue* src = layer->find(source);
-        if (src != nullptr && (src->find(key) != nullptr || src->find(nav2_name) != nullptr)) continue;
-        std::vector<const ParamValue*> chain = {layer, &ns};
-        chain.insert(chain.end(), parent_chain.begin(), parent_chain.end());
-        std::size_t at = 0;
-        const ParamValue* v = searchParam(chain, key, &at);
-        if (v == nullptr) continue;
-        const ParamValue value = *v;
-        if (at == 1) consume(r, key);
-        ParamValue& src_map = subMap(subMap(ns, spec.name), source);
-        src_map.set(key, value);
-        r.notes.push_back(spec.name + "/" + source + ": " + key + " " + value.toString() + " found in " +
-                          where(at, 2, {spec.name, "the costmap's namespace"}) +
-                          " (costmap_2d looks it up with searchParam)");
-      }
-    }
-  }
+    searchSourceRanges(ns, spec, parents, r);
   // costmap_2d's makeFootprintFromParams takes a footprint given as a polygon over robot_radius.
   const ParamValue* footprint = ns.find("footprint");
   const ParamValue* radius = ns.find("robot_radius");
@@ -444,6 +460,28 @@ CompatResult applyCostmap2dRules(const ParamValue& ns_in, const std::vector<Pare
     r.warnings.push_back(
         "transform_tolerance 0: the robot's transform is used however old it is (costmap_2d "
         "would refuse every transform not stamped exactly now); set the age you accept, e.g. 0.3");
+  return r;
+}
+
+std::string costmap2dRole(const std::string& class_name)
+{
+  for (const auto& a : pluginTypeAliases())
+    if (a.dialect == TypeDialect::Costmap2D && pluginClassName(a.ours) == class_name) return a.written;
+  return "";
+}
+
+CompatResult applyCostmap2dRulesAsRole(const ParamValue& ns_in, const std::string& name, const std::string& role_type,
+                                       const std::vector<ParentNamespace>& parents)
+{
+  CompatResult r;
+  r.params = ns_in.isMap() ? ns_in : ParamValue::makeMap();
+  const PluginSpec spec{name, role_type};
+  if (ParamValue* layer = r.params.findMutable(name); layer != nullptr && layer->isMap())
+    for (const auto& source : sourceNamesOf(layer->find("observation_sources")))
+      if (ParamValue* src = layer->findMutable(source); src != nullptr && src->isMap())
+        stripLeadingSlash(*src, "sensor_frame", name + "/" + source + "/sensor_frame", r);
+  copyParentParameters(r.params, spec, r);
+  searchSourceRanges(r.params, spec, parents, r);
   return r;
 }
 

@@ -73,7 +73,7 @@ void LayerBridge::setUp()
 {
   ros::NodeHandle nh("~/" + name_);
   const std::string global_frame = layered_costmap_->getGlobalFrameID();
-  costmap_layers::ParamValue params = costmap_layers_ros::readNamespace(nh);
+  costmap_layers::ParamValue params = layerParameters(nh);
   log_ = std::make_shared<costmap_layers_ros::ThrottledLog>();
   context_ = std::make_shared<costmap_layers_ros::RosLayerContext>(nh, params, global_frame, transformTolerance(nh),
                                                                    *tf_, log_);
@@ -90,7 +90,9 @@ void LayerBridge::setUp()
   {
     costmap_layers::ParamReadLog read_log;
     core_->initialize(host_.get(), name_, context_);
-    for (const auto& u : costmap_layers::unknownKeys(context_->params(), read_log, class_name_, {"plugin"}))
+    std::vector<std::string> known = {"plugin"};
+    known.insert(known.end(), consumed_keys_.begin(), consumed_keys_.end());
+    for (const auto& u : costmap_layers::unknownKeys(context_->params(), read_log, class_name_, known))
       ROS_WARN("%s", costmap_layers::describeUnknownKey(u, nh.getNamespace()).c_str());
   }
   onFootprintChanged();
@@ -108,6 +110,27 @@ void LayerBridge::setUp()
   enabled_ = true;  // costmap_2d skips disabled plugins; the core layer's own switch is honoured below
   current_ = core_->isCurrent();
   ROS_INFO("%s: costmap_layers %s hosted in costmap_2d", nh.getNamespace().c_str(), class_name_.c_str());
+}
+
+costmap_layers::ParamValue LayerBridge::layerParameters(const ros::NodeHandle& nh)
+{
+  // costmap_2d copies costmap-level keys into its own layers and looks some up in the namespaces above
+  // (copyParentParameters, searchParam), for its own types only: a user who swaps costmap_2d's type for
+  // this one keeps what those rules gave the layer, told what came from where.
+  const std::string costmap_ns = ros::names::parentNamespace(nh.getNamespace());
+  const std::string key = name_.substr(name_.rfind('/') + 1);
+  const std::string role = costmap_layers::costmap2dRole(class_name_);
+  const costmap_layers::CompatResult compat =
+      costmap_layers::applyCostmap2dRulesAsRole(costmap_layers_ros::readNamespace(ros::NodeHandle(costmap_ns)), key,
+                                                role, costmap_layers_ros::readParentNamespaces(costmap_ns));
+  for (const auto& w : compat.warnings)
+    ROS_WARN("%s: %s", costmap_ns.c_str(), w.c_str());
+  for (const auto& n : compat.notes)
+    ROS_INFO("%s: %s (this layer stands in for %s)", costmap_ns.c_str(), n.c_str(), role.c_str());
+  const auto consumed = compat.layer_consumed.find(key);
+  if (consumed != compat.layer_consumed.end()) consumed_keys_ = consumed->second;
+  const costmap_layers::ParamValue* layer = compat.params.find(key);
+  return layer != nullptr && layer->isMap() ? *layer : costmap_layers::ParamValue::makeMap();
 }
 
 void LayerBridge::waitForMap(const costmap_layers::StaticLayer& layer, const ros::NodeHandle& nh)

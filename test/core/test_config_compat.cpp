@@ -492,3 +492,91 @@ TEST(Yaml, RendersBlockMapsAndInlineLists)
             "obstacle_layer:\n  observation_sources: \"scan\"\n  scan:\n    marking: true\n    range: 3\n"
             "footprint: [[1.0, 2.5]]\n");
 }
+
+// A layer hosted in move_base in the place of one of costmap_2d's: costmap_2d copies costmap-level keys
+// into its own types only, so the host applies the rules of the role itself. The values expected are
+// what costmap_2d's Costmap2DROS::copyParentParameters and ObstacleLayer's searchParam give its own
+// layers (costmap_2d_ros.cpp, obstacle_layer.cpp).
+TEST(HostedRole, EachClassTakesTheRulesOfTheCostmap2dTypeItReplaces)
+{
+  EXPECT_EQ(costmap2dRole("InflationLayer"), "costmap_2d::InflationLayer");
+  EXPECT_EQ(costmap2dRole("StaticLayer"), "costmap_2d::StaticLayer");
+  EXPECT_EQ(costmap2dRole("ObstacleLayer"), "costmap_2d::ObstacleLayer");
+  EXPECT_EQ(costmap2dRole("VoxelLayer"), "costmap_2d::VoxelLayer");
+  EXPECT_EQ(costmap2dRole("RangeSensorLayer"), "range_sensor_layer::RangeSensorLayer");
+  for (const char* none : {"KeepoutFilter", "SpeedFilter", "GradientLayer", "LanesFilter", ""})
+    EXPECT_EQ(costmap2dRole(none), "") << none;
+}
+
+TEST(HostedRole, CostmapLevelKeysReachTheHostedLayer)
+{
+  // move_base/local_costmap as a common-params file leaves it: ranges and radius at the costmap level.
+  ParamValue ns = ParamValue::makeMap();
+  ns.set("inflation_radius", D(1.0));
+  ns.set("cost_scaling_factor", D(3.0));
+  ns.set("obstacle_range", D(5.0));
+  ns.set("raytrace_range", D(6.0));
+  ns.set("track_unknown_space", B(true));
+  ns.set("max_obstacle_height", D(0.6));
+  ParamValue obstacles = ParamValue::makeMap();
+  obstacles.set("observation_sources", S("scan bump"));
+  obstacles.set("obstacle_range", D(4.0));  // replaced by the costmap's 5.0 (copyParentParameters)
+  ParamValue scan = ParamValue::makeMap();
+  scan.set("sensor_frame", S("/base_scan"));
+  obstacles.set("scan", scan);
+  ParamValue bump = ParamValue::makeMap();
+  bump.set("raytrace_range", D(0.5));
+  obstacles.set("bump", bump);
+  ns.set("obstacles", obstacles);
+  ParamValue inflation = ParamValue::makeMap();
+  inflation.set("inflation_radius", D(0.3));
+  ns.set("inflation", inflation);
+
+  const CompatResult inf = applyCostmap2dRulesAsRole(ns, "inflation", "costmap_2d::InflationLayer");
+  EXPECT_DOUBLE_EQ(numberAt(inf.params, "inflation/inflation_radius"), 1.0);
+  EXPECT_DOUBLE_EQ(numberAt(inf.params, "inflation/cost_scaling_factor"), 3.0);
+  ASSERT_EQ(inf.warnings.size(), 1u);  // the layer's 0.3 replaced: said, naming both values
+  EXPECT_NE(inf.warnings[0].find("'inflation_radius' 1"), std::string::npos) << inf.warnings[0];
+  EXPECT_NE(inf.warnings[0].find("'inflation/inflation_radius' 0.3"), std::string::npos) << inf.warnings[0];
+  EXPECT_NE(inf.warnings[0].find("costmap_2d::InflationLayer"), std::string::npos) << inf.warnings[0];
+  const InflationConfig ic = parseInflationConfig(ParamReader(*inf.params.find("inflation"), "i"));
+  EXPECT_DOUBLE_EQ(ic.inflation_radius, 1.0);
+  EXPECT_DOUBLE_EQ(ic.cost_scaling_factor, 3.0);
+
+  const CompatResult obs = applyCostmap2dRulesAsRole(ns, "obstacles", "costmap_2d::ObstacleLayer");
+  EXPECT_DOUBLE_EQ(numberAt(obs.params, "obstacles/max_obstacle_height"), 0.6);
+  EXPECT_TRUE(obs.params.findPath("obstacles/track_unknown_space")->asBool());
+  EXPECT_DOUBLE_EQ(numberAt(obs.params, "obstacles/scan/obstacle_range"), 5.0);  // the layer's, after the copy
+  EXPECT_DOUBLE_EQ(numberAt(obs.params, "obstacles/scan/raytrace_range"), 6.0);
+  EXPECT_DOUBLE_EQ(numberAt(obs.params, "obstacles/bump/raytrace_range"), 0.5);  // its own
+  EXPECT_EQ(obs.params.findPath("obstacles/scan/sensor_frame")->asString(), "base_scan");
+  EXPECT_TRUE(has(obs.layer_consumed.at("obstacles"), "obstacle_range"));
+  const ObstacleConfig oc = parseObstacleConfig(ParamReader(*obs.params.find("obstacles"), "o"), false);
+  ASSERT_EQ(oc.sources.size(), 2u);
+  EXPECT_DOUBLE_EQ(oc.sources[0].obstacle_max_range, 5.0);
+  EXPECT_DOUBLE_EQ(oc.sources[0].raytrace_max_range, 6.0);
+  EXPECT_DOUBLE_EQ(oc.sources[1].obstacle_max_range, 5.0);
+  EXPECT_DOUBLE_EQ(oc.sources[1].raytrace_max_range, 0.5);
+
+  // costmap_2d's VoxelLayer rule moves the voxel keys only: the ranges come by searchParam, the
+  // layer's 4.0 first.
+  const CompatResult vox = applyCostmap2dRulesAsRole(ns, "obstacles", "costmap_2d::VoxelLayer");
+  EXPECT_DOUBLE_EQ(numberAt(vox.params, "obstacles/scan/obstacle_range"), 4.0);
+  EXPECT_DOUBLE_EQ(numberAt(vox.params, "obstacles/scan/raytrace_range"), 6.0);
+  EXPECT_EQ(vox.params.findPath("obstacles/max_obstacle_height"), nullptr);
+
+  // The static layer: costmap_2d's default track_unknown_space true, unless the costmap sets it.
+  ParamValue plain = ParamValue::makeMap();
+  const CompatResult st = applyCostmap2dRulesAsRole(plain, "map", "costmap_2d::StaticLayer");
+  EXPECT_TRUE(st.params.findPath("map/track_unknown_space")->asBool());
+  plain.set("track_unknown_space", B(false));
+  EXPECT_FALSE(applyCostmap2dRulesAsRole(plain, "map", "costmap_2d::StaticLayer")
+                   .params.findPath("map/track_unknown_space")
+                   ->asBool());
+
+  // No role (a filter): the namespace as written, nothing said.
+  const CompatResult none = applyCostmap2dRulesAsRole(ns, "inflation", "");
+  EXPECT_DOUBLE_EQ(numberAt(none.params, "inflation/inflation_radius"), 0.3);
+  EXPECT_TRUE(none.warnings.empty());
+  EXPECT_TRUE(none.notes.empty());
+}

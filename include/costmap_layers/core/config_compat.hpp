@@ -88,6 +88,21 @@ struct CompatResult
 /// Throws std::invalid_argument on a malformed plugin list.
 CompatResult applyCostmap2dRules(const ParamValue& ns, const std::vector<ParentNamespace>& parents = {});
 
+/// The costmap_2d type whose place a layer of this package's class takes ("InflationLayer" ->
+/// "costmap_2d::InflationLayer", "RangeSensorLayer" -> "range_sensor_layer::RangeSensorLayer"), "" when
+/// costmap_2d has none (the filters, GradientLayer).
+std::string costmap2dRole(const std::string& class_name);
+
+/// For a layer that costmap_2d hosts (move_base) in the place of its own `role_type` (from
+/// costmap2dRole(); "" for none): what costmap_2d does for that type of its own, which it does not do
+/// for a type it does not know. On the costmap's namespace ns (its plugin list is not read):
+/// copyParentParameters (the costmap-level value replaces the layer's own, reported when they differ),
+/// StaticLayer's track_unknown_space default true, the searchParam of obstacle_range and raytrace_range
+/// for each observation source, and a sensor_frame's leading '/' stripped. The layer's namespace is then
+/// params.find(name); warnings and notes concern that layer only.
+CompatResult applyCostmap2dRulesAsRole(const ParamValue& ns, const std::string& name, const std::string& role_type,
+                                       const std::vector<ParentNamespace>& parents = {});
+
 /// roslaunch loads a move_base file that nests everything under `global_costmap:` into the costmap's
 /// own namespace as <ns>/global_costmap/global_costmap. When ns holds a map under the costmap's own
 /// name (and no plugin of that name), its keys are merged over ns (they win, as a file loaded after

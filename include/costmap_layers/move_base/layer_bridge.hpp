@@ -7,8 +7,10 @@
 #include <atomic>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "costmap_layers/core/layer.hpp"
+#include "costmap_layers/core/param_value.hpp"
 
 namespace costmap_layers
 {
@@ -58,6 +60,9 @@ protected:
 
 private:
   void setUp();
+  /// The layer's parameters: its namespace, with what costmap_2d's rules give a layer of the type this
+  /// one stands in for (applyCostmap2dRulesAsRole), reported.
+  costmap_layers::ParamValue layerParameters(const ros::NodeHandle& nh);
   /// Blocks start-up until the static layer has a map (costmap_2d's StaticLayer does), spinning the
   /// global queue its subscription is on.
   void waitForMap(const costmap_layers::StaticLayer& layer, const ros::NodeHandle& nh);
@@ -72,8 +77,9 @@ private:
   std::shared_ptr<costmap_layers_ros::RosLayerContext> context_;
   std::unique_ptr<costmap_layers_ros::LayerPorts> ports_;
   std::unique_ptr<costmap_layers_ros::LayerReconfigure> reconfigure_;
-  std::atomic<bool> full_update_{true};  ///< redraw the whole map next cycle (start, reconfigure, reset)
-  bool drawn_enabled_ = true;            ///< the core layer's switch as of the last cycle
+  std::atomic<bool> full_update_{true};     ///< redraw the whole map next cycle (start, reconfigure, reset)
+  bool drawn_enabled_ = true;               ///< the core layer's switch as of the last cycle
+  std::vector<std::string> consumed_keys_;  ///< layer keys costmap_2d's rules used up (not "unknown")
 };
 
 }  // namespace move_base

@@ -203,6 +203,46 @@ TEST(Bridge, TheStaticLayerWaitsForTheMapAsCostmap2dsDoes)
   EXPECT_EQ(lc.getCostmap()->getCost(7, 5), costmap_2d::LETHAL_OBSTACLE);
 }
 
+// costmap_2d copies costmap-level keys into its own layer types (copyParentParameters) and its obstacle
+// layer looks the ranges up in the namespaces above (searchParam). A user who swaps costmap_2d's type
+// for the bridged one keeps those values: before, the bridged layers read their own namespace only and
+// ran with their defaults (inflation 0.55 m, ranges 2.5 / 3.0 m) without a word.
+TEST(Bridge, CostmapLevelParametersReachTheBridgedLayersAsCostmap2dsOwn)
+{
+  ros::NodeHandle pn("~");
+  pn.setParam("levels/inflation_radius", 1.0);
+  pn.setParam("levels/cost_scaling_factor", 3.0);
+  pn.setParam("levels/obstacle_range", 5.0);
+  pn.setParam("levels/raytrace_range", 6.0);
+  pn.setParam("levels/obstacles/observation_sources", "scan");
+  pn.setParam("levels/obstacles/scan/data_type", "LaserScan");
+  pn.setParam("levels/obstacles/scan/topic", "/bridge_levels_scan");
+  pn.setParam("levels/inflation/inflation_radius", 0.3);  // costmap_2d replaces it with the costmap's
+  pn.setParam("levels/map/enabled", false);               // not waiting for a map here
+  tf2_ros::Buffer tf;
+  costmap_2d::LayeredCostmap lc("map", false, false);
+  lc.resizeMap(100, 100, 0.05, 0.0, 0.0);
+  auto obstacles = addBridged<costmap_layers::ObstacleLayer>(lc, tf, "levels/obstacles", "ObstacleLayer");
+  auto inflation = addBridged<costmap_layers::InflationLayer>(lc, tf, "levels/inflation", "InflationLayer");
+  auto map = addBridged<costmap_layers::StaticLayer>(lc, tf, "levels/map", "StaticLayer");
+  ASSERT_EQ(obstacles->config().sources.size(), 1u);
+  EXPECT_DOUBLE_EQ(obstacles->config().sources[0].obstacle_max_range, 5.0);
+  EXPECT_DOUBLE_EQ(obstacles->config().sources[0].raytrace_max_range, 6.0);
+  EXPECT_DOUBLE_EQ(inflation->config().inflation_radius, 1.0);
+  EXPECT_DOUBLE_EQ(inflation->config().cost_scaling_factor, 3.0);
+  EXPECT_TRUE(map->config().track_unknown_space);  // costmap_2d's StaticLayer default
+
+  // And it shows in the costmap: a cell 0.8 m from an obstacle is inflated (not with 0.55 m).
+  lc.setFootprint(circle(0.1, 16));
+  obstacles->addStaticObservation(pointsSeenFrom(2.5, 2.5, {{1.52f, 1.52f}}), true, false);
+  lc.updateMap(2.5, 2.5, 0.0);
+  unsigned mx, my;
+  ASSERT_TRUE(lc.getCostmap()->worldToMap(1.52, 1.52, mx, my));
+  ASSERT_EQ(lc.getCostmap()->getCost(mx, my), costmap_2d::LETHAL_OBSTACLE);
+  ASSERT_TRUE(lc.getCostmap()->worldToMap(1.52 - 0.8, 1.52, mx, my));
+  EXPECT_GT(lc.getCostmap()->getCost(mx, my), costmap_2d::FREE_SPACE);
+}
+
 int main(int argc, char** argv)
 {
   testing::InitGoogleTest(&argc, argv);
