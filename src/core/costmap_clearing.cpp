@@ -17,6 +17,18 @@ void redrawAll(CostmapLayer& layer)
   layer.addExtraBounds(grid.getOriginX(), grid.getOriginY(), grid.getOriginX() + grid.getSizeInMetersX(),
                        grid.getOriginY() + grid.getSizeInMetersY());
 }
+
+/// Clears every cell of the layer's grid but those of [kx0, kx1] x [ky0, ky1] (inside the grid).
+void clearOutside(CostmapLayer& layer, unsigned kx0, unsigned kx1, unsigned ky0, unsigned ky1)
+{
+  const Costmap2D& grid = layer.costmap();
+  const unsigned sx = grid.getSizeInCellsX(), sy = grid.getSizeInCellsY();
+  // The bands below, above, left and right of the kept rectangle.
+  layer.clearCells(0, 0, sx, ky0);
+  layer.clearCells(0, ky1 + 1, sx, sy);
+  layer.clearCells(0, ky0, kx0, ky1 + 1);
+  layer.clearCells(kx1 + 1, ky0, sx, ky1 + 1);
+}
 }  // namespace
 
 int resetClearableLayers(LayeredCostmap& costmap)
@@ -47,7 +59,7 @@ int clearClearableLayersAround(LayeredCostmap& costmap, double x, double y, doub
       layer->reset();
       continue;
     }
-    Costmap2D& grid = grid_layer->costmap();
+    const Costmap2D& grid = grid_layer->costmap();
     const unsigned sx = grid.getSizeInCellsX(), sy = grid.getSizeInCellsY();
     // The kept square in cell coordinates, in double: the robot may be off the grid by any distance
     // (worldToMapEnforceBounds would pull a square lying off the grid onto its edge cells). Then cut to
@@ -65,17 +77,47 @@ int clearClearableLayersAround(LayeredCostmap& costmap, double x, double y, doub
     if (!cells(x - half, x + half, grid.getOriginX(), sx, kx0, kx1) ||
         !cells(y - half, y + half, grid.getOriginY(), sy, ky0, ky1))
     {
-      grid.resetMap(0, 0, sx, sy);  // the square keeps nothing of this grid
+      grid_layer->clearCells(0, 0, sx, sy);  // the square keeps nothing of this grid
       redrawAll(*grid_layer);
       continue;
     }
-    // Everything but the kept square [kx0, kx1] x [ky0, ky1]: the bands below, above, left and right.
-    grid.resetMap(0, 0, sx, ky0);
-    grid.resetMap(0, ky1 + 1, sx, sy);
-    grid.resetMap(0, ky0, kx0, ky1 + 1);
-    grid.resetMap(kx1 + 1, ky0, sx, ky1 + 1);
+    clearOutside(*grid_layer, kx0, kx1, ky0, ky1);
     redrawAll(*grid_layer);
   }
   return n;
+}
+
+bool clearLayerArea(Layer& layer, int x0, int y0, int x1, int y1, bool invert)
+{
+  if (!layer.isClearable()) return false;
+  auto* grid_layer = dynamic_cast<CostmapLayer*>(&layer);
+  if (grid_layer == nullptr)
+  {
+    layer.reset();
+    return true;
+  }
+  const Costmap2D& grid = grid_layer->costmap();
+  const long long sx = grid.getSizeInCellsX(), sy = grid.getSizeInCellsY();
+  // The cells strictly between, cut to the grid (in 64 bits: x0 + 1 may not fit an int).
+  const long long ix0 = std::max<long long>(x0 + 1LL, 0), ix1 = std::min<long long>(x1 - 1LL, sx - 1);
+  const long long iy0 = std::max<long long>(y0 + 1LL, 0), iy1 = std::min<long long>(y1 - 1LL, sy - 1);
+  const bool between = ix0 <= ix1 && iy0 <= iy1;
+  if (invert)
+  {
+    if (between)
+      grid_layer->clearCells(static_cast<unsigned>(ix0), static_cast<unsigned>(iy0), static_cast<unsigned>(ix1 + 1),
+                             static_cast<unsigned>(iy1 + 1));
+  }
+  else if (!between)
+  {
+    grid_layer->clearCells(0, 0, static_cast<unsigned>(sx), static_cast<unsigned>(sy));
+  }
+  else
+  {
+    clearOutside(*grid_layer, static_cast<unsigned>(ix0), static_cast<unsigned>(ix1), static_cast<unsigned>(iy0),
+                 static_cast<unsigned>(iy1));
+  }
+  redrawAll(*grid_layer);
+  return true;
 }
 }  // namespace costmap_layers

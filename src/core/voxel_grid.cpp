@@ -22,6 +22,18 @@ void VoxelGrid::reset()
   std::fill(data_.begin(), data_.end(), unknown_column_);
 }
 
+void VoxelGrid::resetColumns(unsigned int x0, unsigned int y0, unsigned int xn, unsigned int yn)
+{
+  xn = std::min(xn, size_x_);
+  yn = std::min(yn, size_y_);
+  if (x0 >= xn || y0 >= yn) return;
+  for (unsigned int y = y0; y < yn; ++y)
+  {
+    const auto row = data_.begin() + static_cast<std::ptrdiff_t>(y) * size_x_;
+    std::fill(row + x0, row + xn, unknown_column_);
+  }
+}
+
 void VoxelGrid::shift(int dx, int dy)
 {
   if (dx == 0 && dy == 0) return;

@@ -41,6 +41,12 @@ void VoxelLayer::reset()
   voxels_.reset();
 }
 
+void VoxelLayer::clearCells(unsigned int x0, unsigned int y0, unsigned int xn, unsigned int yn)
+{
+  ObstacleLayer::clearCells(x0, y0, xn, yn);
+  voxels_.resetColumns(x0, y0, xn, yn);
+}
+
 void VoxelLayer::onGridShifted(int cells_x, int cells_y)
 {
   voxels_.shift(cells_x, cells_y);  // the columns move with the 2-D cells

@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "costmap_layers/core/config_compat.hpp"
+#include "costmap_layers/core/costmap_clearing.hpp"
+#include "costmap_layers/core/costmap_layer.hpp"
 #include "costmap_layers/core/footprint.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
 #include "costmap_layers/core/static_layer.hpp"
@@ -42,19 +44,22 @@ double transformTolerance(const ros::NodeHandle& plugin_nh)
 }
 }  // namespace
 
-LayerBridge::LayerBridge(std::shared_ptr<costmap_layers::Layer> core, std::string class_name)
+template <class Base>
+LayerBridgeOn<Base>::LayerBridgeOn(std::shared_ptr<costmap_layers::Layer> core, std::string class_name)
     : core_(std::move(core)), class_name_(std::move(class_name))
 {
 }
 
 // Ports and the reconfigure server go first: their callbacks reach into the core layer.
-LayerBridge::~LayerBridge()
+template <class Base>
+LayerBridgeOn<Base>::~LayerBridgeOn()
 {
   reconfigure_.reset();
   ports_.reset();
 }
 
-void LayerBridge::onInitialize()
+template <class Base>
+void LayerBridgeOn<Base>::onInitialize()
 {
   try
   {
@@ -63,62 +68,65 @@ void LayerBridge::onInitialize()
   catch (const std::exception& e)
   {
     // A parameter out of range or of the wrong type stops the start-up, naming it, as in costmap_node.
-    ROS_FATAL("%s (costmap_layers %s): %s", ros::NodeHandle("~/" + name_).getNamespace().c_str(), class_name_.c_str(),
-              e.what());
+    ROS_FATAL("%s (costmap_layers %s): %s", ros::NodeHandle("~/" + this->name_).getNamespace().c_str(),
+              class_name_.c_str(), e.what());
     throw;
   }
 }
 
-void LayerBridge::setUp()
+template <class Base>
+void LayerBridgeOn<Base>::setUp()
 {
-  ros::NodeHandle nh("~/" + name_);
-  const std::string global_frame = layered_costmap_->getGlobalFrameID();
+  ros::NodeHandle nh("~/" + this->name_);
+  const std::string global_frame = this->layered_costmap_->getGlobalFrameID();
   costmap_layers::ParamValue params = layerParameters(nh);
   log_ = std::make_shared<costmap_layers_ros::ThrottledLog>();
   context_ = std::make_shared<costmap_layers_ros::RosLayerContext>(nh, params, global_frame, transformTolerance(nh),
-                                                                   *tf_, log_);
-  host_ = std::make_unique<costmap_layers::LayeredCostmap>(global_frame, layered_costmap_->isRolling(),
-                                                           layered_costmap_->isTrackingUnknown());
+                                                                   *this->tf_, log_);
+  host_ = std::make_unique<costmap_layers::LayeredCostmap>(global_frame, this->layered_costmap_->isRolling(),
+                                                           this->layered_costmap_->isTrackingUnknown());
   // A layer that resizes the master (the static layer, to its map) resizes move_base's; costmap_2d
   // then calls matchSize on every plugin, this one included, which views the new memory.
   host_->setResizeHandler(
       [this](unsigned int size_x, unsigned int size_y, double resolution, double origin_x, double origin_y,
              bool size_locked)
-      { layered_costmap_->resizeMap(size_x, size_y, resolution, origin_x, origin_y, size_locked); });
+      { this->layered_costmap_->resizeMap(size_x, size_y, resolution, origin_x, origin_y, size_locked); });
   viewMaster();
   host_->addPlugin(core_);
   {
     costmap_layers::ParamReadLog read_log;
-    core_->initialize(host_.get(), name_, context_);
+    core_->initialize(host_.get(), this->name_, context_);
     std::vector<std::string> known = {"plugin"};
     known.insert(known.end(), consumed_keys_.begin(), consumed_keys_.end());
     for (const auto& u : costmap_layers::unknownKeys(context_->params(), read_log, class_name_, known))
       ROS_WARN("%s", costmap_layers::describeUnknownKey(u, nh.getNamespace()).c_str());
   }
   onFootprintChanged();
-  ports_ = std::make_unique<costmap_layers_ros::LayerPorts>(ros::NodeHandle(), nh, *core_, global_frame, *tf_, log_);
+  ports_ =
+      std::make_unique<costmap_layers_ros::LayerPorts>(ros::NodeHandle(), nh, *core_, global_frame, *this->tf_, log_);
   reconfigure_ = std::make_unique<costmap_layers_ros::LayerReconfigure>(
       nh, core_, params,
       [this](const std::function<void()>& fn)
       {
-        boost::unique_lock<costmap_2d::Costmap2D::mutex_t> lock(*layered_costmap_->getCostmap()->getMutex());
+        boost::unique_lock<costmap_2d::Costmap2D::mutex_t> lock(*this->layered_costmap_->getCostmap()->getMutex());
         fn();
         full_update_ = true;
       });
   if (const auto* static_layer = dynamic_cast<const costmap_layers::StaticLayer*>(core_.get()))
     waitForMap(*static_layer, nh);
-  enabled_ = true;  // costmap_2d skips disabled plugins; the core layer's own switch is honoured below
-  current_ = core_->isCurrent();
+  this->enabled_ = true;  // costmap_2d skips disabled plugins; the core layer's own switch is honoured below
+  this->current_ = core_->isCurrent();
   ROS_INFO("%s: costmap_layers %s hosted in costmap_2d", nh.getNamespace().c_str(), class_name_.c_str());
 }
 
-costmap_layers::ParamValue LayerBridge::layerParameters(const ros::NodeHandle& nh)
+template <class Base>
+costmap_layers::ParamValue LayerBridgeOn<Base>::layerParameters(const ros::NodeHandle& nh)
 {
   // costmap_2d copies costmap-level keys into its own layers and looks some up in the namespaces above
   // (copyParentParameters, searchParam), for its own types only: a user who swaps costmap_2d's type for
   // this one keeps what those rules gave the layer, told what came from where.
   const std::string costmap_ns = ros::names::parentNamespace(nh.getNamespace());
-  const std::string key = name_.substr(name_.rfind('/') + 1);
+  const std::string key = this->name_.substr(this->name_.rfind('/') + 1);
   const std::string role = costmap_layers::costmap2dRole(class_name_);
   const costmap_layers::CompatResult compat =
       costmap_layers::applyCostmap2dRulesAsRole(costmap_layers_ros::readNamespace(ros::NodeHandle(costmap_ns)), key,
@@ -133,7 +141,8 @@ costmap_layers::ParamValue LayerBridge::layerParameters(const ros::NodeHandle& n
   return layer != nullptr && layer->isMap() ? *layer : costmap_layers::ParamValue::makeMap();
 }
 
-void LayerBridge::waitForMap(const costmap_layers::StaticLayer& layer, const ros::NodeHandle& nh)
+template <class Base>
+void LayerBridgeOn<Base>::waitForMap(const costmap_layers::StaticLayer& layer, const ros::NodeHandle& nh)
 {
   // As costmap_2d's StaticLayer: move_base does not come up before the map. Otherwise the global
   // planner, which does not ask whether the costmap is current, plans on a costmap without walls.
@@ -151,24 +160,27 @@ void LayerBridge::waitForMap(const costmap_layers::StaticLayer& layer, const ros
   }
 }
 
-void LayerBridge::viewMaster()
+template <class Base>
+void LayerBridgeOn<Base>::viewMaster()
 {
-  costmap_2d::Costmap2D& master = *layered_costmap_->getCostmap();
+  costmap_2d::Costmap2D& master = *this->layered_costmap_->getCostmap();
   host_->viewMaster(master.getCharMap(), master.getSizeInCellsX(), master.getSizeInCellsY(), master.getResolution(),
                     master.getOriginX(), master.getOriginY());
 }
 
-void LayerBridge::expandToWholeMap(double* min_x, double* min_y, double* max_x, double* max_y) const
+template <class Base>
+void LayerBridgeOn<Base>::expandToWholeMap(double* min_x, double* min_y, double* max_x, double* max_y) const
 {
-  const costmap_2d::Costmap2D& master = *layered_costmap_->getCostmap();
+  const costmap_2d::Costmap2D& master = *this->layered_costmap_->getCostmap();
   *min_x = std::min(*min_x, master.getOriginX());
   *min_y = std::min(*min_y, master.getOriginY());
   *max_x = std::max(*max_x, master.getOriginX() + master.getSizeInCellsX() * master.getResolution());
   *max_y = std::max(*max_y, master.getOriginY() + master.getSizeInCellsY() * master.getResolution());
 }
 
-void LayerBridge::updateBounds(double robot_x, double robot_y, double robot_yaw, double* min_x, double* min_y,
-                               double* max_x, double* max_y)
+template <class Base>
+void LayerBridgeOn<Base>::updateBounds(double robot_x, double robot_y, double robot_yaw, double* min_x, double* min_y,
+                                       double* max_x, double* max_y)
 {
   viewMaster();  // a rolling master has moved its origin since the last cycle
   const bool on = core_->enabled();
@@ -177,24 +189,27 @@ void LayerBridge::updateBounds(double robot_x, double robot_y, double robot_yaw,
   if (on) core_->updateBounds(robot_x, robot_y, robot_yaw, min_x, min_y, max_x, max_y);
   if (full_update_.exchange(false) || host_->takeFullUpdateRequest() || switched)
     expandToWholeMap(min_x, min_y, max_x, max_y);
-  current_ = !on || core_->isCurrent();
+  this->current_ = !on || core_->isCurrent();
 }
 
-void LayerBridge::updateCosts(costmap_2d::Costmap2D& master_grid, int min_i, int min_j, int max_i, int max_j)
+template <class Base>
+void LayerBridgeOn<Base>::updateCosts(costmap_2d::Costmap2D& master_grid, int min_i, int min_j, int max_i, int max_j)
 {
   if (!core_->enabled()) return;
-  if (&master_grid != layered_costmap_->getCostmap())
+  if (&master_grid != this->layered_costmap_->getCostmap())
   {
     // Not the grid this plugin belongs to (costmap_2d always passes its own): refuse rather than write
     // into memory the view does not describe.
-    ROS_ERROR_THROTTLE(5.0, "%s: updateCosts on a grid that is not the costmap's own master, skipped", name_.c_str());
+    ROS_ERROR_THROTTLE(5.0, "%s: updateCosts on a grid that is not the costmap's own master, skipped",
+                       this->name_.c_str());
     return;
   }
   viewMaster();  // the master may have been resized since updateBounds
   core_->updateCosts(host_->getCostmap(), min_i, min_j, max_i, max_j);
 }
 
-void LayerBridge::matchSize()
+template <class Base>
+void LayerBridgeOn<Base>::matchSize()
 {
   if (!host_) return;
   viewMaster();  // the core layers' matchSize runs when the geometry changed
@@ -203,15 +218,16 @@ void LayerBridge::matchSize()
   full_update_ = true;
 }
 
-void LayerBridge::onFootprintChanged()
+template <class Base>
+void LayerBridgeOn<Base>::onFootprintChanged()
 {
   if (!host_) return;
   // costmap_2d calls this from its footprint subscriber with no lock, while the map update thread may
   // be inside the core layers (the inflation layer's cost table, the footprint the obstacle layer
   // clears): the costmap's mutex (recursive; updateMap holds it) keeps them apart.
-  boost::unique_lock<costmap_2d::Costmap2D::mutex_t> lock(*layered_costmap_->getCostmap()->getMutex());
+  boost::unique_lock<costmap_2d::Costmap2D::mutex_t> lock(*this->layered_costmap_->getCostmap()->getMutex());
   costmap_layers::Footprint footprint;
-  for (const auto& p : layered_costmap_->getFootprint())
+  for (const auto& p : this->layered_costmap_->getFootprint())
     footprint.emplace_back(p.x, p.y);
   // costmap_2d passes on whatever its footprint topic or parameters carried (float32, NaN included):
   // a polygon the core could not use keeps the last good one (NaN vertices would make every inflated
@@ -223,27 +239,95 @@ void LayerBridge::onFootprintChanged()
   if (!problem.empty())
   {
     context_->report(costmap_layers::Severity::Error, "footprint",
-                     name_ + ": footprint from move_base's costmap ignored, the last good one stays: " + problem);
+                     this->name_ + ": footprint from move_base's costmap ignored, the last good one stays: " + problem);
     return;
   }
   host_->setFootprint(footprint);
 }
 
-void LayerBridge::reset()
+template <class Base>
+void LayerBridgeOn<Base>::reset()
 {
   core_->reset();
   full_update_ = true;
 }
 
-void LayerBridge::activate()
+template <class Base>
+void LayerBridgeOn<Base>::activate()
 {
   core_->activate();
   full_update_ = true;
 }
 
-void LayerBridge::deactivate()
+template <class Base>
+void LayerBridgeOn<Base>::deactivate()
 {
   core_->deactivate();
+}
+template class LayerBridgeOn<costmap_2d::Layer>;
+template class LayerBridgeOn<costmap_2d::CostmapLayer>;
+
+ClearableLayerBridge::~ClearableLayerBridge()
+{
+  costmap_ = nullptr;  // the core layer's cells: ~Costmap2D's delete[] must not free them
+}
+
+void ClearableLayerBridge::onInitialize()
+{
+  LayerBridgeOn<costmap_2d::CostmapLayer>::onInitialize();
+  viewCoreGrid();
+}
+
+void ClearableLayerBridge::viewCoreGrid()
+{
+  auto* grid_layer = dynamic_cast<costmap_layers::CostmapLayer*>(&core());
+  if (grid_layer == nullptr) return;
+  costmap_layers::Costmap2D& grid = grid_layer->costmap();
+  costmap_ = grid.data();
+  size_x_ = grid.getSizeInCellsX();
+  size_y_ = grid.getSizeInCellsY();
+  resolution_ = grid.getResolution();
+  origin_x_ = grid.getOriginX();
+  origin_y_ = grid.getOriginY();
+  default_value_ = grid.getDefaultValue();
+}
+
+void ClearableLayerBridge::deleteMaps()
+{
+  costmap_ = nullptr;  // not ours to free (see viewCoreGrid)
+}
+
+void ClearableLayerBridge::initMaps(unsigned int, unsigned int)
+{
+  viewCoreGrid();  // a resizeMap on this layer views the core grid again instead of allocating
+}
+
+void ClearableLayerBridge::resetMaps()
+{
+  boost::unique_lock<costmap_2d::Costmap2D::mutex_t> lock(*layered_costmap_->getCostmap()->getMutex());
+  costmap_layers::clearLayerArea(core(), 0, 0, 0, 0, false);  // nothing is between: every cell
+}
+
+void ClearableLayerBridge::updateBounds(double robot_x, double robot_y, double robot_yaw, double* min_x, double* min_y,
+                                        double* max_x, double* max_y)
+{
+  LayerBridgeOn<costmap_2d::CostmapLayer>::updateBounds(robot_x, robot_y, robot_yaw, min_x, min_y, max_x, max_y);
+  viewCoreGrid();                              // a rolling layer's grid has followed the master
+  useExtraBounds(min_x, min_y, max_x, max_y);  // what clear_costmap_recovery asked for (the whole layer)
+}
+
+void ClearableLayerBridge::matchSize()
+{
+  LayerBridgeOn<costmap_2d::CostmapLayer>::matchSize();
+  viewCoreGrid();
+}
+
+void ClearableLayerBridge::clearArea(int start_x, int start_y, int end_x, int end_y, bool invert_area)
+{
+  // clear_costmap_recovery holds only this layer's own mutex; the core layer's cells are the update
+  // thread's, which holds the costmap's (recursive) mutex through updateMap.
+  boost::unique_lock<costmap_2d::Costmap2D::mutex_t> lock(*layered_costmap_->getCostmap()->getMutex());
+  costmap_layers::clearLayerArea(core(), start_x, start_y, end_x, end_y, invert_area);
 }
 }  // namespace move_base
 }  // namespace costmap_layers

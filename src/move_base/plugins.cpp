@@ -15,29 +15,31 @@
 #include "costmap_layers/core/zone_parameter_filter.hpp"
 #include "costmap_layers/move_base/layer_bridge.hpp"
 
-// One class per core type, named as the core class, in namespace costmap_layers::move_base.
-#define COSTMAP_LAYERS_MOVE_BASE_PLUGIN(Type)                                \
-  namespace costmap_layers                                                   \
-  {                                                                          \
-  namespace move_base                                                        \
-  {                                                                          \
-  class Type : public LayerBridge                                            \
-  {                                                                          \
-  public:                                                                    \
-    Type() : LayerBridge(std::make_shared<costmap_layers::Type>(), #Type) {} \
-  };                                                                         \
-  }                                                                          \
-  }                                                                          \
+// One class per core type, named as the core class, in namespace costmap_layers::move_base. The
+// clearable sensor layers are costmap_2d::CostmapLayers (ClearableLayerBridge), as costmap_2d's own are,
+// so that move_base's clear-costmap recovery clears them.
+#define COSTMAP_LAYERS_MOVE_BASE_PLUGIN(Type, Bridge)                   \
+  namespace costmap_layers                                              \
+  {                                                                     \
+  namespace move_base                                                   \
+  {                                                                     \
+  class Type : public Bridge                                            \
+  {                                                                     \
+  public:                                                               \
+    Type() : Bridge(std::make_shared<costmap_layers::Type>(), #Type) {} \
+  };                                                                    \
+  }                                                                     \
+  }                                                                     \
   PLUGINLIB_EXPORT_CLASS(costmap_layers::move_base::Type, costmap_2d::Layer)
 
-COSTMAP_LAYERS_MOVE_BASE_PLUGIN(StaticLayer)
-COSTMAP_LAYERS_MOVE_BASE_PLUGIN(InflationLayer)
-COSTMAP_LAYERS_MOVE_BASE_PLUGIN(ObstacleLayer)
-COSTMAP_LAYERS_MOVE_BASE_PLUGIN(VoxelLayer)
-COSTMAP_LAYERS_MOVE_BASE_PLUGIN(RangeSensorLayer)
-COSTMAP_LAYERS_MOVE_BASE_PLUGIN(GradientLayer)
-COSTMAP_LAYERS_MOVE_BASE_PLUGIN(KeepoutFilter)
-COSTMAP_LAYERS_MOVE_BASE_PLUGIN(SpeedFilter)
-COSTMAP_LAYERS_MOVE_BASE_PLUGIN(LanesFilter)
-COSTMAP_LAYERS_MOVE_BASE_PLUGIN(ZoneParameterFilter)
-COSTMAP_LAYERS_MOVE_BASE_PLUGIN(BinaryFilter)
+COSTMAP_LAYERS_MOVE_BASE_PLUGIN(StaticLayer, LayerBridge)
+COSTMAP_LAYERS_MOVE_BASE_PLUGIN(InflationLayer, LayerBridge)
+COSTMAP_LAYERS_MOVE_BASE_PLUGIN(ObstacleLayer, ClearableLayerBridge)
+COSTMAP_LAYERS_MOVE_BASE_PLUGIN(VoxelLayer, ClearableLayerBridge)
+COSTMAP_LAYERS_MOVE_BASE_PLUGIN(RangeSensorLayer, ClearableLayerBridge)
+COSTMAP_LAYERS_MOVE_BASE_PLUGIN(GradientLayer, LayerBridge)
+COSTMAP_LAYERS_MOVE_BASE_PLUGIN(KeepoutFilter, LayerBridge)
+COSTMAP_LAYERS_MOVE_BASE_PLUGIN(SpeedFilter, LayerBridge)
+COSTMAP_LAYERS_MOVE_BASE_PLUGIN(LanesFilter, LayerBridge)
+COSTMAP_LAYERS_MOVE_BASE_PLUGIN(ZoneParameterFilter, LayerBridge)
+COSTMAP_LAYERS_MOVE_BASE_PLUGIN(BinaryFilter, LayerBridge)

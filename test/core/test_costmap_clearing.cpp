@@ -195,3 +195,48 @@ TEST(CostmapClearing, AroundAnInvalidPoseIsRefused)
     EXPECT_EQ(r.lethal(), 400) << "nothing is cleared";
   }
 }
+
+// move_base's clear-costmap recovery calls costmap_2d's CostmapLayer::clearArea(x0, y0, x1, y1, invert)
+// on the layers it clears. costmap_2d's rule, cell by cell (costmap_layer.cpp): a cell is "between" when
+// x0 < x < x1 and y0 < y < y1; without invert every cell not between is cleared, with invert every cell
+// between (to NO_INFORMATION there; here to the grid's default, as if never seen, as the node's
+// clear_around_robot does). The reference below is that loop; clearLayerArea must give the same grid for windows
+// anywhere, at the int limits (what worldToMapNoBounds gives far off the map) and reversed.
+TEST(CostmapClearing, ClearLayerAreaIsCostmap2dsClearArea)
+{
+  const int kMax = std::numeric_limits<int>::max(), kMin = std::numeric_limits<int>::min();
+  const int windows[][4] = {{5, 5, 15, 15},     {-3, -3, 4, 6},           {0, 0, 19, 19},
+                            {-1, -1, 20, 20},   {9, 9, 11, 11},           {10, 10, 11, 11},
+                            {15, 2, 5, 12},     {30, 30, 40, 40},         {kMin, kMin, kMax, kMax},
+                            {kMin, 4, 7, kMax}, {kMax, kMax, kMin, kMin}, {-40, -40, -30, -30}};
+  for (const auto& w : windows)
+  {
+    for (const bool invert : {false, true})
+    {
+      Rig r;
+      for (unsigned y = 0; y < 20; ++y)
+        for (unsigned x = 0; x < 20; ++x)
+          r.sensor->costmap().setCost(x, y, static_cast<unsigned char>(1 + (x * 7 + y * 3) % 250));
+      ASSERT_TRUE(clearLayerArea(*r.sensor, w[0], w[1], w[2], w[3], invert));
+      for (int y = 0; y < 20; ++y)
+        for (int x = 0; x < 20; ++x)
+        {
+          const bool between = x > w[0] && x < w[2] && y > w[1] && y < w[3];
+          const unsigned char expected = between != invert ? static_cast<unsigned char>(1 + (x * 7 + y * 3) % 250)
+                                                           : r.sensor->costmap().getDefaultValue();
+          ASSERT_EQ(r.sensor->costmap().getCost(x, y), expected)
+              << "window " << w[0] << ", " << w[1] << " - " << w[2] << ", " << w[3] << " invert " << invert << " cell "
+              << x << ", " << y;
+        }
+    }
+  }
+  // Not clearable: nothing happens. The master follows a clear on the next update (the whole map).
+  Rig r;
+  EXPECT_FALSE(clearLayerArea(*r.fixed, 0, 0, 1, 1, false));
+  EXPECT_EQ(r.fixed->costmap().getCost(18, 18), LETHAL_OBSTACLE);
+  ASSERT_TRUE(clearLayerArea(*r.sensor, 7, 7, 13, 13, false));  // keeps 8..12: (10, 10) stays
+  r.lc.updateMap(10.5, 10.5, 0.0);
+  EXPECT_EQ(r.lc.getCostmap().getCost(1, 1), FREE_SPACE);
+  EXPECT_EQ(r.lc.getCostmap().getCost(10, 10), LETHAL_OBSTACLE);
+  EXPECT_EQ(r.lc.getCostmap().getCost(18, 18), LETHAL_OBSTACLE);
+}

@@ -10,6 +10,7 @@
 
 #include "beam_reference.hpp"
 #include "costmap_layers/core/cost_values.hpp"
+#include "costmap_layers/core/costmap_clearing.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
 #include "costmap_layers/core/param_reader.hpp"
 #include "costmap_layers/core/voxel_grid.hpp"
@@ -276,6 +277,37 @@ TEST(VoxelLayer, ResetAndFootprintClearing)
   rig.layer->reset();
   EXPECT_EQ(rig.layer->voxels().getVoxel(2, 2, 1), VoxelStatus::Unknown);
   EXPECT_EQ(count(rig.layer->costmap(), NO_INFORMATION), 100);
+}
+
+// A "clear costmaps" request (move_base's clear-costmap recovery, the node's ~clear_around_robot) clears
+// a cell's column with it. Before, only the 2-D cell was cleared: a phantom voxel left in the column
+// kept the cell lethal after a real obstacle in it had been marked and cleared again.
+TEST(VoxelLayer, AClearedCellLosesItsColumn)
+{
+  Rig rig(voxelParams());
+  rig.cloud({{5.5, 5.5, 1.5}}, {0.5, 5.5, 1.5});  // a phantom at level 7
+  rig.update();
+  ASSERT_EQ(rig.master().getCost(5, 5), LETHAL_OBSTACLE);
+  ASSERT_EQ(clearClearableLayersAround(rig.lc, 0.5, 0.5, 1.0), 1);  // keeps the cell (0, 0) only
+  EXPECT_EQ(rig.layer->voxels().getVoxel(5, 5, 7), VoxelStatus::Unknown);
+  EXPECT_NE(rig.layer->costmap().getCost(5, 5), LETHAL_OBSTACLE);
+
+  // (The cloud buffered last would mark the phantom again on the next update, as in costmap_2d: the
+  // next cloud replaces it.)
+  rig.cloud({{5.5, 5.5, 0.3}}, {0.5, 5.5, 0.3});  // a real obstacle at level 1 ...
+  rig.update();
+  ASSERT_EQ(rig.master().getCost(5, 5), LETHAL_OBSTACLE);
+  rig.cloud({{9.5, 5.5, 0.3}}, {0.5, 5.5, 0.3});  // ... that goes: a ray at its height passes
+  rig.update();
+  EXPECT_EQ(rig.master().getCost(5, 5), FREE_SPACE);
+
+  // costmap_2d's clearArea form, with invert: the cells between are cleared, columns included.
+  rig.cloud({{5.5, 5.5, 1.5}}, {0.5, 5.5, 1.5});
+  rig.update();
+  ASSERT_EQ(rig.layer->voxels().getVoxel(5, 5, 7), VoxelStatus::Marked);
+  ASSERT_TRUE(clearLayerArea(*rig.layer, 4, 4, 6, 6, true));  // only (5, 5) is between
+  EXPECT_EQ(rig.layer->voxels().getVoxel(5, 5, 7), VoxelStatus::Unknown);
+  EXPECT_EQ(rig.layer->voxels().getVoxel(9, 5, 1), VoxelStatus::Marked);  // not between: kept
 }
 
 TEST(VoxelLayer, ClearingRaysFollowTheBeamPropertyTest)

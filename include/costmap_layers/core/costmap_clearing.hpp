@@ -4,6 +4,7 @@
 
 namespace costmap_layers
 {
+class Layer;
 class LayeredCostmap;
 
 /// Resets every clearable plugin. @return how many were reset.
@@ -17,4 +18,13 @@ int resetClearableLayers(LayeredCostmap& costmap);
 /// @return how many plugins were cleared, or -1 (and nothing is touched) when x or y is not finite or
 /// keep_size is NaN or negative.
 int clearClearableLayersAround(LayeredCostmap& costmap, double x, double y, double keep_size);
+
+/// costmap_2d's CostmapLayer::clearArea on one clearable layer (what move_base's clear-costmap recovery
+/// asks of the layers it clears): in the layer's own grid, the cells strictly between (x0, y0) and
+/// (x1, y1) (both ends excluded) are kept and every other cell is set to the grid's default value; with
+/// invert, the cells between are cleared and the others kept. Then a redraw of the whole map is asked
+/// for. The indices may be anything an int holds (off the grid, reversed: then nothing is between). A
+/// clearable layer without its own grid is reset.
+/// @return false, touching nothing, when the layer is not clearable (a static layer, a filter).
+bool clearLayerArea(Layer& layer, int x0, int y0, int x1, int y1, bool invert);
 }  // namespace costmap_layers

@@ -30,6 +30,8 @@ public:
   void resize(unsigned int size_x, unsigned int size_y, unsigned int size_z);
   /// Every voxel unknown.
   void reset();
+  /// Every voxel of the columns [x0, xn) x [y0, yn) unknown (the window cut to the grid).
+  void resetColumns(unsigned int x0, unsigned int y0, unsigned int xn, unsigned int yn);
   /// Keeps the columns the window shifted by (dx, dy) cells shares with the old one (column (x, y) of
   /// the new grid is column (x + dx, y + dy) of the old); the others become unknown.
   void shift(int dx, int dy);

@@ -2,6 +2,7 @@
 // Any costmap_layers layer or filter as a costmap_2d plugin, so that it runs inside move_base's global
 // and local costmaps and move_base's planners see what it draws. Built only when costmap_2d is found.
 
+#include <costmap_2d/costmap_layer.h>
 #include <costmap_2d/layer.h>
 
 #include <atomic>
@@ -33,15 +34,17 @@ namespace move_base
 /// the same memory, no copy), its parameters come from the plugin's namespace (~/<costmap>/<name>, as
 /// costmap_2d's own layers read theirs), its transforms from move_base's tf2 buffer, and the layer's
 /// inputs, outputs, `toggle` service and dynamic_reconfigure server live in that namespace too.
-class LayerBridge : public costmap_2d::Layer
+/// Base is costmap_2d::Layer, or costmap_2d::CostmapLayer for ClearableLayerBridge.
+template <class Base>
+class LayerBridgeOn : public Base
 {
 public:
   /// @param class_name  the core class's name, e.g. "KeepoutFilter" (for messages and the table of the
   ///                    parameters costmap_2d and Nav2 know for it)
-  LayerBridge(std::shared_ptr<costmap_layers::Layer> core, std::string class_name);
-  ~LayerBridge() override;
-  LayerBridge(const LayerBridge&) = delete;
-  LayerBridge& operator=(const LayerBridge&) = delete;
+  LayerBridgeOn(std::shared_ptr<costmap_layers::Layer> core, std::string class_name);
+  ~LayerBridgeOn() override;
+  LayerBridgeOn(const LayerBridgeOn&) = delete;
+  LayerBridgeOn& operator=(const LayerBridgeOn&) = delete;
 
   void updateBounds(double robot_x, double robot_y, double robot_yaw, double* min_x, double* min_y, double* max_x,
                     double* max_y) override;
@@ -54,6 +57,7 @@ public:
 
   /// The hosted layer (for tests).
   const costmap_layers::Layer& core() const { return *core_; }
+  costmap_layers::Layer& core() { return *core_; }
 
 protected:
   void onInitialize() override;
@@ -80,6 +84,45 @@ private:
   std::atomic<bool> full_update_{true};     ///< redraw the whole map next cycle (start, reconfigure, reset)
   bool drawn_enabled_ = true;               ///< the core layer's switch as of the last cycle
   std::vector<std::string> consumed_keys_;  ///< layer keys costmap_2d's rules used up (not "unknown")
+};
+
+extern template class LayerBridgeOn<costmap_2d::Layer>;
+extern template class LayerBridgeOn<costmap_2d::CostmapLayer>;
+
+/// The bridge for layers without a clear operation (static layer, inflation, filters).
+using LayerBridge = LayerBridgeOn<costmap_2d::Layer>;
+
+/// The bridge for clearable core layers (obstacle, voxel, range): a costmap_2d::CostmapLayer, as
+/// costmap_2d's own sensor layers are, so that move_base's clear-costmap recovery
+/// (clear_costmap_recovery, which clears only CostmapLayers) clears it. Its costmap_2d grid is a view
+/// of the core layer's own grid (no copy: what costmap_2d code reads there is what the layer holds),
+/// kept on the core grid's memory and geometry after every change; clearArea clears the core layer's
+/// cells by costmap_2d's rule (clearLayerArea) under the costmap's lock.
+class ClearableLayerBridge : public LayerBridgeOn<costmap_2d::CostmapLayer>
+{
+public:
+  using LayerBridgeOn<costmap_2d::CostmapLayer>::LayerBridgeOn;
+  /// The grid is the core layer's: costmap_2d must not free it.
+  ~ClearableLayerBridge() override;
+  ClearableLayerBridge(const ClearableLayerBridge&) = delete;
+  ClearableLayerBridge& operator=(const ClearableLayerBridge&) = delete;
+
+  void updateBounds(double robot_x, double robot_y, double robot_yaw, double* min_x, double* min_y, double* max_x,
+                    double* max_y) override;
+  void matchSize() override;
+  void clearArea(int start_x, int start_y, int end_x, int end_y, bool invert_area) override;
+
+protected:
+  void onInitialize() override;
+  // Costmap2D's allocation hooks: the cells are the core layer's, never allocated or freed here.
+  void deleteMaps() override;
+  void initMaps(unsigned int size_x, unsigned int size_y) override;
+  /// Clears every cell (as the core layer's clear does: the grid's default value, then a redraw).
+  void resetMaps() override;
+
+private:
+  /// Points costmap_2d's grid fields at the core layer's grid (memory, size, resolution, origin).
+  void viewCoreGrid();
 };
 
 }  // namespace move_base

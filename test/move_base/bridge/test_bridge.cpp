@@ -20,6 +20,13 @@
 #include "costmap_layers/core/static_layer.hpp"
 #include "costmap_layers/move_base/layer_bridge.hpp"
 
+#ifdef COSTMAP_LAYERS_TEST_CLEAR_RECOVERY
+#include <clear_costmap_recovery/clear_costmap_recovery.h>
+#include <costmap_2d/costmap_2d_ros.h>
+#include <geometry_msgs/TransformStamped.h>
+#include <xmlrpcpp/XmlRpcValue.h>
+#endif
+
 using costmap_layers::move_base::LayerBridge;
 
 namespace
@@ -242,6 +249,100 @@ TEST(Bridge, CostmapLevelParametersReachTheBridgedLayersAsCostmap2dsOwn)
   ASSERT_TRUE(lc.getCostmap()->worldToMap(1.52 - 0.8, 1.52, mx, my));
   EXPECT_GT(lc.getCostmap()->getCost(mx, my), costmap_2d::FREE_SPACE);
 }
+
+#ifdef COSTMAP_LAYERS_TEST_CLEAR_RECOVERY
+// move_base's clear-costmap recovery (its default conservative and aggressive resets) clears only the
+// layers that are costmap_2d::CostmapLayers; it logged "Layer obstacles is not derived from
+// costmap_2d::CostmapLayer" and skipped the bridged obstacle layer, so a phantom obstacle stayed and the
+// goal was aborted. Here the real Costmap2DROS loads the bridged layer by its plugin name, and the real
+// ClearCostmapRecovery runs against it: outside a square of reset_distance around the robot the marks
+// go, inside they stay; with invert_area_to_clear the other way round. costmap_2d's rule for the cells
+// is "strictly between the square's corner cells" (CostmapLayer::clearArea), and the cells checked here
+// are well inside or well outside the square.
+TEST(Bridge, MoveBasesClearCostmapRecoveryClearsTheBridgedObstacleLayer)
+{
+  ros::NodeHandle pn("~");
+  pn.setParam("clr/global_frame", "map");
+  pn.setParam("clr/robot_base_frame", "base_link");
+  pn.setParam("clr/update_frequency", 0.0);  // no update thread: updateMap runs here
+  pn.setParam("clr/publish_frequency", 0.0);
+  pn.setParam("clr/width", 10);
+  pn.setParam("clr/height", 10);
+  pn.setParam("clr/resolution", 0.1);
+  XmlRpc::XmlRpcValue plugins;
+  plugins[0]["name"] = "obstacles";
+  plugins[0]["type"] = "costmap_layers::move_base::ObstacleLayer";
+  pn.setParam("clr/plugins", plugins);
+  pn.setParam("clr/obstacles/observation_sources", "scan");
+  pn.setParam("clr/obstacles/scan/data_type", "LaserScan");
+  pn.setParam("clr/obstacles/scan/topic", "/bridge_clear_scan");
+  for (const std::string name : {"outside", "inside"})
+  {
+    pn.setParam(name + "/reset_distance", 2.0);
+    pn.setParam(name + "/affected_maps", "local");
+    pn.setParam(name + "/force_updating", true);
+    pn.setParam(name + "/invert_area_to_clear", name == "inside");
+  }
+
+  tf2_ros::Buffer tf;
+  tf.setUsingDedicatedThread(true);  // Costmap2DROS waits with a timeout; the transform is here already
+  geometry_msgs::TransformStamped robot;
+  robot.header.frame_id = "map";
+  robot.child_frame_id = "base_link";
+  robot.transform.translation.x = 5.0;
+  robot.transform.translation.y = 5.0;
+  robot.transform.rotation.w = 1.0;
+  tf.setTransform(robot, "test", true);
+  costmap_2d::Costmap2DROS costmap("clr", tf);
+  auto* bridge = dynamic_cast<costmap_layers::move_base::ClearableLayerBridge*>(
+      costmap.getLayeredCostmap()->getPlugins()->front().get());
+  ASSERT_NE(bridge, nullptr) << "the plugin is not the bridged obstacle layer";
+  auto& obstacles = dynamic_cast<costmap_layers::ObstacleLayer&>(bridge->core());
+  const costmap_2d::Costmap2D& master = *costmap.getCostmap();
+  auto costAt = [&](double wx, double wy)
+  {
+    unsigned mx = 0, my = 0;
+    EXPECT_TRUE(master.worldToMap(wx, wy, mx, my));
+    return master.getCost(mx, my);
+  };
+  // A mark next to the robot and one 3 m away, as a past scan left them.
+  auto markBoth = [&]
+  {
+    obstacles.addStaticObservation(pointsSeenFrom(5.0, 5.0, {{5.55f, 5.05f}, {8.05f, 8.05f}}), true, false);
+    costmap.updateMap();
+    obstacles.clearStaticObservations(true, true);
+    costmap.updateMap();
+    ASSERT_EQ(costAt(5.55, 5.05), costmap_2d::LETHAL_OBSTACLE);
+    ASSERT_EQ(costAt(8.05, 8.05), costmap_2d::LETHAL_OBSTACLE);
+  };
+  markBoth();
+  // What the recovery checks before it clears: that the layer is a CostmapLayer.
+  EXPECT_NE(dynamic_cast<costmap_2d::CostmapLayer*>(costmap.getLayeredCostmap()->getPlugins()->front().get()), nullptr);
+  {
+    clear_costmap_recovery::ClearCostmapRecovery outside;
+    outside.initialize("outside", &tf, &costmap, &costmap);
+    outside.runBehavior();
+  }
+  EXPECT_EQ(costAt(5.55, 5.05), costmap_2d::LETHAL_OBSTACLE);  // inside the 2 m square: kept
+  EXPECT_EQ(costAt(8.05, 8.05), costmap_2d::FREE_SPACE);       // outside: cleared
+  costmap.updateMap();  // and it stays cleared (the layer's own grid, not only the master)
+  EXPECT_EQ(costAt(8.05, 8.05), costmap_2d::FREE_SPACE);
+
+  markBoth();
+  {
+    clear_costmap_recovery::ClearCostmapRecovery inside;
+    inside.initialize("inside", &tf, &costmap, &costmap);
+    inside.runBehavior();
+  }
+  EXPECT_EQ(costAt(5.55, 5.05), costmap_2d::FREE_SPACE);
+  EXPECT_EQ(costAt(8.05, 8.05), costmap_2d::LETHAL_OBSTACLE);
+  // The layer's costmap_2d grid is a view of the core layer's cells (what costmap_2d code reads there).
+  unsigned mx = 0, my = 0;
+  ASSERT_TRUE(bridge->worldToMap(8.05, 8.05, mx, my));
+  EXPECT_EQ(bridge->getCost(mx, my), costmap_2d::LETHAL_OBSTACLE);
+  EXPECT_EQ(bridge->getSizeInCellsX(), master.getSizeInCellsX());
+}
+#endif
 
 int main(int argc, char** argv)
 {
