@@ -10,13 +10,16 @@
 
 #include "bench_stats.hpp"
 
+#include <cmath>
 #include <cstring>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "costmap_layers/core/lanes_filter.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
 #include "costmap_layers/core/speed_filter.hpp"
+#include "costmap_layers/core/zone_shapes.hpp"
 #include "fake_context.hpp"
 
 using namespace costmap_layers;
@@ -154,8 +157,32 @@ void BM_SpeedMaskArrives(benchmark::State& state)
   }
   if (redraw) state.SkipWithError("a new speed mask asked for a redraw");
 }
+/// zone_server's work for one handle drag at the limit of vertex pairs (limits::kMaxZoneVertexPairs:
+/// 20 polygons of 1000 vertices, 0.05 m/cell): the checked edit, then the mask drawn.
+void BM_ZoneDragAtTheLimit(benchmark::State& state)
+{
+  ZoneLayout layout;
+  layout.resolution = 0.05;
+  for (int k = 0; k < 20; ++k)
+  {
+    ZoneShape s;
+    s.name = "p" + std::to_string(k);
+    for (int v = 0; v < 1000; ++v)
+      s.points.push_back({3.0 * k + std::cos(2.0 * M_PI * v / 1000), std::sin(2.0 * M_PI * v / 1000)});
+    layout.shapes.push_back(s);
+  }
+  ZoneSet set(layout);
+  std::size_t drags = 0;
+  for (auto _ : state)
+  {
+    const double dx = (drags++ % 2) ? 0.0 : 0.2;
+    if (!set.moveHandle("p7", 0, 22.0 + dx, 0.0).ok()) state.SkipWithError("the drag was refused");
+    benchmark::DoNotOptimize(set.rasterize().data.data());
+  }
+}
 }  // namespace
 
+COSTMAP_BENCH(BM_ZoneDragAtTheLimit)->Unit(benchmark::kMillisecond);
 COSTMAP_BENCH(BM_SpeedMaskArrives)->Unit(benchmark::kMillisecond);
 COSTMAP_BENCH(BM_Memcpy)->Unit(benchmark::kMillisecond);
 COSTMAP_BENCH(BM_LanesRecompute)->Arg(50)->Arg(150)->Unit(benchmark::kMillisecond);

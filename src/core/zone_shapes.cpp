@@ -422,7 +422,11 @@ ZoneGridExtent zoneGridExtent(const ZoneLayout& layout)
   return e;
 }
 
-InputError validateLayout(const ZoneLayout& layout)
+namespace
+{
+/// validateLayout(); with shapes_valid the shapes are known to be valid each (a ZoneSet's, but one that
+/// validateShape() has checked), and only what concerns the layout as a whole is checked.
+InputError checkLayout(const ZoneLayout& layout, bool shapes_valid)
 {
   if (!std::isfinite(layout.resolution) || layout.resolution < limits::kMinResolution ||
       layout.resolution > limits::kMaxResolution)
@@ -436,10 +440,26 @@ InputError validateLayout(const ZoneLayout& layout)
   if (layout.shapes.size() > limits::kMaxZoneShapes)
     return InputError::of("shapes", "at most " + std::to_string(limits::kMaxZoneShapes) + " shapes (got " +
                                         std::to_string(layout.shapes.size()) + ")");
+  double pairs = 0.0;
+  for (const auto& s : layout.shapes)
+  {
+    if (s.type != ZoneShapeType::Polygon) continue;
+    if (s.points.size() > limits::kMaxZoneVertices) return validateShape(s);  // names the shape, at once
+    pairs += static_cast<double>(s.points.size()) * static_cast<double>(s.points.size());
+  }
+  if (pairs > limits::kMaxZoneVertexPairs)
+    return InputError::of("shapes", "the polygons have " + valueText(pairs) +
+                                        " vertices squared in all (the self-intersection check is quadratic), more "
+                                        "than the " +
+                                        valueText(limits::kMaxZoneVertexPairs) +
+                                        " allowed: use fewer or simpler polygons (e.g. 20 of 1000 vertices)");
   for (std::size_t k = 0; k < layout.shapes.size(); ++k)
   {
-    const InputError e = validateShape(layout.shapes[k]);
-    if (!e.ok()) return e;
+    if (!shapes_valid)
+    {
+      const InputError e = validateShape(layout.shapes[k]);
+      if (!e.ok()) return e;
+    }
     for (std::size_t m = 0; m < k; ++m)
       if (layout.shapes[m].name == layout.shapes[k].name)
         return InputError::of(where(layout.shapes[k]) + "/name",
@@ -466,10 +486,9 @@ InputError validateLayout(const ZoneLayout& layout)
   return InputError::none();
 }
 
-OccupancyGridData rasterizeZones(const ZoneLayout& layout)
+/// The mask of a layout known to be valid.
+OccupancyGridData rasterizeValid(const ZoneLayout& layout)
 {
-  const InputError error = validateLayout(layout);
-  if (!error.ok()) throw std::invalid_argument(error.message);
   const ZoneGridExtent e = zoneGridExtent(layout);
   OccupancyGridData g;
   g.frame_id = layout.frame_id;
@@ -497,6 +516,19 @@ OccupancyGridData rasterizeZones(const ZoneLayout& layout)
         outlineSegment(pt, s.points[k], s.points[(k + 1) % s.points.size()], layout.resolution);
   }
   return g;
+}
+}  // namespace
+
+InputError validateLayout(const ZoneLayout& layout)
+{
+  return checkLayout(layout, false);
+}
+
+OccupancyGridData rasterizeZones(const ZoneLayout& layout)
+{
+  const InputError error = validateLayout(layout);
+  if (!error.ok()) throw std::invalid_argument(error.message);
+  return rasterizeValid(layout);
 }
 
 ZoneShape parseZoneShape(const ParamValue& v, const std::string& what)
@@ -658,9 +690,14 @@ const ZoneShape* ZoneSet::find(const std::string& name) const
   return nullptr;
 }
 
-InputError ZoneSet::commit(ZoneLayout next)
+OccupancyGridData ZoneSet::rasterize() const
 {
-  const InputError e = validateLayout(next);
+  return rasterizeValid(layout_);
+}
+
+InputError ZoneSet::commit(ZoneLayout next, bool shapes_valid)
+{
+  const InputError e = checkLayout(next, shapes_valid);
   if (!e.ok()) return e;
   layout_ = std::move(next);
   return InputError::none();
@@ -677,7 +714,7 @@ InputError ZoneSet::upsert(const ZoneShape& shape)
     *it = shape;
   else
     next.shapes.push_back(shape);
-  return commit(std::move(next));
+  return commit(std::move(next), true);  // the others were valid, the new one is
 }
 
 InputError ZoneSet::remove(const std::string& name)
@@ -688,7 +725,7 @@ InputError ZoneSet::remove(const std::string& name)
     return InputError::of("shapes/" + std::string("(unknown)") + "/name",
                           "there is no shape named '" + name.substr(0, 64) + "'");
   next.shapes.erase(it);
-  return commit(std::move(next));
+  return commit(std::move(next), true);
 }
 
 InputError ZoneSet::moveHandle(const std::string& name, std::size_t index, double x, double y)
@@ -711,6 +748,6 @@ InputError ZoneSet::moveHandle(const std::string& name, std::size_t index, doubl
 
 InputError ZoneSet::replace(const ZoneLayout& layout)
 {
-  return commit(layout);
+  return commit(layout, false);
 }
 }  // namespace costmap_layers

@@ -207,7 +207,7 @@ ZoneServer::ZoneServer(ros::NodeHandle nh, ros::NodeHandle pnh, Options options)
 
 void ZoneServer::publish()
 {
-  const costmap_layers::OccupancyGridData grid = costmap_layers::rasterizeZones(zones_.layout());
+  const costmap_layers::OccupancyGridData grid = zones_.rasterize();
   mask_pub_.publish(toMaskMsg(grid, ros::Time::now()));
   std::size_t claimed = 0;
   for (const int8_t v : grid.data)

@@ -422,6 +422,48 @@ TEST(ZoneSet, EditsAreCheckedAndABadOneKeepsTheLastGoodLayout)
 
 namespace
 {
+/// A regular n-gon of radius r about (cx, cy): valid, not self-intersecting.
+ZoneShape ngon(const std::string& name, std::size_t n, double cx, double cy, double r)
+{
+  std::vector<ZonePoint> p;
+  for (std::size_t k = 0; k < n; ++k)
+    p.push_back({cx + r * std::cos(2.0 * M_PI * k / n), cy + r * std::sin(2.0 * M_PI * k / n)});
+  return polygon(name, std::move(p));
+}
+}  // namespace
+
+// The self-intersection check is quadratic per polygon, and every edit re-checked every shape: at the
+// documented limits (1000 polygons of 1000 vertices) one handle drag took 13 s, twice over (the edit,
+// then the drawing), on zone_server's only thread. Now the sum of n^2 is bounded (2e7: about 0.1 s for
+// a whole check), an edit checks only the shape it changes, and a ZoneSet draws without checking again.
+TEST(ZoneSet, TheVertexPairsOfALayoutAreBounded)
+{
+  std::vector<ZoneShape> shapes;
+  for (std::size_t k = 0; k < 20; ++k)
+    shapes.push_back(ngon("p" + std::to_string(k), 1000, 3.0 * static_cast<double>(k), 0.0, 1.0));
+  ZoneSet set(layout(shapes));  // 20 x 1000^2 = 2e7: the limit itself is allowed
+  shapes.push_back(ngon("one_more", 1000, 70.0, 0.0, 1.0));
+  const InputError e = validateLayout(layout(shapes));
+  EXPECT_EQ(e.field, "shapes");
+  EXPECT_NE(e.message.find("vertices squared"), std::string::npos) << e.message;
+  EXPECT_NE(e.message.find("2.1e+07"), std::string::npos) << e.message;  // the layout's figure, named
+  EXPECT_THROW(ZoneSet{layout(shapes)}, std::invalid_argument);
+  // The same through an edit: refused, the last good layout stays.
+  EXPECT_EQ(set.upsert(shapes.back()).field, "shapes");
+  EXPECT_EQ(set.layout().shapes.size(), 20u);
+  // At the limit no other polygon fits, not even a triangle; replacing a big one by a square does.
+  EXPECT_EQ(set.upsert(ngon("small", 3, 70.0, 0.0, 1.0)).field, "shapes");
+  ASSERT_TRUE(set.upsert(polygon("p19", {{56, -1}, {58, -1}, {58, 1}, {56, 1}})).ok());
+  ASSERT_TRUE(set.upsert(ngon("small", 3, 70.0, 0.0, 1.0)).ok());
+  // An edit of a big one works, and a ZoneSet draws what the checked path draws.
+  ASSERT_TRUE(set.moveHandle("p3", 0, 10.2, 0.0).ok());
+  EXPECT_EQ(set.rasterize().data, rasterizeZones(set.layout()).data);
+  // A bow tie made by a drag is still found (the changed shape is checked).
+  EXPECT_EQ(set.moveHandle("p19", 0, 57.5, 2.0).field, "shapes/p19/points");
+}
+
+namespace
+{
 ParamValue pt(double x, double y)
 {
   return ParamValue::makeList({ParamValue::makeDouble(x), ParamValue::makeDouble(y)});

@@ -93,7 +93,8 @@ struct ZoneGridExtent
 InputError validateShape(const ZoneShape& shape);
 
 /// Checks the layout: resolution in [kMinResolution, kMaxResolution], default_value in -1..100, frame
-/// not empty, at most limits::kMaxZoneShapes shapes, unique names, every shape valid, the extent
+/// not empty, at most limits::kMaxZoneShapes shapes, the polygons' vertices squared summed within
+/// limits::kMaxZoneVertexPairs (field "shapes"), unique names, every shape valid, the extent
 /// within limits::kMaxGridCells, and the work of drawing it (each shape's bounding box in cells, plus
 /// rows times vertices for a polygon) within limits::kMaxZoneRasterWork (field "extent" for both).
 InputError validateLayout(const ZoneLayout& layout);
@@ -124,8 +125,9 @@ ZoneShape parseZoneShape(const ParamValue& shape, const std::string& what);
 /// significant digits, so every double survives the round trip).
 std::string zoneLayoutToYaml(const ZoneLayout& layout);
 
-/// A layout that changes only by checked steps: every change is validated as a whole (shape and
-/// resulting extent) and applied only when valid, so the last good layout always stays in force.
+/// A layout that changes only by checked steps: every change is validated (the shape it changes, and
+/// the layout as a whole: names, extent, work) and applied only when valid, so the last good layout
+/// always stays in force. The shapes it holds are valid, so an edit checks only the one it changes.
 class ZoneSet
 {
 public:
@@ -146,9 +148,12 @@ public:
   InputError moveHandle(const std::string& name, std::size_t index, double x, double y);
   /// Replaces the whole layout (a reload). @return the error, or ok()
   InputError replace(const ZoneLayout& layout);
+  /// The mask of the layout (rasterizeZones() without checking it again).
+  OccupancyGridData rasterize() const;
 
 private:
-  InputError commit(ZoneLayout next);
+  /// @param shapes_valid  every shape of next has been validated (only the layout-wide checks run)
+  InputError commit(ZoneLayout next, bool shapes_valid);
   ZoneLayout layout_;
 };
 
