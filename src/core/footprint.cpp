@@ -165,15 +165,13 @@ Footprint FootprintConfig::padded() const
   return fp;
 }
 
-FootprintConfig parseFootprintConfig(const ParamReader& params)
+namespace
 {
-  FootprintConfig cfg;
-  cfg.robot_radius = params.getDouble("robot_radius", cfg.robot_radius, 0.0, limits::kMaxDistance);
-  // costmap_2d takes any padding; a negative one shrinks the footprint.
-  cfg.footprint_padding =
-      params.getDouble("footprint_padding", cfg.footprint_padding, -limits::kMaxDistance, limits::kMaxDistance);
-  const ParamValue* fp = params.raw("footprint");
-  if (fp == nullptr || fp->isNull()) return cfg;
+/// The `footprint` parameter into cfg.footprint (left empty for costmap_2d's "[]", which means: use
+/// robot_radius); params.fail() for anything else that is not a valid polygon.
+void parseFootprintValue(const ParamValue& value, const ParamReader& params, FootprintConfig& cfg)
+{
+  const ParamValue* fp = &value;
   try
   {
     if (fp->type() == ParamValue::Type::String)
@@ -187,7 +185,7 @@ FootprintConfig parseFootprintConfig(const ParamReader& params)
     else
     {
       const auto& points = fp->asList();
-      if (points.empty()) return cfg;
+      if (points.empty()) return;
       if (points.size() < 3) throw std::invalid_argument("a footprint needs at least 3 points");
       for (const auto& p : points)
       {
@@ -208,14 +206,32 @@ FootprintConfig parseFootprintConfig(const ParamReader& params)
   {
     params.fail("footprint", std::string("is not a valid polygon: ") + e.what());
   }
+}
+}  // namespace
+
+FootprintConfig parseFootprintConfig(const ParamReader& params)
+{
+  FootprintConfig cfg;
+  cfg.robot_radius = params.getDouble("robot_radius", cfg.robot_radius, 0.0, limits::kMaxDistance);
+  // costmap_2d takes any padding; a negative one shrinks the footprint.
+  cfg.footprint_padding =
+      params.getDouble("footprint_padding", cfg.footprint_padding, -limits::kMaxDistance, limits::kMaxDistance);
+  const ParamValue* fp = params.raw("footprint");
+  if (fp != nullptr && !fp->isNull()) parseFootprintValue(*fp, params, cfg);
   // A shrink as large as a vertex's distance from the robot's axes would move that vertex across
-  // them (costmap_2d's padFootprint would mirror it): refused.
+  // them (costmap_2d's padFootprint would mirror it): refused, for a polygon and for the circle of
+  // robot_radius alike. A coordinate within 1e-9 of the radius is on an axis (cos(pi / 2) is 6e-17, not
+  // 0, in makeFootprintFromRadius): padFootprint moves it by at most the padding, along the axis.
   if (cfg.footprint_padding < 0.0)
   {
     const Footprint base = cfg.footprint.empty() ? makeFootprintFromRadius(cfg.robot_radius) : cfg.footprint;
+    double reach = 0.0;
     for (const auto& p : base)
-      if ((p.x() != 0.0 && std::abs(p.x()) <= -cfg.footprint_padding) ||
-          (p.y() != 0.0 && std::abs(p.y()) <= -cfg.footprint_padding))
+      reach = std::max(reach, p.norm());
+    const double on_axis = 1e-9 * reach;
+    for (const auto& p : base)
+      if ((std::abs(p.x()) > on_axis && std::abs(p.x()) <= -cfg.footprint_padding) ||
+          (std::abs(p.y()) > on_axis && std::abs(p.y()) <= -cfg.footprint_padding))
       {
         std::ostringstream what;
         what << "shrinks the footprint by more than its vertex (" << p.x() << ", " << p.y()

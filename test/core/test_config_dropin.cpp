@@ -412,6 +412,33 @@ TEST(DropIn, NegativeFootprintPaddingShrinksAsInCostmap2d)
   EXPECT_NE(refused.find("'footprint_padding'"), std::string::npos) << refused;
 }
 
+// The same rule for the circle of robot_radius, whether `footprint` is absent or costmap_2d's "[]".
+// Before, an absent footprint skipped the check (r 0.46, padding -0.5 was taken: vertices mirrored,
+// inscribed radius 0.04), and "[]" refused even -0.01 (the circle's vertex on the y axis has
+// x = 2.8e-17, which counted as off the axis).
+TEST(DropIn, NegativeFootprintPaddingOfTheRadiusCircle)
+{
+  for (const char* written : {"", "[]"})
+  {
+    auto params = [&](double padding)
+    {
+      ParamValue p = paramMap({{"robot_radius", D(0.46)}, {"footprint_padding", D(padding)}});
+      if (*written != '\0') p.set("footprint", S(written));
+      return p;
+    };
+    const FootprintConfig small = parseFootprintConfig(ParamReader(params(-0.01), "costmap"));
+    EXPECT_TRUE(small.footprint.empty()) << written;
+    // The 16-gon of 0.46 moved 0.01 towards both axes: the vertex at 0 degrees is at (0.45, ~0).
+    EXPECT_NEAR(small.padded()[0].x(), 0.45, 1e-12) << written;
+    // At -0.5 the vertex at 22.5 degrees (0.425, 0.176) would cross the x axis: refused, named.
+    const std::string refused = thrownMessage([&] { parseFootprintConfig(ParamReader(params(-0.5), "costmap")); });
+    EXPECT_NE(refused.find("'footprint_padding'"), std::string::npos) << written << ": " << refused;
+    // Just under that vertex's distance from the axis (0.46 sin 22.5 = 0.17603) is taken; just over it, not.
+    EXPECT_NO_THROW(parseFootprintConfig(ParamReader(params(-0.1760), "costmap"))) << written;
+    EXPECT_THROW(parseFootprintConfig(ParamReader(params(-0.1761), "costmap")), std::invalid_argument) << written;
+  }
+}
+
 TEST(DropIn, Nav2CustomInscribedRadiusReplacesTheFootprintsAndIsWarned)
 {
   // Nav2 integration/inflation_tests.cpp testCustomInscribedRadius: with custom_inscribed_radius below
