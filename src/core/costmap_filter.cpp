@@ -347,10 +347,12 @@ void CostmapFilter::requestMaskExtent(bool changed, const std::shared_ptr<const 
       x0 = y0 = -std::numeric_limits<float>::max();
       x1 = y1 = std::numeric_limits<float>::max();
     }
-    *min_x = std::min(*min_x, x0);
-    *min_y = std::min(*min_y, y0);
-    *max_x = std::max(*max_x, x1);
-    *max_y = std::max(*max_y, y1);
+    // The new value first: NaN bounds from an earlier layer give way to the extent instead of
+    // cancelling the redraw (std::min returns its first argument when a comparison with NaN fails).
+    *min_x = std::min(x0, *min_x);
+    *min_y = std::min(y0, *min_y);
+    *max_x = std::max(x1, *max_x);
+    *max_y = std::max(y1, *max_y);
   };
   // Where the mask in force was drawn (nullopt: nowhere yet). A replaced mask is cleared where it was
   // drawn, not where the transform of this cycle would put it.

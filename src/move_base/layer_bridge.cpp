@@ -172,10 +172,12 @@ template <class Base>
 void LayerBridgeOn<Base>::expandToWholeMap(double* min_x, double* min_y, double* max_x, double* max_y) const
 {
   const costmap_2d::Costmap2D& master = *this->layered_costmap_->getCostmap();
-  *min_x = std::min(*min_x, master.getOriginX());
-  *min_y = std::min(*min_y, master.getOriginY());
-  *max_x = std::max(*max_x, master.getOriginX() + master.getSizeInCellsX() * master.getResolution());
-  *max_y = std::max(*max_y, master.getOriginY() + master.getSizeInCellsY() * master.getResolution());
+  // The whole map first: NaN bounds from an earlier plugin give way to it instead of cancelling the
+  // redraw (std::min returns its first argument when a comparison with NaN fails).
+  *min_x = std::min(master.getOriginX(), *min_x);
+  *min_y = std::min(master.getOriginY(), *min_y);
+  *max_x = std::max(master.getOriginX() + master.getSizeInCellsX() * master.getResolution(), *max_x);
+  *max_y = std::max(master.getOriginY() + master.getSizeInCellsY() * master.getResolution(), *max_y);
 }
 
 template <class Base>

@@ -304,6 +304,16 @@ TEST(CostmapFilterBase, BoundsCoverUnionOfOldAndNewMaskExtents)
   EXPECT_EQ(r.bounds(), (B{kDMax, kDMax, kDLow, kDLow}));
 }
 
+// An earlier layer that hands on NaN bounds (another plugin's bug) must not cancel the redraw of a new
+// mask: the extent comes out whole.
+TEST(CostmapFilterBase, NaNBoundsFromAnEarlierLayerDoNotCancelTheRedraw)
+{
+  Rig r;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(r.filter->setMask(share(makeMask(5, 5, 1.0, 0.0, 0.0))), "");
+  EXPECT_EQ(r.bounds(nan, nan, nan, nan), (B{0.0, 0.0, 5.0, 5.0}));
+}
+
 TEST(CostmapFilterBase, BoundsOfRotatedAndTransformedMasks)
 {
   Rig r;

@@ -11,6 +11,7 @@
 #include <nav_msgs/OccupancyGrid.h>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <thread>
 #include <vector>
@@ -248,6 +249,25 @@ TEST(Bridge, CostmapLevelParametersReachTheBridgedLayersAsCostmap2dsOwn)
   ASSERT_EQ(lc.getCostmap()->getCost(mx, my), costmap_2d::LETHAL_OBSTACLE);
   ASSERT_TRUE(lc.getCostmap()->worldToMap(1.52 - 0.8, 1.52, mx, my));
   EXPECT_GT(lc.getCostmap()->getCost(mx, my), costmap_2d::FREE_SPACE);
+}
+
+// A redraw the bridge asks for (after reset, a toggle, a reconfigure) must survive NaN bounds handed on
+// by an earlier plugin (its bug): std::min(NaN, origin) kept the NaN and the redraw was lost.
+TEST(Bridge, NaNBoundsFromAnEarlierPluginDoNotCancelARedraw)
+{
+  tf2_ros::Buffer tf;
+  costmap_2d::LayeredCostmap lc("map", false, false);
+  lc.resizeMap(40, 20, 0.05, 1.0, 2.0);
+  addBridged<costmap_layers::ObstacleLayer>(lc, tf, "nan/obstacles", "ObstacleLayer");
+  costmap_2d::Layer& bridge = *lc.getPlugins()->back();
+  bridge.reset();  // clear_costmaps: the whole map is to be redrawn
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  double x0 = nan, y0 = nan, x1 = nan, y1 = nan;
+  bridge.updateBounds(1.5, 2.5, 0.0, &x0, &y0, &x1, &y1);
+  EXPECT_DOUBLE_EQ(x0, 1.0);
+  EXPECT_DOUBLE_EQ(y0, 2.0);
+  EXPECT_DOUBLE_EQ(x1, 1.0 + 40 * 0.05);
+  EXPECT_DOUBLE_EQ(y1, 2.0 + 20 * 0.05);
 }
 
 #ifdef COSTMAP_LAYERS_TEST_CLEAR_RECOVERY
