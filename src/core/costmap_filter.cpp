@@ -211,6 +211,18 @@ std::string CostmapFilter::setMaskOf(uint64_t generation, std::shared_ptr<const 
     if (generation != mask_generation_) return kStale;  // the info moved on while this mask was checked
     if (!mask_ || !isOutOfOrder(mask->stamp_ns, mask_->stamp_ns, now))
     {
+      if (mask->origin_yaw != 0.0 && context_ && layered_costmap_ && !layered_costmap_->isRolling())
+      {
+        // The static layer (as costmap_2d's and Nav2's) ignores its map's origin yaw in a costmap that
+        // is not rolling, and Nav2's filters ignore a mask's: a mask drawn on the map's image lands
+        // rotated against the walls here.
+        std::ostringstream what;
+        what << name_ << ": mask on " << mask_topic_ << " is drawn rotated by its origin yaw " << mask->origin_yaw
+             << " rad; the static layer ignores its map's yaw in a costmap that is not rolling (as costmap_2d and "
+                "Nav2 do, whose filters ignore a mask's yaw too): a mask made on the map's image will not lie on "
+                "its walls";
+        context_->report(Severity::Warn, "mask/info.origin.orientation", what.str());
+      }
       if (!mask_changed_) pending_old_ = mask_;
       mask_ = std::move(mask);
       mask_changed_ = true;

@@ -318,6 +318,10 @@ TEST(CostmapFilterBase, BoundsOfRotatedAndTransformedMasks)
 {
   Rig r;
   EXPECT_EQ(r.filter->setMask(share(makeMask(4, 2, 1.0, 1.0, 1.0, M_PI / 2))), "");
+  // Rotated masks are drawn rotated; in a costmap that is not rolling the static layer ignores its
+  // map's yaw (as costmap_2d and Nav2): said, since a mask made on the map's image would be off.
+  EXPECT_EQ(r.ctx->countReports("ignores its map's yaw"), 1);
+  EXPECT_EQ(r.ctx->countReports("origin yaw 1.5708 rad"), 1);
   const B b = r.bounds();
   EXPECT_NEAR(b[0], -1.0, 1e-9);
   EXPECT_NEAR(b[1], 1.0, 1e-9);
