@@ -305,6 +305,22 @@ void CostmapFilter::updateBounds(double robot_x, double robot_y, double robot_ya
     old = std::move(pending_old_);
     mask_topic = mask_topic_;
   }
+  if (changed && active_mask_ && drawsCosts() && layered_costmap_)
+  {
+    // Each costmap cell takes the mask value at its centre (as in Nav2): of a finer mask, a line
+    // thinner than a costmap cell may fall between the centres and vanish.
+    const Costmap2D& master = layered_costmap_->getCostmap();
+    const double costmap_resolution = master.getResolution();
+    if (master.cellCount() > 0 && active_mask_->resolution < costmap_resolution * (1.0 - 1e-9))
+    {
+      std::ostringstream what;
+      what << name_ << ": mask on " << mask_topic << " at " << active_mask_->resolution
+           << " m/cell is finer than the costmap's " << costmap_resolution
+           << " m/cell: each costmap cell takes the mask value at its centre (as in Nav2), so a line thinner than "
+           << costmap_resolution << " m (a one-pixel fence, a zone_server outline) may not appear";
+      context_->report(Severity::Warn, "mask/info.resolution", what.str());
+    }
+  }
   have_transform_ = false;
   if (active_mask_)
   {

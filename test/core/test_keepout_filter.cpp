@@ -213,6 +213,30 @@ TEST(KeepoutFilter, MaskOfAnotherResolution)
   EXPECT_EQ(master.getCost(9, 5), 51);   // (4.875, 3.875): mask cell (3, 1) = 20
 }
 
+// A mask finer than the costmap is sampled at each costmap cell's centre (as Nav2 does): a fence one
+// mask cell wide between two centres vanishes. Said once per mask, naming both resolutions.
+TEST(KeepoutFilter, AMaskFinerThanTheCostmapIsWarnedAbout)
+{
+  Rig r;
+  r.lc.resizeMap(10, 10, 1.0, 0.0, 0.0);
+  r.lc.addFilter(r.filter);
+  OccupancyGridData m = makeMask(40, 40, 0.25, 0.0, 0.0, 0);  // 0.25 m cells
+  for (unsigned j = 0; j < 40; ++j)
+    m.data[j * 40 + 16] = 100;  // a fence at x in [4.0, 4.25): no costmap centre (x.5) lies in it
+  r.ctx->publishGrid(GridKind::Mask, m);
+  r.lc.updateMap(0, 0, 0);
+  for (unsigned j = 0; j < 10; ++j)
+    for (unsigned i = 0; i < 10; ++i)
+      ASSERT_EQ(r.lc.getCostmap().getCost(i, j), 0) << i << "," << j;  // the fence is gone: why the warning
+  EXPECT_EQ(r.ctx->countReports("0.25 m/cell is finer than the costmap's 1 m/cell"), 1);
+  r.lc.updateMap(0, 0, 0);
+  EXPECT_EQ(r.ctx->countReports("is finer than the costmap's"), 1);  // once per mask
+  // A mask of the costmap's resolution or coarser: no warning.
+  r.ctx->publishGrid(GridKind::Mask, makeMask(10, 10, 1.0, 0.0, 0.0, 100));
+  r.lc.updateMap(0, 0, 0);
+  EXPECT_EQ(r.ctx->countReports("is finer than the costmap's"), 1);
+}
+
 TEST(KeepoutFilter, InvalidValuesSkippedAndWarnedOncePerMask)
 {
   Rig r;
