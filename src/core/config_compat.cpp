@@ -249,8 +249,7 @@ bool givesPolygon(const ParamValue& footprint)
 /// translation into this package's terms, said.
 ///  - combination_method: costmap_2d's layers write nothing for any value but 0 and 1 (its documented
 ///    99, "Do nothing"); Nav2's use 1 for any value but 0, 1 and 2 (with a warning).
-///  - an observation source without data_type: Nav2 reads LaserScan (costmap_2d PointCloud, which is
-///    refused here as it is written: see the layer's own report).
+///  (An observation source without data_type: defaultSourceDataType().)
 void translateObstacleDefaults(ParamValue& ns, const PluginSpec& spec, CompatResult& r)
 {
   const TypeDialect dialect = typeDialect(spec.type);
@@ -285,9 +284,27 @@ void translateObstacleDefaults(ParamValue& ns, const PluginSpec& spec, CompatRes
       r.notes.push_back(spec.name + "/" + source +
                         ": max_obstacle_height not set: 2.0 m, costmap_2d's default (Nav2's is 0.0, which keeps no "
                         "point above the ground: set it to be sure)");
+  }
+}
+
+/// An observation source without data_type reads what the stack the type name comes from reads:
+/// costmap_2d's PointCloud (sensor_msgs/PointCloud), Nav2's LaserScan (this package's own default is
+/// PointCloud2).
+void defaultSourceDataType(ParamValue& ns, const PluginSpec& spec, CompatResult& r)
+{
+  const TypeDialect dialect = typeDialect(spec.type);
+  const std::string cls = pluginClassName(resolvePluginType(spec.type));
+  if (dialect == TypeDialect::Native || (cls != "ObstacleLayer" && cls != "VoxelLayer")) return;
+  ParamValue* layer = ns.findMutable(spec.name);
+  if (layer == nullptr || !layer->isMap()) return;
+  const char* type = dialect == TypeDialect::Nav2 ? "LaserScan" : "PointCloud";
+  for (const auto& source : sourceNamesOf(layer->find("observation_sources")))
+  {
+    ParamValue& src = subMap(*layer, source);
     if (src.find("data_type") != nullptr) continue;
-    src.set("data_type", ParamValue::makeString("LaserScan"));
-    r.notes.push_back(spec.name + "/" + source + ": data_type not set: LaserScan, Nav2's default");
+    src.set("data_type", ParamValue::makeString(type));
+    r.notes.push_back(spec.name + "/" + source + ": data_type not set: " + type + ", " +
+                      (dialect == TypeDialect::Nav2 ? "Nav2's" : "costmap_2d's") + " default");
   }
 }
 
@@ -403,6 +420,7 @@ CompatResult applyCostmap2dRules(const ParamValue& ns_in, const std::vector<Pare
   for (const auto& spec : lists.plugins)
   {
     translateObstacleDefaults(ns, spec, r);
+    defaultSourceDataType(ns, spec, r);
     copyParentParameters(ns, spec, r);
     // Nav2's StaticLayer reads these at the costmap level only (node->get_parameter), not in its own
     // namespace: the costmap's value is the one it uses.
@@ -480,6 +498,7 @@ CompatResult applyCostmap2dRulesAsRole(const ParamValue& ns_in, const std::strin
     for (const auto& source : sourceNamesOf(layer->find("observation_sources")))
       if (ParamValue* src = layer->findMutable(source); src != nullptr && src->isMap())
         stripLeadingSlash(*src, "sensor_frame", name + "/" + source + "/sensor_frame", r);
+  defaultSourceDataType(r.params, spec, r);
   copyParentParameters(r.params, spec, r);
   searchSourceRanges(r.params, spec, parents, r);
   return r;

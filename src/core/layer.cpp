@@ -104,6 +104,8 @@ const char* inputKindName(InputKind kind)
       return "laser scans";
     case InputKind::PointCloud2:
       return "point clouds";
+    case InputKind::PointCloud:
+      return "point clouds (sensor_msgs/PointCloud)";
     case InputKind::Range:
       return "ranges";
     case InputKind::FilterInfo:

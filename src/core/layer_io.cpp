@@ -78,6 +78,13 @@ InputPort InputPort::pointCloud2(std::string topic, std::string sensor_frame, Se
   return p;
 }
 
+InputPort InputPort::pointCloud(std::string topic, std::string sensor_frame, SensorCallback<PointCloud2Data> cb)
+{
+  InputPort p = pointCloud2(std::move(topic), std::move(sensor_frame), std::move(cb));
+  p.kind = InputKind::PointCloud;
+  return p;
+}
+
 InputPort InputPort::range(std::string topic, SensorCallback<RangeData> cb)
 {
   InputPort p;

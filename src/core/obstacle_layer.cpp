@@ -66,6 +66,20 @@ std::vector<std::string> sourceNames(const ParamReader& p)
 }
 }  // namespace
 
+const char* sensorDataTypeName(SensorDataType type)
+{
+  switch (type)
+  {
+    case SensorDataType::LaserScan:
+      return "LaserScan";
+    case SensorDataType::PointCloud:
+      return "PointCloud";
+    case SensorDataType::PointCloud2:
+      break;
+  }
+  return "PointCloud2";
+}
+
 ObservationSourceConfig parseObservationSourceConfig(const ParamReader& p, const std::string& name)
 {
   ObservationSourceConfig c;
@@ -76,9 +90,10 @@ ObservationSourceConfig parseObservationSourceConfig(const ParamReader& p, const
   c.observation_persistence =
       p.getDouble("observation_persistence", c.observation_persistence, 0.0, limits::kMaxDuration);
   c.expected_update_rate = p.getDouble("expected_update_rate", c.expected_update_rate, 0.0, limits::kMaxDuration);
-  c.data_type = p.getChoice("data_type", "PointCloud2", {"LaserScan", "PointCloud2"}) == "LaserScan"
-                    ? SensorDataType::LaserScan
-                    : SensorDataType::PointCloud2;
+  const std::string data_type = p.getChoice("data_type", "PointCloud2", {"LaserScan", "PointCloud2", "PointCloud"});
+  c.data_type = data_type == "LaserScan"    ? SensorDataType::LaserScan
+                : data_type == "PointCloud" ? SensorDataType::PointCloud
+                                            : SensorDataType::PointCloud2;
   c.min_obstacle_height = p.getDouble("min_obstacle_height", c.min_obstacle_height);
   c.max_obstacle_height = p.getDouble("max_obstacle_height", c.max_obstacle_height);
   if (c.max_obstacle_height < c.min_obstacle_height) p.fail("max_obstacle_height", "must be >= min_obstacle_height");
@@ -149,12 +164,14 @@ void ObstacleLayer::onInitialize()
                                       if (scan) addLaserScan(i, *scan, pose);
                                     }));
     else
-      addInput(
-          InputPort::pointCloud2(s.topic, s.sensor_frame,
-                                 [this, i](const std::shared_ptr<const PointCloud2Data>& cloud, const SensorPose& pose)
-                                 {
-                                   if (cloud) addPointCloud2(i, *cloud, pose);
-                                 }));
+    {
+      auto on_cloud = [this, i](const std::shared_ptr<const PointCloud2Data>& cloud, const SensorPose& pose)
+      {
+        if (cloud) addPointCloud2(i, *cloud, pose);
+      };
+      addInput(s.data_type == SensorDataType::PointCloud ? InputPort::pointCloud(s.topic, s.sensor_frame, on_cloud)
+                                                         : InputPort::pointCloud2(s.topic, s.sensor_frame, on_cloud));
+    }
   }
   if (config_.sources.empty())
     context_->report(Severity::Warn, "no_sources",
@@ -167,14 +184,13 @@ void ObstacleLayer::onInitialize()
       context_->report(Severity::Warn, "sources/" + s.name,
                        name_ + ": observation source '" + shownText(s.name) + "' has no namespace of that name: " +
                            "it runs on the defaults (topic '" + shownText(s.topic) + "', data_type " +
-                           (s.data_type == SensorDataType::LaserScan ? "LaserScan" : "PointCloud2") +
-                           ", marking and clearing as their defaults say)");
+                           sensorDataTypeName(s.data_type) + ", marking and clearing as their defaults say)");
     else if (ns->find("data_type") == nullptr)
       context_->report(Severity::Info, "sources/" + s.name + "/data_type",
                        name_ + ": observation source '" + shownText(s.name) + "': data_type not set, reading " +
-                           (s.data_type == SensorDataType::LaserScan ? "LaserScan" : "PointCloud2") +
-                           " (costmap_2d's default is PointCloud, which this package does not read; Nav2's is "
-                           "LaserScan)");
+                           sensorDataTypeName(s.data_type) +
+                           " (costmap_2d's default is PointCloud, Nav2's LaserScan; the costmap_2d and Nav2 type "
+                           "names of this layer take theirs)");
   }
 }
 

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <sstream>
 #include <stdexcept>
 
@@ -155,6 +156,33 @@ costmap_layers::PointCloud2Data fromMsg(const sensor_msgs::PointCloud2& msg)
   d.row_step = msg.row_step;
   d.data = msg.data;
   d.is_dense = msg.is_dense;
+  return d;
+}
+
+costmap_layers::PointCloud2Data fromMsg(const sensor_msgs::PointCloud& msg)
+{
+  costmap_layers::PointCloud2Data d;
+  d.frame_id = msg.header.frame_id;
+  d.stamp_ns = msg.header.stamp.toNSec();
+  d.height = 1;
+  d.width = static_cast<uint32_t>(msg.points.size());  // a message holds at most 2^32 points of any size
+  for (const char* name : {"x", "y", "z"})
+    d.fields.push_back({name, static_cast<uint32_t>(4 * d.fields.size()), costmap_layers::PointFieldData::FLOAT32, 1});
+  d.point_step = 12;
+  d.row_step = 12 * d.width;
+  d.data.resize(static_cast<std::size_t>(12) * msg.points.size());
+  uint8_t* out = d.data.data();
+  for (const auto& p : msg.points)
+  {
+    const float xyz[3] = {p.x, p.y, p.z};
+    std::memcpy(out, xyz, sizeof xyz);
+    out += sizeof xyz;
+  }
+  const uint16_t probe = 1;
+  uint8_t first_byte = 0;
+  std::memcpy(&first_byte, &probe, 1);
+  d.is_bigendian = first_byte == 0;  // the floats were written in this machine's order
+  d.is_dense = false;                // NaN points are possible: the parser skips them
   return d;
 }
 

@@ -4,6 +4,7 @@
 #include <nav_msgs/OccupancyGrid.h>
 #include <ros/names.h>
 #include <sensor_msgs/LaserScan.h>
+#include <sensor_msgs/PointCloud.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <sensor_msgs/Range.h>
 #include <std_msgs/Bool.h>
@@ -101,6 +102,9 @@ LayerPorts::LayerPorts(ros::NodeHandle public_nh, ros::NodeHandle private_nh, co
         break;
       case InputKind::PointCloud2:
         subscribeSensor<sensor_msgs::PointCloud2>(in.topic, in.sensor_frame, in.on_cloud);
+        break;
+      case InputKind::PointCloud:
+        subscribeSensor<sensor_msgs::PointCloud>(in.topic, in.sensor_frame, in.on_cloud);
         break;
       case InputKind::Range:
         subscribeSensor<sensor_msgs::Range>(in.topic, "", in.on_range);

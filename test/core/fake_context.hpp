@@ -64,6 +64,7 @@ public:
           scan_subs.push_back({in.topic, in.sensor_frame, in.on_scan});
           break;
         case InputKind::PointCloud2:
+        case InputKind::PointCloud:
           cloud_subs.push_back({in.topic, in.sensor_frame, in.on_cloud});
           break;
         case InputKind::Range:

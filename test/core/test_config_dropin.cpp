@@ -152,7 +152,7 @@ TEST(DropIn, CombinationMethod99WritesNothingIntoTheMaster)
       EXPECT_EQ(lc.getCostmap().getCost(x, y), FREE_SPACE) << x << "," << y;
 }
 
-TEST(DropIn, Nav2SourcesReadLaserScanByDefault)
+TEST(DropIn, SourcesReadTheirStacksDataTypeByDefault)
 {
   // nav2_costmap_2d/plugins/obstacle_layer.cpp: declare_or_get_parameter(source + ".data_type", "LaserScan").
   ParamValue ns = ParamValue::makeMap();
@@ -165,8 +165,14 @@ TEST(DropIn, Nav2SourcesReadLaserScanByDefault)
   EXPECT_TRUE(anyContains(r.notes, {"obstacles/scan", "data_type", "LaserScan", "Nav2"}));
   // Nav2's per-source max_obstacle_height default (0.0) is not taken, but said.
   EXPECT_TRUE(anyContains(r.notes, {"obstacles/scan: max_obstacle_height not set: 2.0 m", "Nav2's is 0.0"}));
-  // costmap_2d's types keep this package's default (the layer names it at start-up).
-  EXPECT_EQ(stringAt(r.params, "voxels/cam/data_type"), "<none>");
+  // costmap_2d's types read costmap_2d's default, sensor_msgs/PointCloud (obstacle_layer.cpp:
+  // source_node.param("data_type", data_type, std::string("PointCloud"))).
+  EXPECT_EQ(stringAt(r.params, "voxels/cam/data_type"), "PointCloud");
+  EXPECT_TRUE(anyContains(r.notes, {"voxels/cam", "data_type not set: PointCloud", "costmap_2d's default"}));
+  // This package's own type names keep its default (the layer names it at start-up).
+  ParamValue native = ns;
+  native.set("plugins", pluginList({{"voxels", "costmap_layers/VoxelLayer"}}));
+  EXPECT_EQ(stringAt(prepareCostmapNamespace(native, "").params, "voxels/cam/data_type"), "<none>");
 }
 
 TEST(DropIn, PreHydroValuesCostmap2dSkipsAreNamed)

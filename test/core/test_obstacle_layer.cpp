@@ -144,6 +144,31 @@ TEST(ObstacleConfig, DefaultsAndSources)
   EXPECT_DOUBLE_EQ(parseObstacleConfig(ParamReader(q, "o"), false).sources[0].obstacle_max_range, 1.5);
 }
 
+// sensor_msgs/PointCloud, the older type: costmap_2d reads it (its default), and so does this layer,
+// on a port of its own kind that hands the points on as a PointCloud2 of x, y, z.
+TEST(ObstacleConfig, ReadsTheOlderPointCloudType)
+{
+  ParamValue p = paramMap({{"observation_sources", S("a b")}});
+  p.set("a", paramMap({{"data_type", S("PointCloud")}, {"topic", S("/old_cloud")}}));
+  p.set("b", paramMap({{"data_type", S("PointCloud2")}, {"topic", S("/cloud")}}));
+  const ObstacleConfig c = parseObstacleConfig(ParamReader(p, "o"), false);
+  ASSERT_EQ(c.sources.size(), 2u);
+  EXPECT_EQ(c.sources[0].data_type, SensorDataType::PointCloud);
+  EXPECT_EQ(c.sources[1].data_type, SensorDataType::PointCloud2);
+  EXPECT_STREQ(sensorDataTypeName(c.sources[0].data_type), "PointCloud");
+
+  LayeredCostmap lc("map", false, false);
+  lc.resizeMap(10, 10, 1.0, 0.0, 0.0);
+  auto ctx = std::make_shared<FakeContext>(p);
+  auto layer = std::make_shared<ObstacleLayer>();
+  layer->initialize(&lc, "obstacles", ctx);
+  ASSERT_EQ(layer->inputs().size(), 2u);
+  EXPECT_EQ(layer->inputs()[0].kind, InputKind::PointCloud);
+  EXPECT_EQ(layer->inputs()[0].topic, "/old_cloud");
+  EXPECT_TRUE(static_cast<bool>(layer->inputs()[0].on_cloud));
+  EXPECT_EQ(layer->inputs()[1].kind, InputKind::PointCloud2);
+}
+
 TEST(ObstacleConfig, RejectsBadValues)
 {
   auto bad = [](ParamValue p) { EXPECT_THROW(parseObstacleConfig(ParamReader(p, "o"), false), std::invalid_argument); };
@@ -159,7 +184,8 @@ TEST(ObstacleConfig, RejectsBadValues)
     p.set("a", paramMap({{key, v}}));
     bad(p);
   };
-  bad_source("data_type", S("PointCloud"));
+  bad_source("data_type", S("PointCloud3"));
+  bad_source("data_type", S("pointcloud"));
   bad_source("obstacle_max_range", D(-1.0));
   bad_source("raytrace_min_range", D(5.0));   // above raytrace_max_range 3.0
   bad_source("min_obstacle_height", D(3.0));  // above max_obstacle_height 2.0

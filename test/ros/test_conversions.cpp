@@ -9,6 +9,7 @@
 #include <string>
 
 #include "costmap_layers/core/costmap_2d.hpp"
+#include "costmap_layers/core/sensor_parsing.hpp"
 #include "costmap_layers/ros/conversions.hpp"
 #include "sensor_test_helpers.hpp"
 
@@ -223,4 +224,49 @@ TEST(PlanarYaw, RandomQuaternionsAgreeWithTheRotatedXAxis)
     const double w = cz * ct, x = cz * ax - sz * ay, y = cz * ay + sz * ax, z = sz * ct;
     EXPECT_THROW(planarYaw(quat(x, y, z, w), kMaxGridTilt, "q"), std::invalid_argument) << k;
   }
+}
+
+// sensor_msgs/PointCloud (costmap_2d's default data_type) becomes a PointCloud2 of x, y, z that the
+// core's cloud parser reads back point for point; NaN points stay for the parser to skip, and an
+// empty cloud is a valid empty one.
+TEST(Conversions, OlderPointCloudReadsAsItsPoints)
+{
+  sensor_msgs::PointCloud msg;
+  msg.header.frame_id = "camera";
+  msg.header.stamp = ros::Time(12, 345);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float xyz[][3] = {{1.0f, 2.0f, 0.5f}, {-3.25f, 1e-3f, 7.0f}, {nan, 0.0f, 0.0f}, {4e6f, -4e6f, 2.0f}};
+  for (const auto& p : xyz)
+  {
+    geometry_msgs::Point32 q;
+    q.x = p[0];
+    q.y = p[1];
+    q.z = p[2];
+    msg.points.push_back(q);
+  }
+  sensor_msgs::ChannelFloat32 intensity;  // channels are left out
+  intensity.name = "intensity";
+  intensity.values.assign(4, 1.0f);
+  msg.channels.push_back(intensity);
+  const costmap_layers::PointCloud2Data cloud = costmap_layers_ros::fromMsg(msg);
+  EXPECT_EQ(cloud.frame_id, "camera");
+  EXPECT_EQ(cloud.stamp_ns, 12'000'000'345u);
+  EXPECT_EQ(costmap_layers::validatePointCloud2(cloud), "");
+  std::vector<costmap_layers::Point3f> points;
+  const costmap_layers::ParseResult r = costmap_layers::pointCloud2ToPoints(cloud, points);
+  ASSERT_EQ(points.size(), 3u) << "the NaN point is skipped";
+  EXPECT_TRUE(r.ok()) << r.error;
+  EXPECT_EQ(r.dropped, 1u);
+  const int kept[] = {0, 1, 3};
+  for (int k = 0; k < 3; ++k)
+  {
+    EXPECT_EQ(points[k].x, xyz[kept[k]][0]);
+    EXPECT_EQ(points[k].y, xyz[kept[k]][1]);
+    EXPECT_EQ(points[k].z, xyz[kept[k]][2]);
+  }
+  const costmap_layers::PointCloud2Data empty = costmap_layers_ros::fromMsg(sensor_msgs::PointCloud());
+  EXPECT_EQ(costmap_layers::validatePointCloud2(empty), "");
+  points.clear();
+  costmap_layers::pointCloud2ToPoints(empty, points);
+  EXPECT_TRUE(points.empty());
 }

@@ -81,7 +81,8 @@ struct CompatResult
 ///  2. copyParentParameters for each costmap_2d:: type: the costmap-level value of the layer's keys
 ///     replaces the layer's own (costmap_2d's behaviour, reported when they differ).
 ///  3. costmap_2d's defaults where this package's differ, for costmap_2d:: types only:
-///     StaticLayer track_unknown_space true.
+///     StaticLayer track_unknown_space true; an observation source without data_type reads PointCloud
+///     (sensor_msgs/PointCloud; Nav2's types: LaserScan).
 ///  4. searchParam: footprint and robot_radius from the parents when the costmap's namespace lacks
 ///     them; obstacle_range and raytrace_range for each source of an obstacle or voxel layer from the
 ///     layer's namespace, the costmap's, then the parents.
@@ -97,8 +98,9 @@ std::string costmap2dRole(const std::string& class_name);
 /// costmap2dRole(); "" for none): what costmap_2d does for that type of its own, which it does not do
 /// for a type it does not know. On the costmap's namespace ns (its plugin list is not read):
 /// copyParentParameters (the costmap-level value replaces the layer's own, reported when they differ),
-/// StaticLayer's track_unknown_space default true, the searchParam of obstacle_range and raytrace_range
-/// for each observation source, and a sensor_frame's leading '/' stripped. The layer's namespace is then
+/// StaticLayer's track_unknown_space default true, data_type PointCloud for an observation source that
+/// sets none, the searchParam of obstacle_range and raytrace_range for each observation source, and a
+/// sensor_frame's leading '/' stripped. The layer's namespace is then
 /// params.find(name); warnings and notes concern that layer only.
 CompatResult applyCostmap2dRulesAsRole(const ParamValue& ns, const std::string& name, const std::string& role_type,
                                        const std::vector<ParentNamespace>& parents = {});

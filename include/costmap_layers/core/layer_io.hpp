@@ -26,6 +26,8 @@ enum class InputKind
   SpeedLimits,  ///< costmap_layers/SpeedLimits
   LaserScan,    ///< sensor_msgs/LaserScan, delivered with the sensor pose
   PointCloud2,  ///< sensor_msgs/PointCloud2, delivered with the sensor pose
+  PointCloud,   ///< sensor_msgs/PointCloud (the older type costmap_2d reads too), delivered as a
+                ///< PointCloud2Data of its x, y, z (on_cloud) with the sensor pose
   Range,        ///< sensor_msgs/Range, delivered with the sensor pose
   FilterInfo,   ///< costmap_layers/CostmapFilterInfo (Nav2's CostmapFilterInfo fields)
   Path,         ///< nav_msgs/Path: a planned path (positions only)
@@ -65,7 +67,7 @@ struct InputPort
   PathCallback on_path;           ///< Path
   OdometryCallback on_odom;       ///< Odometry
   SensorCallback<LaserScanData> on_scan;
-  SensorCallback<PointCloud2Data> on_cloud;
+  SensorCallback<PointCloud2Data> on_cloud;  ///< PointCloud2 and PointCloud
   SensorCallback<RangeData> on_range;
 
   static InputPort grid(InputKind kind, std::string topic, GridCallback cb);
@@ -76,6 +78,8 @@ struct InputPort
   static InputPort odometry(std::string topic, OdometryCallback cb);
   static InputPort laserScan(std::string topic, std::string sensor_frame, SensorCallback<LaserScanData> cb);
   static InputPort pointCloud2(std::string topic, std::string sensor_frame, SensorCallback<PointCloud2Data> cb);
+  /// sensor_msgs/PointCloud, handed to cb as a PointCloud2Data (fields x, y, z, FLOAT32).
+  static InputPort pointCloud(std::string topic, std::string sensor_frame, SensorCallback<PointCloud2Data> cb);
   static InputPort range(std::string topic, SensorCallback<RangeData> cb);
 };
 

@@ -25,8 +25,12 @@ class ParamReader;
 enum class SensorDataType
 {
   LaserScan,
-  PointCloud2
+  PointCloud2,
+  PointCloud  ///< sensor_msgs/PointCloud, the older type (costmap_2d's default)
 };
+
+/// The data_type value that names it: "LaserScan", "PointCloud2" or "PointCloud".
+const char* sensorDataTypeName(SensorDataType type);
 
 /// One entry of observation_sources, read from the sub-namespace named after it.
 struct ObservationSourceConfig
@@ -36,7 +40,7 @@ struct ObservationSourceConfig
   std::string sensor_frame;                                ///< "" = the reading's own frame
   double observation_persistence = 0.0;                    ///< [s] 0 = only the newest reading
   double expected_update_rate = 0.0;                       ///< [s] a period, see ObservationBufferConfig; 0 = unchecked
-  SensorDataType data_type = SensorDataType::PointCloud2;  ///< "LaserScan" or "PointCloud2"
+  SensorDataType data_type = SensorDataType::PointCloud2;  ///< "LaserScan", "PointCloud2" or "PointCloud"
   double min_obstacle_height = 0.0;  ///< [m] global z; points outside are dropped (also for clearing)
   double max_obstacle_height = 2.0;  ///< [m]
   bool inf_is_valid = false;         ///< LaserScan +inf = no return up to range_max (clears only)

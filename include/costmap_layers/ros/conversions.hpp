@@ -8,6 +8,7 @@
 #include <nav_msgs/Odometry.h>
 #include <nav_msgs/Path.h>
 #include <sensor_msgs/LaserScan.h>
+#include <sensor_msgs/PointCloud.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <sensor_msgs/Range.h>
 #include <xmlrpcpp/XmlRpcValue.h>
@@ -50,6 +51,9 @@ costmap_layers::OdometryData fromMsg(const nav_msgs::Odometry& msg);
 /// Sensor messages: plain copies; the core validates them.
 costmap_layers::LaserScanData fromMsg(const sensor_msgs::LaserScan& msg);
 costmap_layers::PointCloud2Data fromMsg(const sensor_msgs::PointCloud2& msg);
+/// The older sensor_msgs/PointCloud as a PointCloud2 of its points (fields x, y, z, FLOAT32, one row),
+/// as costmap_2d converts it; its channels are not used by any layer and are left out.
+costmap_layers::PointCloud2Data fromMsg(const sensor_msgs::PointCloud& msg);
 costmap_layers::RangeData fromMsg(const sensor_msgs::Range& msg);
 costmap_layers::Transform3D fromMsg(const geometry_msgs::Transform& msg);
 

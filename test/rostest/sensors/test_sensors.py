@@ -14,7 +14,8 @@ import rostest
 import tf2_ros
 from geometry_msgs.msg import TransformStamped
 from rosgraph_msgs.msg import Log
-from sensor_msgs.msg import LaserScan, PointCloud2, PointField, Range
+from geometry_msgs.msg import Point32
+from sensor_msgs.msg import LaserScan, PointCloud, PointCloud2, PointField, Range
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from grid_watch import CycleWatcher, GridWatcher, logged_with_key  # noqa: E402
@@ -55,6 +56,14 @@ def cloud(points, frame, stamp):
     c.row_step = 12 * len(points)
     c.data = b"".join(struct.pack("<fff", *p) for p in points)
     c.is_dense = True
+    return c
+
+
+def old_cloud(points, frame, stamp):
+    c = PointCloud()
+    c.header.frame_id = frame
+    c.header.stamp = stamp
+    c.points = [Point32(*p) for p in points]
     return c
 
 
@@ -116,6 +125,7 @@ class SensorsTest(unittest.TestCase):
         cls.scan_pub = rospy.Publisher("/scan", LaserScan, queue_size=5)
         cls.mount_pub = rospy.Publisher("/scan_mount", LaserScan, queue_size=5)
         cls.cloud_pub = rospy.Publisher("/cloud", PointCloud2, queue_size=5)
+        cls.old_cloud_pub = rospy.Publisher("/old_cloud", PointCloud, queue_size=5)
         cls.sonar_pub = rospy.Publisher("/sonar", Range, queue_size=5)
         cls.tf_buffer = tf2_ros.Buffer()
         tf2_ros.TransformListener(cls.tf_buffer)
@@ -172,6 +182,17 @@ class SensorsTest(unittest.TestCase):
         self.publish_for(self.cloud_pub, lambda st: cloud([(3.0, 1.5, -0.2)], "camera", st), 1.0)
         self.assertTrue(self.grid.wait_until(lambda g: g.at(4.05, 6.05) == 0 and g.at(5.05, 6.55) == 100, 10.0),
                         "the cloud's old mark was not cleared")
+
+    def test_older_point_cloud_type_marks_and_clears(self):
+        # The same as the PointCloud2 case through sensor_msgs/PointCloud, which costmap_2d reads (its
+        # default data_type); it was refused at start-up before.
+        self.publish_for(self.old_cloud_pub,
+                         lambda st: old_cloud([(2.0, 1.0, -0.2), (2.0, -1.0, -0.45)], "camera", st), 1.0)
+        self.assertTrue(self.grid.wait_until(lambda g: g.at(4.05, 6.05) == 100, 10.0), "the old cloud did not mark")
+        self.assertEqual(self.grid.at(4.05, 4.05), 0)
+        self.publish_for(self.old_cloud_pub, lambda st: old_cloud([(3.0, 1.5, -0.2)], "camera", st), 1.0)
+        self.assertTrue(self.grid.wait_until(lambda g: g.at(4.05, 6.05) == 0 and g.at(5.05, 6.55) == 100, 10.0),
+                        "the old cloud's old mark was not cleared")
 
     def test_sonar_marks_and_clears_on_max(self):
         # Facing +x at (2, 5): a 2 m echo marks (4, 5); a max-range reading clears it (clear_on_max_reading).
