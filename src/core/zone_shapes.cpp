@@ -586,9 +586,15 @@ ZoneShape parseZoneShape(const ParamValue& v, const std::string& what)
 
 ZoneLayout parseZoneLayout(const ParamValue& tree, const std::string& what)
 {
-  if (!tree.isMap())
-    throw std::invalid_argument(what + ": a zone file is a map with 'shapes' (got " + tree.toString() + ")");
-  checkKeys(tree, {"frame_id", "resolution", "default_value", "overlay", "shapes"}, what);
+  // A file that is not meant as a zone file is not quoted: zone_server loads files a peer names, and the
+  // answer goes back to that peer.
+  if (!tree.isMap()) throw std::invalid_argument(what + ": not a zone file (its top level is not a map)");
+  const std::vector<std::string> known = {"frame_id", "resolution", "default_value", "overlay", "shapes"};
+  if (std::none_of(known.begin(), known.end(), [&](const std::string& k) { return tree.find(k) != nullptr; }))
+    throw std::invalid_argument(what +
+                                ": not a zone file (none of frame_id, resolution, default_value, overlay, "
+                                "shapes at its top level)");
+  checkKeys(tree, known, what);
   ZoneLayout l;
   if (const ParamValue* f = tree.find("frame_id"))
   {

@@ -96,6 +96,27 @@ TEST_F(ZoneFile, BadFilesNameThePathAndTheField)
           "cells a mask may have");
   refused("shapes: [\n", "bad.yaml");
   EXPECT_THROW(io::loadZoneFile(tmp("missing.yaml")), std::exception);
+  // A misspelt top-level key of a zone file is named ...
+  refused("frame_id: map\nshape: []\n", "unknown field 'shape'");
+  // ... but a file that is not meant as one is not quoted (zone_server answers a peer that named it):
+  // neither its keys nor its values appear in the message.
+  for (const char* text : {"api_key: hunter2\nuser: root\n", "hunter2\n", "[hunter2, root]\n"})
+  {
+    write(tmp("secret.yaml"), text);
+    try
+    {
+      io::loadZoneFile(tmp("secret.yaml"));
+      ADD_FAILURE() << "accepted " << text;
+    }
+    catch (const std::exception& e)
+    {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("not a zone file"), std::string::npos) << what;
+      EXPECT_EQ(what.find("hunter2"), std::string::npos) << what;
+      EXPECT_EQ(what.find("api_key"), std::string::npos) << what;
+      EXPECT_EQ(what.find("root"), std::string::npos) << what;
+    }
+  }
 }
 
 TEST_F(ZoneFile, SaveRefusesAnInvalidLayoutAndAnUnwritablePath)

@@ -211,6 +211,30 @@ class ZoneServerTest(unittest.TestCase):
             res = call(long_name)
             self.assertFalse(res.success)
             self.assertLess(len(res.message), 300)
+        # Files that are not YAML by their name are neither read nor written: a peer could otherwise
+        # overwrite any file the server may write, or read back the first line of any it may read.
+        load = rospy.ServiceProxy("/zone_server/load", LoadZones)
+        for name in ["/etc/hostname", "/etc/passwd", os.path.join(self.tmp, "zones.yaml.bak")]:
+            res = load(name)
+            self.assertFalse(res.success, name)
+            self.assertIn(".yaml or .yml", res.message)
+        target = os.path.join(self.tmp, "not_yaml.txt")
+        with open(target, "w") as f:
+            f.write("keep me\n")
+        res = self.save(target)
+        self.assertFalse(res.success)
+        self.assertIn(".yaml or .yml", res.message)
+        with open(target) as f:
+            self.assertEqual(f.read(), "keep me\n")
+        # A YAML file that is not a zone file: refused without quoting it.
+        secret = os.path.join(self.tmp, "secret.yaml")
+        with open(secret, "w") as f:
+            f.write("token: hunter2\n")
+        res = load(secret)
+        self.assertFalse(res.success)
+        self.assertIn("not a zone file", res.message)
+        self.assertNotIn("hunter2", res.message)
+        self.assertNotIn("token", res.message)
         # Marker feedback: a drag of the square's vertex 2 to a valid place, but in no frame; then to a
         # NaN position. Each refused by its key; the mask is still the one with the square.
         f = InteractiveMarkerFeedback()
