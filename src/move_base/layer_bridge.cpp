@@ -1,6 +1,7 @@
 #include "costmap_layers/move_base/layer_bridge.hpp"
 
 #include <costmap_2d/layered_costmap.h>
+#include <costmap_2d/static_layer.h>
 #include <ros/ros.h>
 
 #include <limits>
@@ -8,6 +9,7 @@
 
 #include "costmap_layers/core/config_compat.hpp"
 #include "costmap_layers/core/costmap_clearing.hpp"
+#include "costmap_layers/core/costmap_filter.hpp"
 #include "costmap_layers/core/costmap_layer.hpp"
 #include "costmap_layers/core/footprint.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
@@ -208,6 +210,46 @@ void LayerBridgeOn<Base>::updateCosts(costmap_2d::Costmap2D& master_grid, int mi
   }
   viewMaster();  // the master may have been resized since updateBounds
   core_->updateCosts(host_->getCostmap(), min_i, min_j, max_i, max_j);
+  checkPluginOrder();
+}
+
+template <class Base>
+void LayerBridgeOn<Base>::checkPluginOrder()
+{
+  const auto* filter = dynamic_cast<const costmap_layers::CostmapFilter*>(core_.get());
+  if (filter == nullptr || !filter->writesCosts()) return;
+  std::string problem;
+  bool after = false;
+  const costmap_layers::Costmap2D& master = host_->getCostmap();
+  const int sx = static_cast<int>(master.getSizeInCellsX()), sy = static_cast<int>(master.getSizeInCellsY());
+  for (const auto& plugin : *this->layered_costmap_->getPlugins())
+  {
+    if (plugin.get() == this)
+    {
+      after = true;
+      continue;
+    }
+    if (!after || !plugin->isEnabled()) continue;
+    const costmap_layers::Layer* other = nullptr;
+    if (const auto* b = dynamic_cast<const LayerBridgeOn<costmap_2d::Layer>*>(plugin.get()))
+      other = &b->core();
+    else if (const auto* c = dynamic_cast<const LayerBridgeOn<costmap_2d::CostmapLayer>*>(plugin.get()))
+      other = &c->core();
+    if (other != nullptr && other->enabled() && other->overwritesWindow(master, 0, 0, sx, sy))
+      problem =
+          plugin->getName() + " (a static layer) comes after it in the plugin list and overwrites the cells it draws";
+    else if (dynamic_cast<const costmap_2d::StaticLayer*>(plugin.get()) != nullptr)
+      problem = plugin->getName() +
+                " (costmap_2d's static layer) comes after it in the plugin list and overwrites the cells it draws "
+                "(unless its use_maximum is true)";
+    if (!problem.empty()) break;
+  }
+  if (problem != order_problem_ && !problem.empty())
+    context_->report(costmap_layers::Severity::Warn, "plugin_order",
+                     this->name_ + ": " + problem +
+                         ": list the filter after it (before the inflation layer to inflate "
+                         "its zones, or last to keep them sharp)");
+  order_problem_ = problem;
 }
 
 template <class Base>

@@ -57,6 +57,9 @@ public:
 
   /// The hosted layer (for tests).
   const costmap_layers::Layer& core() const { return *core_; }
+  /// For a filter that draws costs: why a plugin after it in costmap_2d's list overwrites what it
+  /// draws (a static layer), or "" (warned at run time; for tests).
+  const std::string& orderProblem() const { return order_problem_; }
   costmap_layers::Layer& core() { return *core_; }
 
 protected:
@@ -73,6 +76,9 @@ private:
   /// Points the core master at move_base's master grid (its memory moves on a resize).
   void viewMaster();
   void expandToWholeMap(double* min_x, double* min_y, double* max_x, double* max_y) const;
+  /// Sets order_problem_ and warns when this is a filter that draws costs and a later plugin overwrites
+  /// the master (a static layer not using its maximum): the filter's cells would be lost.
+  void checkPluginOrder();
 
   std::shared_ptr<costmap_layers::Layer> core_;
   std::string class_name_;
@@ -84,6 +90,7 @@ private:
   std::atomic<bool> full_update_{true};     ///< redraw the whole map next cycle (start, reconfigure, reset)
   bool drawn_enabled_ = true;               ///< the core layer's switch as of the last cycle
   std::vector<std::string> consumed_keys_;  ///< layer keys costmap_2d's rules used up (not "unknown")
+  std::string order_problem_;               ///< see orderProblem()
 };
 
 extern template class LayerBridgeOn<costmap_2d::Layer>;

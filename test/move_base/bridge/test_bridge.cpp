@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "costmap_layers/core/inflation_layer.hpp"
+#include "costmap_layers/core/keepout_filter.hpp"
 #include "costmap_layers/core/obstacle_layer.hpp"
 #include "costmap_layers/core/static_layer.hpp"
 #include "costmap_layers/move_base/layer_bridge.hpp"
@@ -268,6 +269,50 @@ TEST(Bridge, NaNBoundsFromAnEarlierPluginDoNotCancelARedraw)
   EXPECT_DOUBLE_EQ(y0, 2.0);
   EXPECT_DOUBLE_EQ(x1, 1.0 + 40 * 0.05);
   EXPECT_DOUBLE_EQ(y1, 2.0 + 20 * 0.05);
+}
+
+// A keepout filter listed before the static layer has its cells overwritten by it (the static layer
+// copies its map over the master): the keepout zone was silently gone. Said now; in the right order not.
+TEST(Bridge, AFilterBeforeTheStaticLayerIsWarnedAbout)
+{
+  ros::NodeHandle nh;
+  ros::NodeHandle pn("~");
+  ros::Publisher map_pub = nh.advertise<nav_msgs::OccupancyGrid>("/bridge_order_map", 1, true);
+  nav_msgs::OccupancyGrid map;
+  map.header.frame_id = "map";
+  map.info.resolution = 0.1f;
+  map.info.width = 20;
+  map.info.height = 20;
+  map.info.origin.orientation.w = 1.0;
+  map.data.assign(400, 0);
+  map_pub.publish(map);
+  for (const std::string costmap : {"wrong_order", "right_order"})
+  {
+    pn.setParam(costmap + "/static/map_topic", "/bridge_order_map");
+    pn.setParam(costmap + "/keepout/mask_topic", "/bridge_order_mask");
+  }
+  tf2_ros::Buffer tf;
+  {
+    costmap_2d::LayeredCostmap lc("map", false, false);
+    lc.resizeMap(20, 20, 0.1, 0.0, 0.0);
+    addBridged<costmap_layers::KeepoutFilter>(lc, tf, "wrong_order/keepout", "KeepoutFilter");
+    auto* keepout = dynamic_cast<LayerBridge*>(lc.getPlugins()->back().get());
+    addBridged<costmap_layers::StaticLayer>(lc, tf, "wrong_order/static", "StaticLayer");
+    lc.updateMap(1.0, 1.0, 0.0);
+    ASSERT_NE(keepout, nullptr);
+    EXPECT_NE(keepout->orderProblem().find("wrong_order/static"), std::string::npos) << keepout->orderProblem();
+    EXPECT_NE(keepout->orderProblem().find("overwrites the cells it draws"), std::string::npos);
+  }
+  {
+    costmap_2d::LayeredCostmap lc("map", false, false);
+    lc.resizeMap(20, 20, 0.1, 0.0, 0.0);
+    addBridged<costmap_layers::StaticLayer>(lc, tf, "right_order/static", "StaticLayer");
+    addBridged<costmap_layers::KeepoutFilter>(lc, tf, "right_order/keepout", "KeepoutFilter");
+    auto* keepout = dynamic_cast<LayerBridge*>(lc.getPlugins()->back().get());
+    lc.updateMap(1.0, 1.0, 0.0);
+    ASSERT_NE(keepout, nullptr);
+    EXPECT_EQ(keepout->orderProblem(), "");
+  }
 }
 
 #ifdef COSTMAP_LAYERS_TEST_CLEAR_RECOVERY
