@@ -245,6 +245,15 @@ bool givesPolygon(const ParamValue& footprint)
   return !text.empty() && text != "[]";
 }
 
+/// The namespace of an obstacle or voxel layer typed in costmap_2d's or Nav2's names, or nullptr.
+ParamValue* foreignObstacleLayer(ParamValue& ns, const PluginSpec& spec)
+{
+  const std::string cls = pluginClassName(resolvePluginType(spec.type));
+  if (typeDialect(spec.type) == TypeDialect::Native || (cls != "ObstacleLayer" && cls != "VoxelLayer")) return nullptr;
+  ParamValue* layer = ns.findMutable(spec.name);
+  return layer != nullptr && layer->isMap() ? layer : nullptr;
+}
+
 /// Where costmap_2d's or Nav2's obstacle layers read a value differently from this package's: the
 /// translation into this package's terms, said.
 ///  - combination_method: costmap_2d's layers write nothing for any value but 0 and 1 (its documented
@@ -252,11 +261,10 @@ bool givesPolygon(const ParamValue& footprint)
 ///  (An observation source without data_type: defaultSourceDataType().)
 void translateObstacleDefaults(ParamValue& ns, const PluginSpec& spec, CompatResult& r)
 {
+  ParamValue* layer = foreignObstacleLayer(ns, spec);
+  if (layer == nullptr) return;
   const TypeDialect dialect = typeDialect(spec.type);
   const std::string cls = pluginClassName(resolvePluginType(spec.type));
-  if (dialect == TypeDialect::Native || (cls != "ObstacleLayer" && cls != "VoxelLayer")) return;
-  ParamValue* layer = ns.findMutable(spec.name);
-  if (layer == nullptr || !layer->isMap()) return;
   if (ParamValue* cm = layer->findMutable("combination_method"); cm != nullptr && cm->type() == ParamValue::Type::Int)
   {
     const int64_t v = cm->asInt();
@@ -292,11 +300,9 @@ void translateObstacleDefaults(ParamValue& ns, const PluginSpec& spec, CompatRes
 /// PointCloud2).
 void defaultSourceDataType(ParamValue& ns, const PluginSpec& spec, CompatResult& r)
 {
+  ParamValue* layer = foreignObstacleLayer(ns, spec);
+  if (layer == nullptr) return;
   const TypeDialect dialect = typeDialect(spec.type);
-  const std::string cls = pluginClassName(resolvePluginType(spec.type));
-  if (dialect == TypeDialect::Native || (cls != "ObstacleLayer" && cls != "VoxelLayer")) return;
-  ParamValue* layer = ns.findMutable(spec.name);
-  if (layer == nullptr || !layer->isMap()) return;
   const char* type = dialect == TypeDialect::Nav2 ? "LaserScan" : "PointCloud";
   for (const auto& source : sourceNamesOf(layer->find("observation_sources")))
   {

@@ -57,6 +57,19 @@ costmap_layers::Observation pointsSeenFrom(double ox, double oy, const std::vect
   return o;
 }
 
+/// A free map of w x h cells of 0.1 m at the origin, in "map".
+nav_msgs::OccupancyGrid freeMap(unsigned w, unsigned h)
+{
+  nav_msgs::OccupancyGrid map;
+  map.header.frame_id = "map";
+  map.info.resolution = 0.1f;
+  map.info.width = w;
+  map.info.height = h;
+  map.info.origin.orientation.w = 1.0;
+  map.data.assign(static_cast<std::size_t>(w) * h, 0);
+  return map;
+}
+
 std::vector<geometry_msgs::Point> circle(double radius, int n)
 {
   std::vector<geometry_msgs::Point> out;
@@ -183,13 +196,7 @@ TEST(Bridge, TheStaticLayerWaitsForTheMapAsCostmap2dsDoes)
   ros::NodeHandle nh;
   ros::NodeHandle("~").setParam("waiting/static/map_topic", "/bridge_test_map");
   ros::Publisher map_pub = nh.advertise<nav_msgs::OccupancyGrid>("/bridge_test_map", 1, true);
-  nav_msgs::OccupancyGrid map;
-  map.header.frame_id = "map";
-  map.info.resolution = 0.1f;
-  map.info.width = 30;
-  map.info.height = 20;
-  map.info.origin.orientation.w = 1.0;
-  map.data.assign(600, 0);
+  nav_msgs::OccupancyGrid map = freeMap(30, 20);
   map.data[5 * 30 + 7] = 100;
   std::atomic<bool> published{false};
   std::thread late_map_server(
@@ -278,14 +285,7 @@ TEST(Bridge, AFilterBeforeTheStaticLayerIsWarnedAbout)
   ros::NodeHandle nh;
   ros::NodeHandle pn("~");
   ros::Publisher map_pub = nh.advertise<nav_msgs::OccupancyGrid>("/bridge_order_map", 1, true);
-  nav_msgs::OccupancyGrid map;
-  map.header.frame_id = "map";
-  map.info.resolution = 0.1f;
-  map.info.width = 20;
-  map.info.height = 20;
-  map.info.origin.orientation.w = 1.0;
-  map.data.assign(400, 0);
-  map_pub.publish(map);
+  map_pub.publish(freeMap(20, 20));
   for (const std::string costmap : {"wrong_order", "right_order"})
   {
     pn.setParam(costmap + "/static/map_topic", "/bridge_order_map");
