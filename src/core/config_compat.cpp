@@ -234,6 +234,16 @@ void stripLeadingSlash(ParamValue& map, const std::string& key, const std::strin
                        written.substr(first) + "'");
 }
 
+/// The sensor_frame of each observation source of the layer `name` in ns, without tf's leading '/'.
+void stripSensorFrameSlashes(ParamValue& ns, const std::string& name, CompatResult& r)
+{
+  ParamValue* layer = ns.findMutable(name);
+  if (layer == nullptr || !layer->isMap()) return;
+  for (const auto& source : sourceNamesOf(layer->find("observation_sources")))
+    if (ParamValue* src = layer->findMutable(source); src != nullptr && src->isMap())
+      stripLeadingSlash(*src, "sensor_frame", name + "/" + source + "/sensor_frame", r);
+}
+
 /// Whether a footprint value is a polygon (not empty, not "[]"), i.e. one robot_radius yields to.
 bool givesPolygon(const ParamValue& footprint)
 {
@@ -414,13 +424,7 @@ CompatResult applyCostmap2dRules(const ParamValue& ns_in, const std::vector<Pare
   for (const char* key : {"global_frame", "robot_base_frame"})
     stripLeadingSlash(ns, key, key, r);
   for (const auto& spec : lists.plugins)
-  {
-    ParamValue* layer = ns.findMutable(spec.name);
-    if (layer == nullptr || !layer->isMap()) continue;
-    for (const auto& source : sourceNamesOf(layer->find("observation_sources")))
-      if (ParamValue* src = layer->findMutable(source); src != nullptr && src->isMap())
-        stripLeadingSlash(*src, "sensor_frame", spec.name + "/" + source + "/sensor_frame", r);
-  }
+    stripSensorFrameSlashes(ns, spec.name, r);
 
   // 2. copyParentParameters, 3. costmap_2d's own defaults.
   for (const auto& spec : lists.plugins)
@@ -500,10 +504,7 @@ CompatResult applyCostmap2dRulesAsRole(const ParamValue& ns_in, const std::strin
   CompatResult r;
   r.params = ns_in.isMap() ? ns_in : ParamValue::makeMap();
   const PluginSpec spec{name, role_type};
-  if (ParamValue* layer = r.params.findMutable(name); layer != nullptr && layer->isMap())
-    for (const auto& source : sourceNamesOf(layer->find("observation_sources")))
-      if (ParamValue* src = layer->findMutable(source); src != nullptr && src->isMap())
-        stripLeadingSlash(*src, "sensor_frame", name + "/" + source + "/sensor_frame", r);
+  stripSensorFrameSlashes(r.params, name, r);
   defaultSourceDataType(r.params, spec, r);
   copyParentParameters(r.params, spec, r);
   searchSourceRanges(r.params, spec, parents, r);

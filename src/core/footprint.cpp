@@ -171,20 +171,19 @@ namespace
 /// robot_radius); params.fail() for anything else that is not a valid polygon.
 void parseFootprintValue(const ParamValue& value, const ParamReader& params, FootprintConfig& cfg)
 {
-  const ParamValue* fp = &value;
   try
   {
-    if (fp->type() == ParamValue::Type::String)
+    if (value.type() == ParamValue::Type::String)
     {
       // "[]" is costmap_2d's way of saying "no polygon, use robot_radius".
       std::string compact;
-      for (char c : fp->asString())
+      for (char c : value.asString())
         if (!std::isspace(static_cast<unsigned char>(c))) compact += c;
-      if (compact != "[]" && !compact.empty()) cfg.footprint = parseFootprintString(fp->asString());
+      if (compact != "[]" && !compact.empty()) cfg.footprint = parseFootprintString(value.asString());
     }
     else
     {
-      const auto& points = fp->asList();
+      const auto& points = value.asList();
       if (points.empty()) return;
       if (points.size() < 3) throw std::invalid_argument("a footprint needs at least 3 points");
       for (const auto& p : points)

@@ -15,6 +15,7 @@ std::string describe(const char* what, T value)
   s << what << " (got " << value << ")";
   return s.str();
 }
+}  // namespace
 
 bool hostIsBigEndian()
 {
@@ -23,7 +24,6 @@ bool hostIsBigEndian()
   std::memcpy(&first, &one, 1);
   return first == 0;
 }
-}  // namespace
 
 std::string validateLaserScan(const LaserScanData& scan)
 {

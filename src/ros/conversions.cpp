@@ -11,6 +11,7 @@
 
 #include "costmap_layers/core/cost_translation.hpp"
 #include "costmap_layers/core/publish_schedule.hpp"
+#include "costmap_layers/core/sensor_parsing.hpp"
 
 namespace costmap_layers_ros
 {
@@ -178,11 +179,8 @@ costmap_layers::PointCloud2Data fromMsg(const sensor_msgs::PointCloud& msg)
     std::memcpy(out, xyz, sizeof xyz);
     out += sizeof xyz;
   }
-  const uint16_t probe = 1;
-  uint8_t first_byte = 0;
-  std::memcpy(&first_byte, &probe, 1);
-  d.is_bigendian = first_byte == 0;  // the floats were written in this machine's order
-  d.is_dense = false;                // NaN points are possible: the parser skips them
+  d.is_bigendian = costmap_layers::hostIsBigEndian();  // the floats were written in this machine's order
+  d.is_dense = false;                                  // NaN points are possible: the parser skips them
   return d;
 }
 

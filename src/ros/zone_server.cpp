@@ -368,13 +368,13 @@ bool ZoneServer::onRemove(costmap_layers::RemoveZoneShape::Request& req, costmap
 
 namespace
 {
-/// Why a requested file name cannot be used ("" when it can): no path is longer than PATH_MAX, and a
-/// peer's megabyte name must not come back whole in the answer and the log.
-/// A file name a peer sent: at most PATH_MAX characters, and a YAML file by its name. Zone files are
-/// YAML; a peer cannot make the server read or overwrite any other file (/etc/passwd, a key, a
-/// sudoers.d entry), only *.yaml and *.yml ones.
+/// Why a file name a peer sent cannot be used ("" when it can; an empty one means ~yaml_filename, taken
+/// as configured). No path is longer than PATH_MAX, and a peer's megabyte name must not come back whole
+/// in the answer and the log. Zone files are YAML by their name: a peer cannot make the server read or
+/// overwrite any other file (/etc/passwd, a key, a sudoers.d entry), only *.yaml and *.yml ones.
 std::string badFilename(const std::string& name)
 {
+  if (name.empty()) return "";
   if (name.size() > static_cast<std::size_t>(PATH_MAX))
     return "filename '" + name.substr(0, 64) + "...' has " + std::to_string(name.size()) + " characters, more than " +
            std::to_string(PATH_MAX) + " (PATH_MAX)";
@@ -391,7 +391,7 @@ bool ZoneServer::onSave(costmap_layers::SaveZones::Request& req, costmap_layers:
 {
   std::lock_guard<std::mutex> lock(mutex_);
   const std::string path = req.filename.empty() ? options_.yaml_filename : req.filename;
-  if (const std::string why = req.filename.empty() ? std::string() : badFilename(path); !why.empty())
+  if (const std::string why = badFilename(req.filename); !why.empty())
   {
     res.success = false;
     res.message = why;
@@ -420,7 +420,7 @@ bool ZoneServer::onLoad(costmap_layers::LoadZones::Request& req, costmap_layers:
   std::unique_lock<std::mutex> lock(mutex_);
   const std::string path = req.filename.empty() ? options_.yaml_filename : req.filename;
   InputError error;
-  if (const std::string why = req.filename.empty() ? std::string() : badFilename(path); !why.empty())
+  if (const std::string why = badFilename(req.filename); !why.empty())
     error = InputError::of("load/filename", why);
   else
     try

@@ -48,6 +48,8 @@ ParseResult laserScanToPoints(const LaserScanData& scan, bool inf_is_valid, std:
 /// data.size() >= row_step * height.
 /// @return an empty string when valid, else the reason naming the field and its value.
 std::string validatePointCloud2(const PointCloud2Data& cloud);
+/// Whether this machine stores numbers big-endian (what a cloud's is_bigendian is compared with).
+bool hostIsBigEndian();
 
 /// Appends every point of a valid cloud whose x, y and z are finite (others count as dropped), in the
 /// cloud's own frame. Big-endian clouds are byte-swapped on little-endian hosts (and vice versa).
