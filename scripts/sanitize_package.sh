@@ -15,7 +15,8 @@
 #                                               test/move_base/move_base.test: move_base from the
 #                                               navigation underlay (not instrumented) with the
 #                                               instrumented plugins, the sanitizer runtime preloaded
-# A ROSTESTS name is a folder of test/rostest/ or a file of test/move_base/ (without .test), exactly.
+# A ROSTESTS name is a folder of test/rostest/ or test/move_base/, or a file of test/move_base/ (without
+# .test), exactly.
 # Either run fails when a test fails or when a sanitizer reports anything (leaks included) that
 # test/tsan.supp or test/lsan.supp does not suppress. The reports are kept in build_<kind>/reports/.
 set -euo pipefail
@@ -36,19 +37,20 @@ if [ "$KIND" = asan ] && [ -z "${ROSTESTS:-}" ]; then
   tests_regex='gtest_test_(core|io|ros)$'
 else
   names="${ROSTESTS:-hostile filters sensors speed_limiter reconfigure plugin_loading}"
-  # Each name is a folder test/rostest/<name> (all its .test files) or a file test/move_base/<name>.test;
-  # catkin names their tests rostest_test_rostest_<name>_<file> and rostest_test_move_base_<file>.
+  # Each name is a folder test/rostest/<name> or test/move_base/<name> (all its .test files) or a file
+  # test/move_base/<name>.test; catkin names their tests rostest_test_rostest_<name>_<file>,
+  # rostest_test_move_base_<name>_<file> and rostest_test_move_base_<file>.
   alternatives=()
   for name in $names; do
     found=0
-    for f in "$ROOT/test/rostest/$name"/*.test "$ROOT/test/move_base/$name.test"; do
+    for f in "$ROOT/test/rostest/$name"/*.test "$ROOT/test/move_base/$name"/*.test "$ROOT/test/move_base/$name.test"; do
       [ -f "$f" ] || continue
       found=1
       rel="${f#"$ROOT/"}"
       alternatives+=("$(echo "${rel//\//_}" | sed 's/\./\\./g')")
     done
     if [ "$found" -eq 0 ]; then
-      echo "sanitize_package.sh: no rostest named '$name' (test/rostest/$name/ or test/move_base/$name.test)" >&2
+      echo "sanitize_package.sh: no rostest named '$name' (test/rostest/$name/, test/move_base/$name/ or test/move_base/$name.test)" >&2
       exit 2
     fi
   done
