@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "costmap_layers/core/cost_values.hpp"
 #include "costmap_layers/core/costmap_layer.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
 
@@ -18,16 +19,21 @@ void redrawAll(CostmapLayer& layer)
                        grid.getOriginY() + grid.getSizeInMetersY());
 }
 
+/// What a cleared cell holds: NO_INFORMATION, as costmap_2d's CostmapLayer::clearArea (and Nav2's)
+/// writes whatever the layer's default value: the layer forgets the cell, and until it sees the cell
+/// again the master keeps what the layers below give there (a static map's unknown stays unknown).
+constexpr uint8_t kCleared = NO_INFORMATION;
+
 /// Clears every cell of the layer's grid but those of [kx0, kx1] x [ky0, ky1] (inside the grid).
 void clearOutside(CostmapLayer& layer, unsigned kx0, unsigned kx1, unsigned ky0, unsigned ky1)
 {
   const Costmap2D& grid = layer.costmap();
   const unsigned sx = grid.getSizeInCellsX(), sy = grid.getSizeInCellsY();
   // The bands below, above, left and right of the kept rectangle.
-  layer.clearCells(0, 0, sx, ky0);
-  layer.clearCells(0, ky1 + 1, sx, sy);
-  layer.clearCells(0, ky0, kx0, ky1 + 1);
-  layer.clearCells(kx1 + 1, ky0, sx, ky1 + 1);
+  layer.clearCells(0, 0, sx, ky0, kCleared);
+  layer.clearCells(0, ky1 + 1, sx, sy, kCleared);
+  layer.clearCells(0, ky0, kx0, ky1 + 1, kCleared);
+  layer.clearCells(kx1 + 1, ky0, sx, ky1 + 1, kCleared);
 }
 }  // namespace
 
@@ -77,7 +83,7 @@ int clearClearableLayersAround(LayeredCostmap& costmap, double x, double y, doub
     if (!cells(x - half, x + half, grid.getOriginX(), sx, kx0, kx1) ||
         !cells(y - half, y + half, grid.getOriginY(), sy, ky0, ky1))
     {
-      grid_layer->clearCells(0, 0, sx, sy);  // the square keeps nothing of this grid
+      grid_layer->clearCells(0, 0, sx, sy, kCleared);  // the square keeps nothing of this grid
       redrawAll(*grid_layer);
       continue;
     }
@@ -106,17 +112,26 @@ bool clearLayerArea(Layer& layer, int x0, int y0, int x1, int y1, bool invert)
   {
     if (between)
       grid_layer->clearCells(static_cast<unsigned>(ix0), static_cast<unsigned>(iy0), static_cast<unsigned>(ix1 + 1),
-                             static_cast<unsigned>(iy1 + 1));
+                             static_cast<unsigned>(iy1 + 1), kCleared);
   }
   else if (!between)
   {
-    grid_layer->clearCells(0, 0, static_cast<unsigned>(sx), static_cast<unsigned>(sy));
+    grid_layer->clearCells(0, 0, static_cast<unsigned>(sx), static_cast<unsigned>(sy), kCleared);
   }
   else
   {
     clearOutside(*grid_layer, static_cast<unsigned>(ix0), static_cast<unsigned>(ix1), static_cast<unsigned>(iy0),
                  static_cast<unsigned>(iy1));
   }
+  redrawAll(*grid_layer);
+  return true;
+}
+bool resetLayerCells(Layer& layer)
+{
+  auto* grid_layer = dynamic_cast<CostmapLayer*>(&layer);
+  if (grid_layer == nullptr) return false;
+  const Costmap2D& grid = grid_layer->costmap();
+  grid_layer->clearCells(0, 0, grid.getSizeInCellsX(), grid.getSizeInCellsY(), grid.getDefaultValue());
   redrawAll(*grid_layer);
   return true;
 }

@@ -41,9 +41,9 @@ void VoxelLayer::reset()
   voxels_.reset();
 }
 
-void VoxelLayer::clearCells(unsigned int x0, unsigned int y0, unsigned int xn, unsigned int yn)
+void VoxelLayer::clearCells(unsigned int x0, unsigned int y0, unsigned int xn, unsigned int yn, uint8_t value)
 {
-  ObstacleLayer::clearCells(x0, y0, xn, yn);
+  ObstacleLayer::clearCells(x0, y0, xn, yn, value);
   voxels_.resetColumns(x0, y0, xn, yn);
 }
 

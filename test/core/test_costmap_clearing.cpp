@@ -1,6 +1,7 @@
 // The "clear costmaps" helpers behind the node's ~clear and ~clear_around_robot services.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <limits>
 #include <memory>
 
@@ -99,6 +100,79 @@ TEST(CostmapClearing, AroundTheRobotKeepsTheSquare)
 
 namespace
 {
+/// A layer below that puts NO_INFORMATION on every master cell (as a static layer over an unmapped area).
+class UnknownBelow : public CostmapLayer
+{
+public:
+  void updateBounds(double, double, double, double* x0, double* y0, double* x1, double* y1) override
+  {
+    *x0 = std::min(*x0, costmap_.getOriginX());
+    *y0 = std::min(*y0, costmap_.getOriginY());
+    *x1 = std::max(*x1, costmap_.getOriginX() + costmap_.getSizeInMetersX());
+    *y1 = std::max(*y1, costmap_.getOriginY() + costmap_.getSizeInMetersY());
+  }
+  void updateCosts(Costmap2D& master, int i0, int j0, int i1, int j1) override
+  {
+    costmap_.fillWindow(0, 0, costmap_.getSizeInCellsX(), costmap_.getSizeInCellsY(), NO_INFORMATION);
+    updateWithTrueOverwrite(master, i0, j0, i1, j1);
+  }
+};
+}  // namespace
+
+// costmap_2d's clearArea (and so move_base's clear-costmap recovery) sets a cleared cell to
+// NO_INFORMATION whatever the layer's default: the layer forgets it, and the master keeps what the
+// layers below give there. A layer whose default is FREE_SPACE (track_unknown_space false) makes an
+// unknown cell below free until it is cleared; afterwards the cell is unknown again. A reset (~clear,
+// move_base's clear_costmaps) puts the default back, as costmap_2d's resetMaps does.
+TEST(CostmapClearing, AClearedCellShowsWhatTheLayersBelowGive)
+{
+  LayeredCostmap lc{"map", false, false};
+  lc.resizeMap(20, 20, 1.0, 0.0, 0.0);
+  auto below = std::make_shared<UnknownBelow>();
+  auto sensor = std::make_shared<MarkLayer>(true);
+  for (const std::shared_ptr<CostmapLayer>& l :
+       {std::shared_ptr<CostmapLayer>(below), std::shared_ptr<CostmapLayer>(sensor)})
+  {
+    l->initialize(&lc, l == below ? "below" : "sensor", std::make_shared<FakeContext>());
+    lc.addPlugin(l);
+    l->matchSize();
+  }
+  ASSERT_EQ(sensor->costmap().getDefaultValue(), FREE_SPACE);
+  sensor->mark(1, 1);
+  sensor->mark(10, 10);
+  lc.updateMap(10.5, 10.5, 0.0);
+  ASSERT_EQ(lc.getCostmap().getCost(1, 1), LETHAL_OBSTACLE);
+  ASSERT_EQ(lc.getCostmap().getCost(5, 5), FREE_SPACE);  // the sensor layer's free over the unknown
+  ASSERT_EQ(clearClearableLayersAround(lc, 10.5, 10.5, 3.0), 1);
+  lc.updateMap(10.5, 10.5, 0.0);
+  EXPECT_EQ(sensor->costmap().getCost(1, 1), NO_INFORMATION);
+  EXPECT_EQ(lc.getCostmap().getCost(1, 1), NO_INFORMATION);     // cleared: what lies below
+  EXPECT_EQ(lc.getCostmap().getCost(5, 5), NO_INFORMATION);     // cleared too (outside the square)
+  EXPECT_EQ(lc.getCostmap().getCost(10, 10), LETHAL_OBSTACLE);  // kept
+  EXPECT_EQ(lc.getCostmap().getCost(11, 10), FREE_SPACE);       // kept: the layer's free
+  // move_base's recovery: everything outside (2, 2)..(18, 18) cleared, the cells between kept.
+  sensor->mark(1, 1);
+  ASSERT_TRUE(clearLayerArea(*sensor, 2, 2, 18, 18, false));
+  lc.updateMap(10.5, 10.5, 0.0);
+  EXPECT_EQ(lc.getCostmap().getCost(1, 1), NO_INFORMATION);
+  EXPECT_EQ(lc.getCostmap().getCost(10, 10), LETHAL_OBSTACLE);
+  // A reset puts the layer's default back: free over the unknown again.
+  ASSERT_EQ(resetClearableLayers(lc), 1);
+  lc.updateMap(10.5, 10.5, 0.0);
+  EXPECT_EQ(lc.getCostmap().getCost(1, 1), FREE_SPACE);
+  EXPECT_EQ(lc.getCostmap().getCost(10, 10), FREE_SPACE);
+  // resetLayerCells (what the bridge's Costmap2D::resetMaps does) too.
+  sensor->mark(3, 3);
+  ASSERT_TRUE(clearLayerArea(*sensor, 0, 0, 0, 0, false));
+  ASSERT_EQ(sensor->costmap().getCost(3, 3), NO_INFORMATION);
+  ASSERT_TRUE(resetLayerCells(*sensor));
+  EXPECT_EQ(sensor->costmap().getCost(3, 3), FREE_SPACE);
+  lc.updateMap(10.5, 10.5, 0.0);
+  EXPECT_EQ(lc.getCostmap().getCost(3, 3), FREE_SPACE);
+}
+
+namespace
+{
 /// A 20 x 20 grid of 0.5 m cells from (-3, 2), every cell of the clearable layer marked.
 struct EdgeRig
 {
@@ -128,7 +202,7 @@ struct EdgeRig
         const double cx = -3.0 + (i + 0.5) * h, cy = 2.0 + (j + 0.5) * h;
         const bool kept_x = cx - h / 2 <= x + half && cx + h / 2 > x - half;
         const bool kept_y = cy - h / 2 <= y + half && cy + h / 2 > y - half;
-        const uint8_t want = kept_x && kept_y ? LETHAL_OBSTACLE : FREE_SPACE;
+        const uint8_t want = kept_x && kept_y ? LETHAL_OBSTACLE : NO_INFORMATION;  // cleared: forgotten
         bad += g.getCost(i, j) != want;
       }
     return bad;
@@ -199,8 +273,9 @@ TEST(CostmapClearing, AroundAnInvalidPoseIsRefused)
 // move_base's clear-costmap recovery calls costmap_2d's CostmapLayer::clearArea(x0, y0, x1, y1, invert)
 // on the layers it clears. costmap_2d's rule, cell by cell (costmap_layer.cpp): a cell is "between" when
 // x0 < x < x1 and y0 < y < y1; without invert every cell not between is cleared, with invert every cell
-// between (to NO_INFORMATION there; here to the grid's default, as if never seen, as the node's
-// clear_around_robot does). The reference below is that loop; clearLayerArea must give the same grid for windows
+// between, to NO_INFORMATION (whatever the layer's default: the layer forgets the cell, and the master
+// keeps what the layers below give there). The reference below is that loop; clearLayerArea must give
+// the same grid for windows
 // anywhere, at the int limits (what worldToMapNoBounds gives far off the map) and reversed.
 TEST(CostmapClearing, ClearLayerAreaIsCostmap2dsClearArea)
 {
@@ -222,8 +297,8 @@ TEST(CostmapClearing, ClearLayerAreaIsCostmap2dsClearArea)
         for (int x = 0; x < 20; ++x)
         {
           const bool between = x > w[0] && x < w[2] && y > w[1] && y < w[3];
-          const unsigned char expected = between != invert ? static_cast<unsigned char>(1 + (x * 7 + y * 3) % 250)
-                                                           : r.sensor->costmap().getDefaultValue();
+          const unsigned char expected =
+              between != invert ? static_cast<unsigned char>(1 + (x * 7 + y * 3) % 250) : NO_INFORMATION;
           ASSERT_EQ(r.sensor->costmap().getCost(x, y), expected)
               << "window " << w[0] << ", " << w[1] << " - " << w[2] << ", " << w[3] << " invert " << invert << " cell "
               << x << ", " << y;

@@ -15,12 +15,13 @@ public:
   const Costmap2D& costmap() const { return costmap_; }
   Costmap2D& costmap() { return costmap_; }
 
-  /// Clears the cells [x0, xn) x [y0, yn) of the own grid to its default value, as if never seen (a
-  /// "clear costmaps" request); a layer with more state per cell (the voxel layer's columns) clears that
-  /// too. The window is cut to the grid.
-  virtual void clearCells(unsigned int x0, unsigned int y0, unsigned int xn, unsigned int yn)
+  /// Sets the cells [x0, xn) x [y0, yn) of the own grid to value: NO_INFORMATION to forget them (a
+  /// "clear costmaps" request: the master then keeps what the layers below give there), the grid's
+  /// default value to reset them. A layer with more state per cell (the voxel layer's columns) clears
+  /// that too. The window is cut to the grid.
+  virtual void clearCells(unsigned int x0, unsigned int y0, unsigned int xn, unsigned int yn, uint8_t value)
   {
-    costmap_.resetMap(x0, y0, xn, yn);
+    costmap_.fillWindow(x0, y0, xn, yn, value);
   }
 
   /// Asks for [mx0, mx1] x [my0, my1] [m] to be included in the next bounds (e.g. after a map update).

@@ -31,7 +31,7 @@ public:
   void reset() override;
   /// The cells and their columns: a cleared cell keeps no marked voxel that would make it lethal again
   /// when another voxel of its column is marked and cleared.
-  void clearCells(unsigned int x0, unsigned int y0, unsigned int xn, unsigned int yn) override;
+  void clearCells(unsigned int x0, unsigned int y0, unsigned int xn, unsigned int yn, uint8_t value) override;
 
   const VoxelConfig& voxelConfig() const { return voxel_config_; }
   const VoxelGrid& voxels() const { return voxels_; }
