@@ -5,6 +5,7 @@
 #include <ros/ros.h>
 
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include "costmap_layers/core/config_compat.hpp"
@@ -111,6 +112,7 @@ void LayerBridgeOn<Base>::setUp()
       [this](const std::function<void()>& fn)
       {
         boost::unique_lock<costmap_2d::Costmap2D::mutex_t> lock(*this->layered_costmap_->getCostmap()->getMutex());
+        const auto own = lockOwnGrid();
         fn();
         full_update_ = true;
       });
@@ -186,6 +188,7 @@ template <class Base>
 void LayerBridgeOn<Base>::updateBounds(double robot_x, double robot_y, double robot_yaw, double* min_x, double* min_y,
                                        double* max_x, double* max_y)
 {
+  const auto own = lockOwnGrid();
   viewMaster();  // a rolling master has moved its origin since the last cycle
   const bool on = core_->enabled();
   const bool switched = on != drawn_enabled_;
@@ -199,6 +202,7 @@ void LayerBridgeOn<Base>::updateBounds(double robot_x, double robot_y, double ro
 template <class Base>
 void LayerBridgeOn<Base>::updateCosts(costmap_2d::Costmap2D& master_grid, int min_i, int min_j, int max_i, int max_j)
 {
+  const auto own = lockOwnGrid();
   if (!core_->enabled()) return;
   if (&master_grid != this->layered_costmap_->getCostmap())
   {
@@ -256,6 +260,7 @@ template <class Base>
 void LayerBridgeOn<Base>::matchSize()
 {
   if (!host_) return;
+  const auto own = lockOwnGrid();
   viewMaster();  // the core layers' matchSize runs when the geometry changed
   // costmap_2d has reset its master (Costmap2D::resizeMap), also for the same geometry (every
   // dynamic_reconfigure of a costmap whose size is not locked): what the layer drew is gone.
@@ -270,6 +275,7 @@ void LayerBridgeOn<Base>::onFootprintChanged()
   // be inside the core layers (the inflation layer's cost table, the footprint the obstacle layer
   // clears): the costmap's mutex (recursive; updateMap holds it) keeps them apart.
   boost::unique_lock<costmap_2d::Costmap2D::mutex_t> lock(*this->layered_costmap_->getCostmap()->getMutex());
+  const auto own = lockOwnGrid();
   costmap_layers::Footprint footprint;
   for (const auto& p : this->layered_costmap_->getFootprint())
     footprint.emplace_back(p.x, p.y);
@@ -292,6 +298,7 @@ void LayerBridgeOn<Base>::onFootprintChanged()
 template <class Base>
 void LayerBridgeOn<Base>::reset()
 {
+  const auto own = lockOwnGrid();
   core_->reset();
   full_update_ = true;
 }
@@ -299,6 +306,7 @@ void LayerBridgeOn<Base>::reset()
 template <class Base>
 void LayerBridgeOn<Base>::activate()
 {
+  const auto own = lockOwnGrid();
   core_->activate();
   full_update_ = true;
 }
@@ -306,7 +314,17 @@ void LayerBridgeOn<Base>::activate()
 template <class Base>
 void LayerBridgeOn<Base>::deactivate()
 {
+  const auto own = lockOwnGrid();
   core_->deactivate();
+}
+
+template <class Base>
+boost::unique_lock<costmap_2d::Costmap2D::mutex_t> LayerBridgeOn<Base>::lockOwnGrid()
+{
+  if constexpr (std::is_base_of_v<costmap_2d::Costmap2D, Base>)
+    return boost::unique_lock<costmap_2d::Costmap2D::mutex_t>(*this->getMutex());
+  else
+    return {};
 }
 template class LayerBridgeOn<costmap_2d::Layer>;
 template class LayerBridgeOn<costmap_2d::CostmapLayer>;
@@ -348,13 +366,14 @@ void ClearableLayerBridge::initMaps(unsigned int, unsigned int)
 
 void ClearableLayerBridge::resetMaps()
 {
-  boost::unique_lock<costmap_2d::Costmap2D::mutex_t> lock(*layered_costmap_->getCostmap()->getMutex());
-  costmap_layers::clearLayerArea(core(), 0, 0, 0, 0, false);  // nothing is between: every cell
+  boost::unique_lock<costmap_2d::Costmap2D::mutex_t> lock(*getMutex());
+  costmap_layers::resetLayerCells(core());
 }
 
 void ClearableLayerBridge::updateBounds(double robot_x, double robot_y, double robot_yaw, double* min_x, double* min_y,
                                         double* max_x, double* max_y)
 {
+  boost::unique_lock<costmap_2d::Costmap2D::mutex_t> lock(*getMutex());  // see clearArea
   LayerBridgeOn<costmap_2d::CostmapLayer>::updateBounds(robot_x, robot_y, robot_yaw, min_x, min_y, max_x, max_y);
   viewCoreGrid();                              // a rolling layer's grid has followed the master
   useExtraBounds(min_x, min_y, max_x, max_y);  // what clear_costmap_recovery asked for (the whole layer)
@@ -362,15 +381,20 @@ void ClearableLayerBridge::updateBounds(double robot_x, double robot_y, double r
 
 void ClearableLayerBridge::matchSize()
 {
+  boost::unique_lock<costmap_2d::Costmap2D::mutex_t> lock(*getMutex());  // see clearArea
   LayerBridgeOn<costmap_2d::CostmapLayer>::matchSize();
   viewCoreGrid();
 }
 
 void ClearableLayerBridge::clearArea(int start_x, int start_y, int end_x, int end_y, bool invert_area)
 {
-  // clear_costmap_recovery holds only this layer's own mutex; the core layer's cells are the update
-  // thread's, which holds the costmap's (recursive) mutex through updateMap.
-  boost::unique_lock<costmap_2d::Costmap2D::mutex_t> lock(*layered_costmap_->getCostmap()->getMutex());
+  // clear_costmap_recovery holds this layer's own mutex (recursive) while it reads the grid's geometry,
+  // clears and adds extra bounds; it never holds the costmap's. So the bridge does everything it does
+  // to the core layer, the grid's view and the extra bounds under the own mutex too (lockOwnGrid), and
+  // takes it after the costmap's wherever it needs both (updateMap holds the costmap's mutex): taking
+  // the costmap's mutex here, inside the own one, would be the reverse order (a deadlock waiting for
+  // the update thread).
+  boost::unique_lock<costmap_2d::Costmap2D::mutex_t> lock(*getMutex());
   costmap_layers::clearLayerArea(core(), start_x, start_y, end_x, end_y, invert_area);
 }
 }  // namespace move_base

@@ -76,6 +76,10 @@ private:
   /// Points the core master at move_base's master grid (its memory moves on a resize).
   void viewMaster();
   void expandToWholeMap(double* min_x, double* min_y, double* max_x, double* max_y) const;
+  /// For ClearableLayerBridge, this plugin's own costmap_2d grid's mutex, locked (what
+  /// clear_costmap_recovery holds while it clears: see ClearableLayerBridge::clearArea); otherwise no
+  /// lock. Taken after the costmap's mutex wherever both are held.
+  boost::unique_lock<costmap_2d::Costmap2D::mutex_t> lockOwnGrid();
   /// Sets order_problem_ and warns when this is a filter that draws costs and a later plugin overwrites
   /// the master (a static layer not using its maximum): the filter's cells would be lost.
   void checkPluginOrder();
@@ -104,7 +108,8 @@ using LayerBridge = LayerBridgeOn<costmap_2d::Layer>;
 /// (clear_costmap_recovery, which clears only CostmapLayers) clears it. Its costmap_2d grid is a view
 /// of the core layer's own grid (no copy: what costmap_2d code reads there is what the layer holds),
 /// kept on the core grid's memory and geometry after every change; clearArea clears the core layer's
-/// cells by costmap_2d's rule (clearLayerArea) under the costmap's lock.
+/// cells by costmap_2d's rule (clearLayerArea). Everything the bridge does to the core layer happens
+/// under this grid's own mutex, which the recovery holds while it clears.
 class ClearableLayerBridge : public LayerBridgeOn<costmap_2d::CostmapLayer>
 {
 public:
@@ -124,7 +129,7 @@ protected:
   // Costmap2D's allocation hooks: the cells are the core layer's, never allocated or freed here.
   void deleteMaps() override;
   void initMaps(unsigned int size_x, unsigned int size_y) override;
-  /// Clears every cell (as the core layer's clear does: the grid's default value, then a redraw).
+  /// Resets every cell to the grid's default value (resetLayerCells), then asks for a redraw.
   void resetMaps() override;
 
 private:

@@ -111,17 +111,24 @@ TEST(Bridge, FootprintChangesWhileTheMapUpdatesAreSafe)
         while (!stop)
           lc.setFootprint((switches.fetch_add(1) & 1) ? big : small);
       });
+  // At least 2 s and at least kRounds of each, however slow the machine: under ThreadSanitizer an
+  // update takes ten times as long, and a switch waits for the update holding the bridge's lock to
+  // end (2 switches in 2 s there, when the end was a time alone). The loop yields after each update so
+  // that the waiting switch gets the lock; the time limit only stops a hang.
+  constexpr unsigned kRounds = 40;
   unsigned cycles = 0;
   const ros::WallTime t0 = ros::WallTime::now();
-  while ((ros::WallTime::now() - t0).toSec() < 2.0)
+  auto elapsed = [&] { return (ros::WallTime::now() - t0).toSec(); };
+  while ((elapsed() < 2.0 || cycles < kRounds || switches.load() < kRounds) && elapsed() < 90.0)
   {
     lc.updateMap(5.0 + 0.001 * (cycles % 7), 5.0, 0.0);
     ++cycles;
+    std::this_thread::yield();
   }
   stop = true;
   subscriber.join();
-  EXPECT_GT(cycles, 20u);
-  EXPECT_GT(switches.load(), 20u);
+  EXPECT_GE(cycles, kRounds);
+  EXPECT_GE(switches.load(), kRounds);
 
   // Afterwards the costmap is the one of the last footprint: the inscribed radius 0.3 m of the big
   // circle (the polygon's inscribed radius is slightly less) makes the cell 0.25 m from the wall inscribed.
@@ -406,6 +413,69 @@ TEST(Bridge, MoveBasesClearCostmapRecoveryClearsTheBridgedObstacleLayer)
   ASSERT_TRUE(bridge->worldToMap(8.05, 8.05, mx, my));
   EXPECT_EQ(bridge->getCost(mx, my), costmap_2d::LETHAL_OBSTACLE);
   EXPECT_EQ(bridge->getSizeInCellsX(), master.getSizeInCellsX());
+}
+
+// move_base runs the recovery on its own thread while the local costmap's update thread runs (a rolling
+// window, as move_base's local costmap is). clear_costmap_recovery takes only the layer's own mutex:
+// it reads the layer's origin and size, clears cells and adds extra bounds under it. So whatever the
+// update thread does to the layer's cells, its costmap_2d view and its extra bounds must happen under
+// that mutex too, and without the costmap's mutex taken inside it (updateMap holds the costmap's mutex
+// before the layer's: the other order would deadlock). This case is for ThreadSanitizer
+// (SANITIZE=thread scripts/sanitize_package.sh with ROSTESTS=bridge reports a race or a lock-order
+// inversion here); built normally it checks that the recovery and the updates finish and that the
+// last clear holds.
+TEST(Bridge, MoveBasesClearCostmapRecoveryDuringUpdatesIsSafe)
+{
+  ros::NodeHandle pn("~");
+  pn.setParam("clrt/global_frame", "odom");
+  pn.setParam("clrt/robot_base_frame", "base_link");
+  pn.setParam("clrt/update_frequency", 200.0);
+  pn.setParam("clrt/publish_frequency", 0.0);
+  pn.setParam("clrt/rolling_window", true);
+  pn.setParam("clrt/width", 10);
+  pn.setParam("clrt/height", 10);
+  pn.setParam("clrt/resolution", 0.1);
+  XmlRpc::XmlRpcValue plugins;
+  plugins[0]["name"] = "obstacles";
+  plugins[0]["type"] = "costmap_layers::move_base::ObstacleLayer";
+  pn.setParam("clrt/plugins", plugins);
+  pn.setParam("clrt/obstacles/observation_sources", "scan");
+  pn.setParam("clrt/obstacles/scan/data_type", "LaserScan");
+  pn.setParam("clrt/obstacles/scan/topic", "/bridge_clear_race_scan");
+  pn.setParam("race_clear/reset_distance", 2.0);
+  pn.setParam("race_clear/affected_maps", "local");
+  pn.setParam("race_clear/force_updating", false);  // only the update thread updates the costmap
+
+  tf2_ros::Buffer tf;
+  tf.setUsingDedicatedThread(true);
+  geometry_msgs::TransformStamped robot;
+  robot.header.frame_id = "odom";
+  robot.child_frame_id = "base_link";
+  robot.transform.translation.x = 5.0;
+  robot.transform.translation.y = 5.0;
+  robot.transform.rotation.w = 1.0;
+  tf.setTransform(robot, "test", true);
+  costmap_2d::Costmap2DROS costmap("clrt", tf);
+  auto* bridge = dynamic_cast<costmap_layers::move_base::ClearableLayerBridge*>(
+      costmap.getLayeredCostmap()->getPlugins()->front().get());
+  ASSERT_NE(bridge, nullptr);
+  auto& obstacles = dynamic_cast<costmap_layers::ObstacleLayer&>(bridge->core());
+  clear_costmap_recovery::ClearCostmapRecovery recovery;
+  recovery.initialize("race_clear", &tf, &costmap, &costmap);
+  // A mark 3 m from the robot, put back by every update until the observation goes.
+  const costmap_layers::Observation mark = pointsSeenFrom(5.0, 5.0, {{8.05f, 8.05f}});
+  for (int round = 0; round < 20; ++round)
+  {
+    obstacles.addStaticObservation(mark, true, false);
+    recovery.runBehavior();  // clears what lies outside 2 m around the robot
+    obstacles.clearStaticObservations(true, true);
+    recovery.runBehavior();
+  }
+  costmap.stop();  // joins the update thread
+  unsigned mx = 0, my = 0;
+  const std::lock_guard<costmap_2d::Costmap2D::mutex_t> lock(*bridge->getMutex());
+  ASSERT_TRUE(bridge->worldToMap(8.05, 8.05, mx, my));
+  EXPECT_EQ(bridge->getCost(mx, my), costmap_2d::NO_INFORMATION);  // the last clear holds in the layer
 }
 #endif
 
