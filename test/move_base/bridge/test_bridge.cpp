@@ -323,6 +323,46 @@ TEST(Bridge, AFilterBeforeTheStaticLayerIsWarnedAbout)
 }
 
 #ifdef COSTMAP_LAYERS_TEST_CLEAR_RECOVERY
+namespace
+{
+/// ~/<ns> as a Costmap2DROS of 10 m x 10 m at 0.1 m in frame (rolling or not, publishing nothing)
+/// whose only plugin is the bridged ObstacleLayer "obstacles", with one LaserScan source on topic.
+void setObstacleCostmapParams(const std::string& ns, const std::string& frame, double update_frequency, bool rolling,
+                              const std::string& topic)
+{
+  ros::NodeHandle pn("~");
+  pn.setParam(ns + "/global_frame", frame);
+  pn.setParam(ns + "/robot_base_frame", "base_link");
+  pn.setParam(ns + "/update_frequency", update_frequency);
+  pn.setParam(ns + "/publish_frequency", 0.0);
+  pn.setParam(ns + "/rolling_window", rolling);
+  pn.setParam(ns + "/width", 10);
+  pn.setParam(ns + "/height", 10);
+  pn.setParam(ns + "/resolution", 0.1);
+  XmlRpc::XmlRpcValue plugins;
+  plugins[0]["name"] = "obstacles";
+  plugins[0]["type"] = "costmap_layers::move_base::ObstacleLayer";
+  pn.setParam(ns + "/plugins", plugins);
+  pn.setParam(ns + "/obstacles/observation_sources", "scan");
+  pn.setParam(ns + "/obstacles/scan/data_type", "LaserScan");
+  pn.setParam(ns + "/obstacles/scan/topic", topic);
+}
+
+/// base_link at (x, y) in frame, a static transform in tf (Costmap2DROS waits for it with a timeout;
+/// it is there already).
+void putRobot(tf2_ros::Buffer& tf, const std::string& frame, double x, double y)
+{
+  tf.setUsingDedicatedThread(true);
+  geometry_msgs::TransformStamped robot;
+  robot.header.frame_id = frame;
+  robot.child_frame_id = "base_link";
+  robot.transform.translation.x = x;
+  robot.transform.translation.y = y;
+  robot.transform.rotation.w = 1.0;
+  tf.setTransform(robot, "test", true);
+}
+}  // namespace
+
 // move_base's clear-costmap recovery (its default conservative and aggressive resets) clears only the
 // layers that are costmap_2d::CostmapLayers; it logged "Layer obstacles is not derived from
 // costmap_2d::CostmapLayer" and skipped the bridged obstacle layer, so a phantom obstacle stayed and the
@@ -334,20 +374,7 @@ TEST(Bridge, AFilterBeforeTheStaticLayerIsWarnedAbout)
 TEST(Bridge, MoveBasesClearCostmapRecoveryClearsTheBridgedObstacleLayer)
 {
   ros::NodeHandle pn("~");
-  pn.setParam("clr/global_frame", "map");
-  pn.setParam("clr/robot_base_frame", "base_link");
-  pn.setParam("clr/update_frequency", 0.0);  // no update thread: updateMap runs here
-  pn.setParam("clr/publish_frequency", 0.0);
-  pn.setParam("clr/width", 10);
-  pn.setParam("clr/height", 10);
-  pn.setParam("clr/resolution", 0.1);
-  XmlRpc::XmlRpcValue plugins;
-  plugins[0]["name"] = "obstacles";
-  plugins[0]["type"] = "costmap_layers::move_base::ObstacleLayer";
-  pn.setParam("clr/plugins", plugins);
-  pn.setParam("clr/obstacles/observation_sources", "scan");
-  pn.setParam("clr/obstacles/scan/data_type", "LaserScan");
-  pn.setParam("clr/obstacles/scan/topic", "/bridge_clear_scan");
+  setObstacleCostmapParams("clr", "map", 0.0, false, "/bridge_clear_scan");  // no update thread: updateMap runs here
   for (const std::string name : {"outside", "inside"})
   {
     pn.setParam(name + "/reset_distance", 2.0);
@@ -357,14 +384,7 @@ TEST(Bridge, MoveBasesClearCostmapRecoveryClearsTheBridgedObstacleLayer)
   }
 
   tf2_ros::Buffer tf;
-  tf.setUsingDedicatedThread(true);  // Costmap2DROS waits with a timeout; the transform is here already
-  geometry_msgs::TransformStamped robot;
-  robot.header.frame_id = "map";
-  robot.child_frame_id = "base_link";
-  robot.transform.translation.x = 5.0;
-  robot.transform.translation.y = 5.0;
-  robot.transform.rotation.w = 1.0;
-  tf.setTransform(robot, "test", true);
+  putRobot(tf, "map", 5.0, 5.0);
   costmap_2d::Costmap2DROS costmap("clr", tf);
   auto* bridge = dynamic_cast<costmap_layers::move_base::ClearableLayerBridge*>(
       costmap.getLayeredCostmap()->getPlugins()->front().get());
@@ -427,34 +447,13 @@ TEST(Bridge, MoveBasesClearCostmapRecoveryClearsTheBridgedObstacleLayer)
 TEST(Bridge, MoveBasesClearCostmapRecoveryDuringUpdatesIsSafe)
 {
   ros::NodeHandle pn("~");
-  pn.setParam("clrt/global_frame", "odom");
-  pn.setParam("clrt/robot_base_frame", "base_link");
-  pn.setParam("clrt/update_frequency", 200.0);
-  pn.setParam("clrt/publish_frequency", 0.0);
-  pn.setParam("clrt/rolling_window", true);
-  pn.setParam("clrt/width", 10);
-  pn.setParam("clrt/height", 10);
-  pn.setParam("clrt/resolution", 0.1);
-  XmlRpc::XmlRpcValue plugins;
-  plugins[0]["name"] = "obstacles";
-  plugins[0]["type"] = "costmap_layers::move_base::ObstacleLayer";
-  pn.setParam("clrt/plugins", plugins);
-  pn.setParam("clrt/obstacles/observation_sources", "scan");
-  pn.setParam("clrt/obstacles/scan/data_type", "LaserScan");
-  pn.setParam("clrt/obstacles/scan/topic", "/bridge_clear_race_scan");
+  setObstacleCostmapParams("clrt", "odom", 200.0, true, "/bridge_clear_race_scan");
   pn.setParam("race_clear/reset_distance", 2.0);
   pn.setParam("race_clear/affected_maps", "local");
   pn.setParam("race_clear/force_updating", false);  // only the update thread updates the costmap
 
   tf2_ros::Buffer tf;
-  tf.setUsingDedicatedThread(true);
-  geometry_msgs::TransformStamped robot;
-  robot.header.frame_id = "odom";
-  robot.child_frame_id = "base_link";
-  robot.transform.translation.x = 5.0;
-  robot.transform.translation.y = 5.0;
-  robot.transform.rotation.w = 1.0;
-  tf.setTransform(robot, "test", true);
+  putRobot(tf, "odom", 5.0, 5.0);
   costmap_2d::Costmap2DROS costmap("clrt", tf);
   auto* bridge = dynamic_cast<costmap_layers::move_base::ClearableLayerBridge*>(
       costmap.getLayeredCostmap()->getPlugins()->front().get());
