@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "costmap_layers/core/cost_values.hpp"
+#include "costmap_layers/core/costmap_clearing.hpp"
 #include "costmap_layers/core/input_error.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
 #include "costmap_layers/core/param_reader.hpp"
@@ -119,6 +120,36 @@ TEST(RangeSensorLayer, MarksAtTheReadingAndClearsOnMaxReading)
   rig.range(sonar(7.0f), 2.0, 5.0);
   rig.update();
   EXPECT_EQ(rig.at(4, 5), 0);
+}
+
+// A clear-costmap request (move_base's recovery through the bridge, ~clear_around_robot) leaves
+// NO_INFORMATION (255) in the cleared cells, as costmap_2d's clearArea does. Read as a probability that
+// is 255 / 254 > 1: the next reading, whatever it said, made the cell certain (an obstacle where the
+// sonar saw free space). A cleared cell is an unknown prior (0.5), as a cell never seen.
+TEST(RangeSensorLayer, AClearedCellIsAnUnknownPrior)
+{
+  Rig cleared(nav2Params(false)), fresh(nav2Params(false));
+  cleared.range(sonar(2.0f), 2.5, 5.5);  // an obstacle at (4, 5) (cell centres on the beam's axis)
+  cleared.update();
+  ASSERT_EQ(cleared.at(4, 5), 254);
+  ASSERT_TRUE(clearLayerArea(*cleared.layer, 0, 0, 0, 0, false));  // every cell
+  ASSERT_EQ(cleared.layer->costmap().getCost(4, 5), NO_INFORMATION);
+  ASSERT_EQ(cleared.layer->costmap().getCost(3, 5), NO_INFORMATION);
+  for (Rig* r : {&cleared, &fresh})
+  {
+    r->range(sonar(5.0f), 2.5, 5.5);  // free up to (7, 5): (3, 5) and (4, 5) lie ahead of the reading
+    r->update();
+  }
+  // Only the reading's own cell (7, 5) is an obstacle; before, (2, 5) to (8, 5) all were.
+  for (unsigned x = 0; x < 10; ++x)
+    EXPECT_EQ(cleared.at(x, 5), x == 7 ? LETHAL_OBSTACLE : FREE_SPACE) << x;
+  // The cells the reading reached hold what they hold in a layer that never saw the first reading;
+  // where the model gives no information (p = 0.5: cost 127) the cleared cell is 127, not certain.
+  for (unsigned x = 2; x <= 8; ++x)
+    EXPECT_EQ(cleared.layer->costmap().getCost(x, 5), fresh.layer->costmap().getCost(x, 5)) << x;
+  for (unsigned x : {2u, 5u, 6u, 8u})
+    EXPECT_EQ(cleared.layer->costmap().getCost(x, 5), 127) << x;
+  EXPECT_EQ(cleared.at(7, 5), LETHAL_OBSTACLE);  // the reading's own cell
 }
 
 TEST(RangeSensorLayer, MaxReadingWithoutClearOnMaxDoesNotClear)
