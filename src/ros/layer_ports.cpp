@@ -175,17 +175,22 @@ LayerPorts::LayerPorts(ros::NodeHandle public_nh, ros::NodeHandle private_nh, co
   }
   if (!publishers_.empty() || setpoints_)
     layer.setOutputListener([this](const costmap_layers::OutputEvent& e) { publish(e); });
-  // A filter's one switch, as a service: the same flag as its `enabled` parameter.
+  // A filter's one switch, as a service: the same flag as its `enabled` parameter. Under this
+  // package's name `toggle` and under Nav2's `toggle_filter` (a Nav2 CostmapFilter's service, with its
+  // answers "Enabled" / "Disabled"), one handler.
   if (auto* filter = dynamic_cast<costmap_layers::CostmapFilter*>(&layer))
-    toggle_ = private_nh_.advertiseService<std_srvs::SetBool::Request, std_srvs::SetBool::Response>(
-        "toggle",
-        [filter](std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res)
-        {
-          filter->setEnabled(req.data);
-          res.success = true;
-          res.message = req.data ? "enabled" : "disabled";
-          return true;
-        });
+  {
+    const auto toggle = [filter](std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res)
+    {
+      filter->setEnabled(req.data);
+      res.success = true;
+      res.message = req.data ? "Enabled" : "Disabled";
+      return true;
+    };
+    for (const char* name : {"toggle", "toggle_filter"})
+      toggles_.push_back(
+          private_nh_.advertiseService<std_srvs::SetBool::Request, std_srvs::SetBool::Response>(name, toggle));
+  }
 }
 
 std::string LayerPorts::resolveTopic(const std::string& topic) const

@@ -86,7 +86,7 @@ private:
   std::size_t moves_unlogged_ = 0;                    ///< replacements since, not logged (ports_mutex_)
   std::vector<std::shared_ptr<void>> sensor_inputs_;  ///< tf gates with their subscribers
   std::map<std::pair<costmap_layers::OutputKind, std::string>, ros::Publisher> publishers_;  ///< by kind, topic
-  ros::ServiceServer toggle_;
+  std::vector<ros::ServiceServer> toggles_;     ///< a filter's switch: `toggle` and Nav2's `toggle_filter`
   std::unique_ptr<SetpointApplier> setpoints_;  ///< the Setpoints output's worker (ZoneParameterFilter)
   /// By resolved topic, in order. Guarded by receipts_mutex_: a port replaced at run time adds a topic
   /// on a callback thread while the diagnostics read them on another.

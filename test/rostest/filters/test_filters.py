@@ -65,6 +65,17 @@ class FiltersTest(unittest.TestCase):
         self.assertTrue(toggle(True).success)
         self.assertTrue(self.grid.wait_until(lambda g: all(g.at(x, y) == 100 for x, y in dock), 20.0),
                         "switching the keepout filter on again did not restore it")
+        # Nav2's name for the same switch, with Nav2's answers.
+        nav2_toggle = rospy.ServiceProxy("/costmap_node/keepout_filter/toggle_filter", SetBool)
+        nav2_toggle.wait_for_service(10.0)
+        answer = nav2_toggle(False)
+        self.assertEqual((answer.success, answer.message), (True, "Disabled"))
+        self.assertTrue(self.grid.wait_until(lambda g: g.at(14.0, 8.5) == 0, 20.0),
+                        "toggle_filter false did not switch the keepout filter off")
+        answer = nav2_toggle(True)
+        self.assertEqual((answer.success, answer.message), (True, "Enabled"))
+        self.assertTrue(self.grid.wait_until(lambda g: all(g.at(x, y) == 100 for x, y in dock), 20.0),
+                        "toggle_filter true did not switch the keepout filter on again")
 
     def test_3_tool_gives_the_nodes_grid(self):
         example = rospy.get_param("~example")
