@@ -380,6 +380,30 @@ TEST(FilterInfoSpeed, PercentAsNav2Publishes)
   EXPECT_EQ(r.ctx->countKey("mask/value"), 0);
 }
 
+// Nav2's speed_filter_test testInfoRePublish: the info re-sent on its topic with another type, base
+// and multiplier, the mask topic the same: the mask stays, and the next limits follow the new info
+// (m/s 1.23 + 4.5 v, then percent 0.1 + 0.2 v: 7.1 % for 35, 20.1 % for 100).
+TEST(FilterInfoSpeed, InfoResentWithAnotherTypeKeepsTheMask)
+{
+  Rig<SpeedFilter> r(speedParams(0.0), "speed_filter");
+  // The last (in percent, value) published, the value to 1e-4 (float32 in Nav2's message).
+  auto last = [&](double x)
+  {
+    r.cycle(x, 0.5);
+    const auto [percent, value] = r.ctx->published_limits.back();
+    return std::make_pair(percent, std::round(value * 1e4) / 1e4);
+  };
+  r.ctx->publishFilterInfo(info(2, "/speed_filter_mask", 1.23, 4.5));
+  ASSERT_EQ(r.ctx->publishGridOn("/speed_filter_mask", row({35, 100})), 1);
+  EXPECT_EQ(last(0.5), std::make_pair(false, 158.73));  // 1.23 + 4.5 * 35 m/s
+  const int replaced = r.ctx->replaced_inputs;
+  r.ctx->publishFilterInfo(info(1, "/speed_filter_mask", 0.1, 0.2));
+  EXPECT_EQ(r.ctx->replaced_inputs, replaced);  // the same topic: not subscribed again
+  EXPECT_NE(r.filter->getMask(), nullptr);      // and the mask kept
+  EXPECT_EQ(last(0.5), std::make_pair(true, 7.1));
+  EXPECT_EQ(last(1.5), std::make_pair(true, 20.1));
+}
+
 TEST(FilterInfoSpeed, MetresPerSecond)
 {
   Rig<SpeedFilter> r(speedParams(0.0), "speed_filter");
