@@ -1,16 +1,18 @@
-// costmap_2d's own inflation and obstacle test scenarios (navigation noetic, costmap_2d/test/
-// inflation_tests.cpp and obstacle_tests.cpp, BSD), rebuilt on this package's layers: the same maps,
-// footprints, parameters (its inflation_tests.launch sets cost_scaling_factor 1) and observations, and
-// the numbers costmap_2d's tests expect. The expected values are costmap_2d's, not this package's; the
-// cost formula used for the "at least" checks is written out here from costmap_2d's
-// InflationLayer::computeCost.
+// costmap_2d's own inflation, obstacle and footprint test scenarios (navigation noetic, costmap_2d/test/
+// inflation_tests.cpp, obstacle_tests.cpp, footprint_tests.cpp with footprint_tests.launch, BSD), rebuilt on this
+// package's layers: the same maps, footprints, parameters (its inflation_tests.launch sets cost_scaling_factor 1) and
+// observations, and the numbers costmap_2d's tests expect. The expected values are costmap_2d's, not this package's;
+// the cost formula used for the "at least" checks is written out here from costmap_2d's InflationLayer::computeCost.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <memory>
+#include <string>
 #include <vector>
 
+#include "costmap_layers/core/config_compat.hpp"
 #include "costmap_layers/core/cost_values.hpp"
+#include "costmap_layers/core/costmap_config.hpp"
 #include "costmap_layers/core/inflation_layer.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
 #include "costmap_layers/core/obstacle_layer.hpp"
@@ -269,4 +271,118 @@ TEST(Costmap2dObstacleTests, ZThreshold)
   }
   lc.updateMap(0, 0, 0);
   EXPECT_EQ(countValues(lc.getCostmap(), LETHAL_OBSTACLE), 1u);
+}
+
+namespace
+{
+ParamValue footprintList(const std::vector<std::vector<double>>& points)
+{
+  ParamValue list = ParamValue::makeList();
+  for (const auto& p : points)
+  {
+    ParamValue point = ParamValue::makeList();
+    for (double v : p)
+      point.push(ParamValue::makeDouble(v));
+    list.push(point);
+  }
+  return list;
+}
+
+/// The padded footprint costmap_2d's Costmap2DROS makes for a costmap namespace ns, whose parent
+/// namespace holds parent (footprint_tests.launch: "padded/string" finds "padded/footprint").
+Footprint footprintOf(const ParamValue& ns, const ParamValue& parent = ParamValue::makeMap())
+{
+  const CompatResult r = applyCostmap2dRules(ns, {ParentNamespace{"/parent", parent}});
+  return parseCostmapConfig(r.params).footprint.padded();
+}
+
+ParamValue namespaceOf(std::initializer_list<std::pair<const char*, ParamValue>> keys)
+{
+  ParamValue ns = ParamValue::makeMap();
+  for (const auto& [k, v] : keys)
+    ns.set(k, v);
+  return ns;
+}
+}  // namespace
+
+// footprint_tests: unpadded_footprint_from_string_param and padded_footprint_from_string_param (the
+// footprint found in the parent namespace, the padding in the costmap's).
+TEST(Costmap2dFootprintTests, FootprintFromStringParam)
+{
+  const ParamValue parent = namespaceOf({{"footprint", ParamValue::makeString("[[1, 1], [-1, 1], [-1, -1]]")}});
+  for (const auto& [padding, reach] : {std::pair<double, double>{0.0, 1.0}, {0.5, 1.5}})
+  {
+    const Footprint f = footprintOf(namespaceOf({{"footprint_padding", ParamValue::makeDouble(padding)}}), parent);
+    ASSERT_EQ(f.size(), 3u) << padding;
+    EXPECT_EQ(f[0].x(), reach);
+    EXPECT_EQ(f[0].y(), reach);
+    EXPECT_EQ(f[1].x(), -reach);
+    EXPECT_EQ(f[1].y(), reach);
+    EXPECT_EQ(f[2].x(), -reach);
+    EXPECT_EQ(f[2].y(), -reach);
+  }
+}
+
+// radius_param: robot_radius 10 from the parent, padding 0: 16 points, (10, 0) first, (0, 10) fifth.
+TEST(Costmap2dFootprintTests, RadiusParam)
+{
+  const Footprint f = footprintOf(namespaceOf({{"footprint_padding", ParamValue::makeDouble(0.0)}}),
+                                  namespaceOf({{"robot_radius", ParamValue::makeDouble(10.0)}}));
+  ASSERT_EQ(f.size(), 16u);
+  EXPECT_EQ(f[0].x(), 10.0);
+  EXPECT_EQ(f[0].y(), 0.0);
+  EXPECT_NEAR(f[4].x(), 0.0, 1e-4);
+  EXPECT_NEAR(f[4].y(), 10.0, 1e-4);
+}
+
+// footprint_from_xmlrpc_param and footprint_from_same_level_param (a list and a string in the
+// costmap's own namespace).
+TEST(Costmap2dFootprintTests, FootprintFromXmlRpcAndSameLevelParam)
+{
+  const Footprint square =
+      footprintOf(namespaceOf({{"footprint_padding", ParamValue::makeDouble(0.0)},
+                               {"footprint", footprintList({{0.1, 0.1}, {-0.1, 0.1}, {-0.1, -0.1}, {0.1, -0.1}})}}));
+  ASSERT_EQ(square.size(), 4u);
+  const double expected[4][2] = {{0.1, 0.1}, {-0.1, 0.1}, {-0.1, -0.1}, {0.1, -0.1}};
+  for (int k = 0; k < 4; ++k)
+  {
+    EXPECT_EQ(static_cast<float>(square[k].x()), static_cast<float>(expected[k][0])) << k;
+    EXPECT_EQ(static_cast<float>(square[k].y()), static_cast<float>(expected[k][1])) << k;
+  }
+  const Footprint same = footprintOf(namespaceOf({{"footprint_padding", ParamValue::makeDouble(0.0)},
+                                                  {"footprint", ParamValue::makeString("[[1, 2], [3, 4], [5, 6]]")}}));
+  ASSERT_EQ(same.size(), 3u);
+  for (int k = 0; k < 3; ++k)
+  {
+    EXPECT_EQ(same[k].x(), 1.0 + 2 * k) << k;
+    EXPECT_EQ(same[k].y(), 2.0 + 2 * k) << k;
+  }
+}
+
+// footprint_from_xmlrpc_param_failure: a point of three values stops Costmap2DROS (it throws); here
+// the configuration is refused.
+TEST(Costmap2dFootprintTests, FootprintFromXmlRpcParamFailure)
+{
+  const ParamValue ns =
+      namespaceOf({{"footprint_padding", ParamValue::makeDouble(0.0)},
+                   {"footprint", footprintList({{0.1, 0.1}, {-0.1, 0.1, 77.0}, {-0.1, -0.1}, {0.1, -0.1}})}});
+  std::string message;
+  try
+  {
+    footprintOf(ns);
+  }
+  catch (const std::exception& e)
+  {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("footprint"), std::string::npos) << message;
+}
+
+// footprint_empty: no footprint, no robot_radius: costmap_2d's robot_radius 0.46 and footprint_padding
+// 0.01 give 16 points, the first at x = 0.47.
+TEST(Costmap2dFootprintTests, FootprintEmpty)
+{
+  const Footprint f = footprintOf(ParamValue::makeMap());
+  ASSERT_EQ(f.size(), 16u);
+  EXPECT_NEAR(f[0].x(), 0.47, 1e-4);
 }
