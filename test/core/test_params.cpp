@@ -669,6 +669,22 @@ TEST(FootprintTest, ParseFootprintStringDirectly)
   EXPECT_THROW(parseFootprintString("[[inf, 1], [-1, 1], [-1, -1]]"), std::invalid_argument);
 }
 
+// costmap_2d's array_parser_test (parseVVF, what its footprint strings go through): basic_operation's
+// number forms (.3, -4e4; a third point here, since a footprint needs three), and missing_open,
+// missing_close and wrong_depth refused.
+TEST(FootprintTest, Costmap2dArrayParserCases)
+{
+  const Footprint fp = parseFootprintString("[[1, 2.2], [.3, -4e4], [0, 0]]");
+  ASSERT_EQ(fp.size(), 3u);
+  EXPECT_EQ(static_cast<float>(fp[0].x()), 1.0f);
+  EXPECT_EQ(static_cast<float>(fp[0].y()), 2.2f);
+  EXPECT_EQ(static_cast<float>(fp[1].x()), 0.3f);
+  EXPECT_EQ(static_cast<float>(fp[1].y()), -40000.0f);
+  for (const char* bad :
+       {"[1, 2.2], [.3, -4e4], [0, 0]]", "[[1, 2.2], [.3, -4e4], [0, 0]", "[1, 2.2], [.3, -4e4], [0, 0]"})
+    EXPECT_THROW(parseFootprintString(bad), std::invalid_argument) << bad;
+}
+
 // The worst a parameter can hold: a string of megabytes. It is read in one pass (a copy of the rest
 // of the text per number made 200,000 points take hours), and the error quotes it clipped.
 TEST(FootprintTest, LongFootprintStringsAreReadInOnePassAndQuotedClipped)
