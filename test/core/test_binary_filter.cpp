@@ -128,6 +128,25 @@ TEST(BinaryFilter, PublishesTheInitialStateThenChangesOnly)
   EXPECT_EQ(rig.ctx->published_states, (std::vector<bool>{false, true, false, true, false, true, false, true}));
 }
 
+// Nav2's binary_filter_test testDifferentFrame: the mask in another frame than the costmap's; the
+// robot's cell is looked up through the transform (map -> odom moves points by (-2, 0) here).
+TEST(BinaryFilter, MaskInAnotherFrame)
+{
+  Rig rig;
+  const Transform2D to_mask{-2.0, 0.0, 0.0};
+  rig.ctx->transforms[{"odom", "map"}] = to_mask;
+  rig.ctx->transforms[{"map", "odom"}] = to_mask.inverse();
+  OccupancyGridData mask = rowMask({0, 100, 0, 100});
+  mask.frame_id = "odom";
+  rig.ctx->publishGrid(GridKind::Mask, mask);
+  rig.at(2.5);  // odom 0.5: 0
+  rig.at(3.5);  // odom 1.5: 100 -> flips
+  rig.at(4.5);  // odom 2.5: 0
+  rig.at(1.5);  // odom -0.5: off the mask, default (unchanged)
+  rig.at(5.5);  // odom 3.5: 100
+  EXPECT_EQ(rig.ctx->published_states, (std::vector<bool>{false, true, false, true}));
+}
+
 TEST(BinaryFilter, UnknownCellKeepsTheStateAndOffMaskIsDefault)
 {
   ParamValue p = withParam("default_state", ParamValue::makeBool(true));
