@@ -479,9 +479,11 @@ void ObstacleLayer::raytraceFreespace(const Observation& obs, double* min_x, dou
   }
   touch(ox, oy, min_x, min_y, max_x, max_y);
   const double min_cells = costmap_.cellDistance(obs.raytrace_min_range);
-  const double max_cells = obs.raytrace_max_range / costmap_.getResolution();  // NaN clears nothing
-  // The walk itself stops a little beyond (cellDistance saturates for huge ranges).
+  // costmap_2d's reach: the range in whole cells, rounded up (cellDistance), and every cell of the walk
+  // up to that many cells along the line, the end cell included (its raytraceLine). NaN clears nothing.
   const unsigned int range_cells = costmap_.cellDistance(obs.raytrace_max_range);
+  const double max_cells = std::isnan(obs.raytrace_max_range) ? -1.0 : static_cast<double>(range_cells);
+  // The walk itself stops a little beyond (cellDistance saturates for huge ranges).
   const unsigned int walk_cells = range_cells < 0xFFFFFFFDu ? range_cells + 2 : 0xFFFFFFFFu;
   const unsigned int size_x = costmap_.getSizeInCellsX();
   uint8_t* grid = costmap_.data();
@@ -497,19 +499,20 @@ void ObstacleLayer::raytraceFreespace(const Observation& obs, double* min_x, dou
     costmap_.worldToMapEnforceBounds(ox + t * (p.x - ox), oy + t * (p.y - oy), cx, cy);
     const int dx = cx - static_cast<int>(x0), dy = cy - static_cast<int>(y0);
     const int major = std::max(std::abs(dx), std::abs(dy));
-    if (major == 0) return;  // the reading is in the origin's cell: the end cell is never cleared
-    // The walk makes one step of the major axis per cell; step k lies k * step cells along the line
-    // from the origin's cell. Cleared: min_cells <= k * step < raytrace_max_range in cells. Both ends
-    // are applied on the same line (costmap_2d restarts the line from a rounded cell at the minimum
-    // range, which bends it, and rounds the maximum down to whole steps of the major axis).
-    const double step = std::hypot(static_cast<double>(dx), static_cast<double>(dy)) / major;
+    // The walk makes one step of the major axis per cell and visits the end cell (the reading's, or
+    // where the grid cuts the line) last; step k lies k * step cells along the line from the origin's
+    // cell. Cleared: min_cells <= k * step <= the range in whole cells, as costmap_2d clears: the
+    // reading's own cell too (marked again afterwards when the reading marks), and a reading in the
+    // origin's cell clears that cell. Both ends are applied on the same line (costmap_2d restarts the
+    // line from a rounded cell at the minimum range, which bends it).
+    const double step = major == 0 ? 0.0 : std::hypot(static_cast<double>(dx), static_cast<double>(dy)) / major;
     unsigned int k = 0, last = 0;
     bool visited = false;
     costmap_.raytraceLine(
         [&](unsigned int index)
         {
           const double along = static_cast<double>(k++) * step;
-          if (along >= min_cells && along < max_cells)
+          if (along >= min_cells && along <= max_cells)
           {
             grid[index] = FREE_SPACE;
             last = index;

@@ -584,41 +584,44 @@ TEST(Costmap2DPolygons, SetConvexPolygonCostRefusesVertexOutside)
 
 // ---------------------------------------------------------------- raytraceLine and walkLine
 
-TEST(Costmap2DRaytrace, HorizontalExcludesEndCell)
+// costmap_2d's raytraceLine (costmap_2d.h, bresenham2D; Nav2's raytrace_line_2d.hpp the same): the loop
+// visits one cell per step of the major axis, up to max_length scaled to the line, and one more call
+// after the loop visits the cell where it stopped: the end cell itself when the line is not cut.
+TEST(Costmap2DRaytrace, HorizontalIncludesEndCell)
 {
   Costmap2D g(10, 10, 1.0, 0, 0);
-  const std::vector<Cell> expected = {{0, 3}, {1, 3}, {2, 3}, {3, 3}, {4, 3}};
+  const std::vector<Cell> expected = {{0, 3}, {1, 3}, {2, 3}, {3, 3}, {4, 3}, {5, 3}};
   EXPECT_EQ(raytrace(g, 0, 3, 5, 3), expected);
 }
 
 TEST(Costmap2DRaytrace, VerticalDownwardsAndLeftwards)
 {
   Costmap2D g(10, 10, 1.0, 0, 0);
-  const std::vector<Cell> down = {{2, 5}, {2, 4}, {2, 3}, {2, 2}};
+  const std::vector<Cell> down = {{2, 5}, {2, 4}, {2, 3}, {2, 2}, {2, 1}};
   EXPECT_EQ(raytrace(g, 2, 5, 2, 1), down);
-  const std::vector<Cell> left = {{9, 0}, {8, 0}, {7, 0}};
+  const std::vector<Cell> left = {{9, 0}, {8, 0}, {7, 0}, {6, 0}};
   EXPECT_EQ(raytrace(g, 9, 0, 6, 0), left);
 }
 
 TEST(Costmap2DRaytrace, DiagonalAndShallowLine)
 {
   Costmap2D g(10, 10, 1.0, 0, 0);
-  const std::vector<Cell> diag = {{0, 0}, {1, 1}, {2, 2}};
+  const std::vector<Cell> diag = {{0, 0}, {1, 1}, {2, 2}, {3, 3}};
   EXPECT_EQ(raytrace(g, 0, 0, 3, 3), diag);
-  const std::vector<Cell> anti = {{5, 0}, {4, 1}, {3, 2}};
+  const std::vector<Cell> anti = {{5, 0}, {4, 1}, {3, 2}, {2, 3}};
   EXPECT_EQ(raytrace(g, 5, 0, 2, 3), anti);
   // (0,0) -> (5,2): Bresenham steps in y after the 2nd and 4th x step.
-  const std::vector<Cell> shallow = {{0, 0}, {1, 0}, {2, 1}, {3, 1}, {4, 2}};
+  const std::vector<Cell> shallow = {{0, 0}, {1, 0}, {2, 1}, {3, 1}, {4, 2}, {5, 2}};
   EXPECT_EQ(raytrace(g, 0, 0, 5, 2), shallow);
 }
 
-TEST(Costmap2DRaytrace, SameStartAndEndVisitsNothing)
+TEST(Costmap2DRaytrace, SameStartAndEndVisitsThatCell)
 {
   Costmap2D g(10, 10, 1.0, 0, 0);
-  EXPECT_TRUE(raytrace(g, 4, 4, 4, 4).empty());
+  EXPECT_EQ(raytrace(g, 4, 4, 4, 4), (std::vector<Cell>{{4, 4}}));  // no step, then the call after the loop
 }
 
-TEST(Costmap2DRaytrace, GeneralLinesAreConnectedAndStopBeforeTheEnd)
+TEST(Costmap2DRaytrace, GeneralLinesAreConnectedAndEndAtTheEnd)
 {
   Costmap2D g(40, 40, 1.0, 0, 0);
   const std::vector<std::pair<Cell, Cell>> lines = {{{3, 7}, {31, 12}},  {{31, 12}, {3, 7}},  {{20, 20}, {2, 39}},
@@ -629,10 +632,10 @@ TEST(Costmap2DRaytrace, GeneralLinesAreConnectedAndStopBeforeTheEnd)
     const Cell a = l.first, b = l.second;
     const auto cells = raytrace(g, a.first, a.second, b.first, b.second);
     const int major = std::max(std::abs(b.first - a.first), std::abs(b.second - a.second));
-    ASSERT_EQ(static_cast<int>(cells.size()), major);
+    ASSERT_EQ(static_cast<int>(cells.size()), major + 1);
     EXPECT_EQ(cells.front(), a);
-    EXPECT_TRUE(adjacent8(cells.back(), b));
-    EXPECT_EQ(std::count(cells.begin(), cells.end(), b), 0);
+    EXPECT_EQ(cells.back(), b);
+    EXPECT_EQ(std::count(cells.begin(), cells.end(), b), 1);
     for (std::size_t k = 1; k < cells.size(); ++k)
       EXPECT_TRUE(adjacent8(cells[k - 1], cells[k]));
     // Each visited cell lies within half a cell of the ideal line (Bresenham's guarantee, minor axis).
@@ -649,15 +652,16 @@ TEST(Costmap2DRaytrace, GeneralLinesAreConnectedAndStopBeforeTheEnd)
 TEST(Costmap2DRaytrace, MaxLengthStopsEarly)
 {
   Costmap2D g(20, 20, 1.0, 0, 0);
-  const std::vector<Cell> four = {{0, 0}, {1, 0}, {2, 0}, {3, 0}};
-  EXPECT_EQ(raytrace(g, 0, 0, 10, 0, 4), four);
-  EXPECT_EQ(raytrace(g, 0, 0, 10, 0, 100).size(), 10u);  // longer than the ray: end still excluded
-  EXPECT_TRUE(raytrace(g, 0, 0, 10, 0, 0).empty());
-  // Diagonal (0,0)-(6,6) is 8.49 cells long; max_length 3 scales the 6 major steps by 3/8.49: 2 cells.
-  const unsigned int expected = static_cast<unsigned int>(3.0 / std::hypot(6.0, 6.0) * 6.0);
+  // 4 steps, then the cell where they stopped.
+  const std::vector<Cell> five = {{0, 0}, {1, 0}, {2, 0}, {3, 0}, {4, 0}};
+  EXPECT_EQ(raytrace(g, 0, 0, 10, 0, 4), five);
+  EXPECT_EQ(raytrace(g, 0, 0, 10, 0, 100).size(), 11u);  // longer than the ray: up to the end cell
+  EXPECT_EQ(raytrace(g, 0, 0, 10, 0, 0), (std::vector<Cell>{{0, 0}}));
+  // Diagonal (0,0)-(6,6) is 8.49 cells long; max_length 3 scales the 6 major steps by 3/8.49: 2 steps.
+  const unsigned int steps = static_cast<unsigned int>(3.0 / std::hypot(6.0, 6.0) * 6.0);
   const auto diag = raytrace(g, 0, 0, 6, 6, 3);
-  ASSERT_EQ(diag.size(), expected);
-  EXPECT_EQ(diag, (std::vector<Cell>{{0, 0}, {1, 1}}));
+  ASSERT_EQ(diag.size(), steps + 1);
+  EXPECT_EQ(diag, (std::vector<Cell>{{0, 0}, {1, 1}, {2, 2}}));
   for (const auto& c : diag)
     EXPECT_LE(std::hypot(c.first, c.second), 3.0);
 }
@@ -665,14 +669,14 @@ TEST(Costmap2DRaytrace, MaxLengthStopsEarly)
 TEST(Costmap2DRaytrace, MinLengthSkipsTheStart)
 {
   Costmap2D g(20, 20, 1.0, 0, 0);
-  const std::vector<Cell> from3 = {{3, 0}, {4, 0}, {5, 0}, {6, 0}, {7, 0}, {8, 0}, {9, 0}};
+  const std::vector<Cell> from3 = {{3, 0}, {4, 0}, {5, 0}, {6, 0}, {7, 0}, {8, 0}, {9, 0}, {10, 0}};
   EXPECT_EQ(raytrace(g, 0, 0, 10, 0, 0xFFFFFFFFu, 3), from3);
-  const std::vector<Cell> back = {{7, 5}, {6, 5}, {5, 5}};
+  const std::vector<Cell> back = {{7, 5}, {6, 5}, {5, 5}, {4, 5}};
   EXPECT_EQ(raytrace(g, 10, 5, 4, 5, 0xFFFFFFFFu, 3), back);
   EXPECT_TRUE(raytrace(g, 0, 0, 2, 0, 0xFFFFFFFFu, 3).empty());  // the ray is shorter than min_length
   // Diagonal with min_length: starts at the cell min_length along the ray (truncated), 3/sqrt(2) = 2.12.
   const auto diag = raytrace(g, 0, 0, 6, 6, 0xFFFFFFFFu, 3);
-  EXPECT_EQ(diag, (std::vector<Cell>{{2, 2}, {3, 3}, {4, 4}, {5, 5}}));
+  EXPECT_EQ(diag, (std::vector<Cell>{{2, 2}, {3, 3}, {4, 4}, {5, 5}, {6, 6}}));
 }
 
 TEST(Costmap2DWalkLine, IncludesBothEnds)

@@ -320,15 +320,16 @@ TEST(ObstacleLayer, ObstacleRangesAtFineResolution)
 
 TEST(ObstacleLayer, RaytraceRangesCutRays)
 {
-  // Origin (0.5, 5.5); a hit 8 m away with raytrace_max_range 3: cells x = 0..2 cleared, not beyond.
+  // Origin (0.5, 5.5); a hit 8 m away with raytrace_max_range 3: as costmap_2d, 3 steps of the walk and
+  // the cell where they stop, x = 0..3, cleared; not beyond.
   Rig rig(obstacleParams({}, {{"raytrace_max_range", D(3.0)}, {"marking", B(false)}}), false, true);
   rig.cloud({{8.5, 5.5, 0.5}}, poseAt(0.5, 5.5, 0.5));
   rig.update();
-  for (unsigned x = 0; x < 3; ++x)
+  for (unsigned x = 0; x <= 3; ++x)
     EXPECT_EQ(rig.master().getCost(x, 5), FREE_SPACE) << x;
   for (unsigned x = 4; x < 10; ++x)
     EXPECT_EQ(rig.master().getCost(x, 5), NO_INFORMATION) << x;
-  EXPECT_EQ(count(rig.master(), FREE_SPACE), 3);
+  EXPECT_EQ(count(rig.master(), FREE_SPACE), 4);
 
   // raytrace_min_range 2: the first two cells stay unknown.
   Rig near(obstacleParams({}, {{"raytrace_min_range", D(2.0)}, {"marking", B(false)}}), false, true);
@@ -338,14 +339,44 @@ TEST(ObstacleLayer, RaytraceRangesCutRays)
   EXPECT_EQ(near.master().getCost(1, 5), NO_INFORMATION);
   EXPECT_EQ(near.master().getCost(2, 5), FREE_SPACE);
   EXPECT_EQ(near.master().getCost(7, 5), FREE_SPACE);
-  EXPECT_EQ(near.master().getCost(8, 5), NO_INFORMATION);  // the end cell is never cleared
+  EXPECT_EQ(near.master().getCost(8, 5), FREE_SPACE);  // the reading's cell too (this source does not mark)
+  EXPECT_EQ(near.master().getCost(9, 5), NO_INFORMATION);
 
   // A hit outside the grid still clears the part of its ray inside.
   Rig out(obstacleParams({}, {{"marking", B(false)}}), false, true);
   out.cloud({{25.5, 5.5, 0.5}}, poseAt(0.5, 5.5, 0.5));
   out.update();
-  for (unsigned x = 0; x < 9; ++x)
+  for (unsigned x = 0; x < 10; ++x)  // the border cell too, where the grid cuts the ray
     EXPECT_EQ(out.master().getCost(x, 5), FREE_SPACE) << x;
+}
+
+// costmap_2d's raytraceLine visits the end cell of a ray (one call after its loop), so a ray clears the
+// cell it ends in, and the marking that follows marks it again if the reading marks. Two marks that
+// stayed here for good (before, the end cell was never cleared):
+// - an obstacle that the sensor now sees beyond obstacle_max_range but within raytrace_max_range:
+//   costmap_2d forgets it (its cell is the ray's end);
+// - a mark in the grid's border cell, where every ray leaving the grid ends (a rolling window's edge).
+TEST(ObstacleLayer, ARayClearsTheCellItEndsInAsCostmap2dDoes)
+{
+  Rig rig(obstacleParams({{"footprint_clearing_enabled", B(false)}},
+                         {{"obstacle_max_range", D(2.5)}, {"raytrace_max_range", D(3.0)}}),
+          false, true);
+  rig.cloud({{2.9, 5.5, 0.5}}, poseAt(0.5, 5.5, 0.5));  // 2.4 m: marks (2, 5)
+  rig.update();
+  ASSERT_EQ(rig.master().getCost(2, 5), LETHAL_OBSTACLE);
+  rig.cloud({{2.9, 5.5, 0.5}}, poseAt(0.2, 5.5, 0.5));  // 2.7 m: beyond the obstacle range
+  rig.update();
+  EXPECT_EQ(rig.master().getCost(2, 5), FREE_SPACE);
+  EXPECT_EQ(count(rig.master(), LETHAL_OBSTACLE), 0);
+
+  Rig edge(obstacleParams({{"footprint_clearing_enabled", B(false)}}), false, true);
+  edge.cloud({{9.5, 5.5, 0.5}}, poseAt(5.5, 5.5, 0.5));  // the border cell (9, 5)
+  edge.update(5.5, 5.5);
+  ASSERT_EQ(edge.master().getCost(9, 5), LETHAL_OBSTACLE);
+  edge.cloud({{25.5, 5.5, 0.5}}, poseAt(5.5, 5.5, 0.5));  // the obstacle went: the beam leaves the grid
+  edge.update(5.5, 5.5);
+  EXPECT_EQ(edge.master().getCost(9, 5), FREE_SPACE);
+  EXPECT_EQ(count(edge.master(), LETHAL_OBSTACLE), 0);
 }
 
 TEST(ObstacleLayer, LaserScanMarksAndClearsAndInfClearsOnly)
@@ -366,7 +397,8 @@ TEST(ObstacleLayer, LaserScanMarksAndClearsAndInfClearsOnly)
   EXPECT_EQ(rig.master().getCost(8, 5), LETHAL_OBSTACLE);
   EXPECT_EQ(rig.master().getCost(6, 5), FREE_SPACE);
   EXPECT_EQ(rig.master().getCost(5, 3), FREE_SPACE);      // cleared by the inf beam (to 4 m: y = 1.5)
-  EXPECT_EQ(rig.master().getCost(5, 1), NO_INFORMATION);  // its end cell is not cleared nor marked
+  EXPECT_EQ(rig.master().getCost(5, 1), FREE_SPACE);      // its end cell cleared too (costmap_2d), not marked
+  EXPECT_EQ(rig.master().getCost(5, 0), NO_INFORMATION);  // beyond the 4 m
   EXPECT_EQ(count(rig.master(), LETHAL_OBSTACLE), 1);
   EXPECT_EQ(rig.master().getCost(5, 7), NO_INFORMATION);  // the NaN beam did nothing
 }
@@ -699,9 +731,9 @@ TEST(ObstacleLayer, ExtremeRaytraceRanges)
           false, true);
   far.cloud({{25.5, 5.5, 0.5}}, poseAt(0.5, 5.5, 0.5));
   far.update();
-  for (unsigned x = 0; x < 9; ++x)  // the edge cell is the line's end cell, never cleared
+  for (unsigned x = 0; x < 10; ++x)  // the edge cell (the line's end cell) too
     EXPECT_EQ(far.master().getCost(x, 5), FREE_SPACE) << x;
-  EXPECT_EQ(count(far.master(), FREE_SPACE), 9);
+  EXPECT_EQ(count(far.master(), FREE_SPACE), 10);
   Rig none(
       obstacleParams({{"footprint_clearing_enabled", B(false)}}, {{"marking", B(false)},
                                                                   {"raytrace_min_range", D(limits::kMaxDistance)},

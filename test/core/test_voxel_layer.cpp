@@ -152,27 +152,33 @@ TEST(VoxelGrid, ShiftKeepsSharedColumns)
   EXPECT_EQ(g.getVoxel(1, 3, 1), VoxelStatus::Unknown);
 }
 
-TEST(VoxelGrid, WalkLineExcludesTheEndVoxelAndStaysInside)
+// costmap_2d's voxel_grid raytraceLine (bresenham3D) calls its action once more after its loop: the
+// end voxel is cleared too.
+TEST(VoxelGrid, WalkLineIncludesTheEndVoxelAndStaysInside)
 {
   VoxelGrid g;
   g.resize(10, 10, 8);
   std::vector<std::array<unsigned, 3>> seen;
   auto at = [&](unsigned index, unsigned z) { seen.push_back({index % 10, index / 10, z}); };
   g.walkLine(at, 0.5, 0.5, 0.5, 6.5, 0.5, 6.5);
-  ASSERT_EQ(seen.size(), 6u);
-  for (unsigned i = 0; i < 6; ++i)
+  ASSERT_EQ(seen.size(), 7u);
+  for (unsigned i = 0; i < 7; ++i)
   {
     EXPECT_EQ(seen[i][0], i);
     EXPECT_EQ(seen[i][1], 0u);
     EXPECT_EQ(seen[i][2], i);
   }
   seen.clear();
-  g.walkLine(at, 2.5, 2.5, 2.5, 2.7, 2.9, 2.1);  // inside one voxel: nothing
-  EXPECT_TRUE(seen.empty());
+  g.walkLine(at, 2.5, 2.5, 2.5, 2.7, 2.9, 2.1);  // inside one voxel: that voxel, once
+  EXPECT_EQ(seen, (std::vector<std::array<unsigned, 3>>{{2, 2, 2}}));
+  seen.clear();
   g.walkLine(at, 0.0, 0.0, 0.0, 9.999, 9.999, 7.999);
-  EXPECT_FALSE(seen.empty());
+  ASSERT_FALSE(seen.empty());
   for (const auto& s : seen)
     EXPECT_TRUE(s[0] < 10 && s[1] < 10 && s[2] < 8);
+  EXPECT_EQ(seen.back(), (std::array<unsigned, 3>{9, 9, 7}));
+  for (std::size_t k = 1; k < seen.size(); ++k)
+    EXPECT_NE(seen[k], seen[k - 1]);  // each voxel once
 }
 
 TEST(VoxelLayer, MarksIn3D)

@@ -124,8 +124,10 @@ public:
   bool setConvexPolygonCost(const std::vector<Eigen::Vector2d>& polygon, uint8_t cost);
 
   /// Walks the cells of the line (x0,y0)-(x1,y1) with Bresenham's algorithm, calling at(index) on each
-  /// cell from the start, skipping the first min_length cells and stopping after max_length cells.
-  /// The end cell itself is not visited (costmap_2d's raytrace contract). Nothing is allocated.
+  /// cell from the start, skipping the first min_length cells: n = min(major-axis cells, max_length
+  /// scaled to the line) steps, then the cell where the walk stopped, so n + 1 cells, the end cell
+  /// itself included when max_length does not cut the line (costmap_2d's and Nav2's bresenham2D, whose
+  /// last call comes after the loop). Nothing is allocated.
   template <class ActionType>
   void raytraceLine(ActionType&& at, unsigned int x0, unsigned int y0, unsigned int x1, unsigned int y1,
                     unsigned int max_length = 0xFFFFFFFFu, unsigned int min_length = 0) const;
@@ -172,6 +174,7 @@ void Costmap2D::bresenham(ActionType& at, unsigned int abs_da, unsigned int abs_
       error_b -= abs_da;
     }
   }
+  at(offset);
 }
 
 template <class ActionType>

@@ -60,7 +60,8 @@ public:
   void clearVoxel(unsigned int x, unsigned int y, unsigned int z);
 
   /// Walks the voxels of the segment between two points given in voxel units (x / resolution, ...),
-  /// both inside the grid, from the first; the voxel holding the end point is not visited. Calls
+  /// both inside the grid, from the first to the voxel holding the end point, that one included (as
+  /// costmap_2d's voxel_grid raytraceLine, whose last call comes after its loop). Calls
   /// at(column_index, z) once per voxel; nothing is allocated. Steps of at most one voxel per axis.
   template <class ActionType>
   void walkLine(ActionType&& at, double x0, double y0, double z0, double x1, double y1, double z1) const;
@@ -104,12 +105,16 @@ void VoxelGrid::walkLine(ActionType&& at, double x0, double y0, double z0, doubl
     // Arithmetic shift: a hair below zero becomes -1 and ends the walk below.
     const int64_t ix = fx >> 32, iy = fy >> 32, iz = fz >> 32;
     if (ix == px && iy == py && iz == pz) continue;  // still in the voxel just visited
-    if (ix == ex && iy == ey && iz == ez) return;
     if (ix < 0 || iy < 0 || iz < 0 || ix >= static_cast<int64_t>(size_x_) || iy >= static_cast<int64_t>(size_y_) ||
         iz >= static_cast<int64_t>(size_z_))
       return;
     at(static_cast<unsigned int>(iy) * size_x_ + static_cast<unsigned int>(ix), static_cast<unsigned int>(iz));
+    if (ix == ex && iy == ey && iz == ez) return;
     px = ix, py = iy, pz = iz;
   }
+  // The last position walked lies one step before the end point: its voxel, when not reached yet.
+  if (ex >= 0 && ey >= 0 && ez >= 0 && ex < static_cast<int64_t>(size_x_) && ey < static_cast<int64_t>(size_y_) &&
+      ez < static_cast<int64_t>(size_z_))
+    at(static_cast<unsigned int>(ey) * size_x_ + static_cast<unsigned int>(ex), static_cast<unsigned int>(ez));
 }
 }  // namespace costmap_layers
