@@ -126,6 +126,7 @@ bool clearLayerArea(Layer& layer, int x0, int y0, int x1, int y1, bool invert)
   redrawAll(*grid_layer);
   return true;
 }
+
 bool resetLayerCells(Layer& layer)
 {
   auto* grid_layer = dynamic_cast<CostmapLayer*>(&layer);

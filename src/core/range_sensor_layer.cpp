@@ -219,11 +219,7 @@ void RangeSensorLayer::updateCell(double ox, double oy, double ot, double r, dou
   const double phi = std::sqrt(dx * dx + dy * dy);
   const double sensor =
       clear ? 0.0 : range_model::sensorModel(r, phi, theta, max_angle, config_.phi, costmap_.getResolution());
-  // A cleared cell holds NO_INFORMATION (costmap_2d's clearArea), 255 / 254 as a probability: it is
-  // unknown, as a cell never seen (p = 0.5). (As a probability above 1 it made the next reading, free
-  // or not, an obstacle.)
-  const uint8_t cost = costmap_.getCost(x, y);
-  const double prior = cost == NO_INFORMATION ? 0.5 : range_model::toProbability(cost);
+  const double prior = range_model::toProbability(costmap_.getCost(x, y));
   const double occupied = sensor * prior;
   const double not_occupied = (1.0 - sensor) * (1.0 - prior);
   const double sum = occupied + not_occupied;

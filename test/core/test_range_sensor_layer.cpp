@@ -106,6 +106,7 @@ TEST(RangeSensorModel, Pieces)
   EXPECT_EQ(toCost(0.5), 127);
   EXPECT_EQ(toCost(1.0), 254);
   EXPECT_DOUBLE_EQ(toProbability(254), 1.0);
+  EXPECT_DOUBLE_EQ(toProbability(NO_INFORMATION), 0.5);  // a cleared cell: unknown
 }
 
 // Nav2's testClearingAtMaxRange.

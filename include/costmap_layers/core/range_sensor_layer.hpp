@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "costmap_layers/core/cost_values.hpp"
 #include "costmap_layers/core/costmap_layer.hpp"
 #include "costmap_layers/core/sensor_parsing.hpp"
 #include "costmap_layers/core/stamp_order.hpp"
@@ -48,10 +49,12 @@ double delta(double phi, double phi_v);
 /// Probability of occupancy of a cell at distance phi and angle theta for a reading r [m], with the
 /// cell size `resolution` [m] setting the width of the obstacle band (resolution * r).
 double sensorModel(double r, double phi, double theta, double max_angle, double phi_v, double resolution);
-/// Cost <-> probability: p = cost / 254, cost = (uint8) (p * 254).
+/// Cost <-> probability: p = cost / 254, cost = (uint8) (p * 254). NO_INFORMATION (a cleared cell:
+/// costmap_2d's clearArea leaves it) is unknown, p = 0.5, as a cell never seen (as 255 / 254 > 1 it
+/// made the next reading, free or not, an obstacle).
 inline double toProbability(uint8_t cost)
 {
-  return static_cast<double>(cost) / 254.0;
+  return cost == NO_INFORMATION ? 0.5 : static_cast<double>(cost) / 254.0;
 }
 inline uint8_t toCost(double p)
 {

@@ -99,22 +99,24 @@ void VoxelGrid::walkLine(ActionType&& at, double x0, double y0, double z0, doubl
                 sz = static_cast<int64_t>(dz / steps * kOne);
   const int64_t ex = static_cast<int64_t>(std::floor(x1)), ey = static_cast<int64_t>(std::floor(y1)),
                 ez = static_cast<int64_t>(std::floor(z1));
+  auto inside = [this](int64_t ix, int64_t iy, int64_t iz)
+  {
+    return ix >= 0 && iy >= 0 && iz >= 0 && ix < static_cast<int64_t>(size_x_) && iy < static_cast<int64_t>(size_y_) &&
+           iz < static_cast<int64_t>(size_z_);
+  };
   int64_t px = -1, py = -1, pz = -1;
   for (unsigned int i = 0; i < steps; ++i, fx += sx, fy += sy, fz += sz)
   {
     // Arithmetic shift: a hair below zero becomes -1 and ends the walk below.
     const int64_t ix = fx >> 32, iy = fy >> 32, iz = fz >> 32;
     if (ix == px && iy == py && iz == pz) continue;  // still in the voxel just visited
-    if (ix < 0 || iy < 0 || iz < 0 || ix >= static_cast<int64_t>(size_x_) || iy >= static_cast<int64_t>(size_y_) ||
-        iz >= static_cast<int64_t>(size_z_))
-      return;
+    if (!inside(ix, iy, iz)) return;
     at(static_cast<unsigned int>(iy) * size_x_ + static_cast<unsigned int>(ix), static_cast<unsigned int>(iz));
     if (ix == ex && iy == ey && iz == ez) return;
     px = ix, py = iy, pz = iz;
   }
   // The last position walked lies one step before the end point: its voxel, when not reached yet.
-  if (ex >= 0 && ey >= 0 && ez >= 0 && ex < static_cast<int64_t>(size_x_) && ey < static_cast<int64_t>(size_y_) &&
-      ez < static_cast<int64_t>(size_z_))
+  if (inside(ex, ey, ez))
     at(static_cast<unsigned int>(ey) * size_x_ + static_cast<unsigned int>(ex), static_cast<unsigned int>(ez));
 }
 }  // namespace costmap_layers
