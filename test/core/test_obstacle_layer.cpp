@@ -379,6 +379,30 @@ TEST(ObstacleLayer, ARayClearsTheCellItEndsInAsCostmap2dDoes)
   EXPECT_EQ(count(edge.master(), LETHAL_OBSTACLE), 0);
 }
 
+// A reading in the sensor's own cell: costmap_2d's ray to it has no length, and its bresenham still calls
+// the action once (the cell is cleared, then marked, as marking comes after clearing). Any later ray
+// starts in that cell and clears it, and a reading exactly at the sensor marks like any other.
+TEST(ObstacleLayer, AReadingInTheSensorsOwnCellIsMarkedAndLaterRaysClearIt)
+{
+  Rig rig(obstacleParams({{"footprint_clearing_enabled", B(false)}}), false, true);
+  rig.cloud({{5.8, 5.5, 0.5}}, poseAt(5.2, 5.5, 0.5));  // both in cell (5, 5)
+  rig.update(5.2, 5.5);
+  EXPECT_EQ(rig.master().getCost(5, 5), LETHAL_OBSTACLE);
+  EXPECT_EQ(count(rig.master(), LETHAL_OBSTACLE), 1);
+  EXPECT_EQ(count(rig.master(), FREE_SPACE), 0);        // the ray has no other cell
+  rig.cloud({{8.5, 5.5, 0.5}}, poseAt(5.2, 5.5, 0.5));  // the obstacle went; a wall at (8, 5)
+  rig.update(5.2, 5.5);
+  EXPECT_EQ(rig.master().getCost(5, 5), FREE_SPACE);
+  EXPECT_EQ(rig.master().getCost(8, 5), LETHAL_OBSTACLE);
+  EXPECT_EQ(count(rig.master(), LETHAL_OBSTACLE), 1);
+
+  Rig at(obstacleParams({{"footprint_clearing_enabled", B(false)}}), false, true);
+  at.cloud({{3.5, 2.5, 0.5}}, poseAt(3.5, 2.5, 0.5));  // at the sensor itself: distance 0
+  at.update(3.5, 2.5);
+  EXPECT_EQ(at.master().getCost(3, 2), LETHAL_OBSTACLE);
+  EXPECT_EQ(count(at.master(), LETHAL_OBSTACLE), 1);
+}
+
 TEST(ObstacleLayer, LaserScanMarksAndClearsAndInfClearsOnly)
 {
   ParamValue p = paramMap({{"observation_sources", S("scan")}});
