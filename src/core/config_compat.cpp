@@ -22,6 +22,8 @@ const std::vector<PluginTypeAlias>& pluginTypeAliases()
       {"nav2_costmap_2d::ObstacleLayer", "costmap_layers/ObstacleLayer", TypeDialect::Nav2},
       {"nav2_costmap_2d::VoxelLayer", "costmap_layers/VoxelLayer", TypeDialect::Nav2},
       {"nav2_costmap_2d::InflationLayer", "costmap_layers/InflationLayer", TypeDialect::Nav2},
+      // Nav2 (2025) keeps its earlier inflation under this name: the same costs and parameters.
+      {"nav2_costmap_2d::LegacyInflationLayer", "costmap_layers/InflationLayer", TypeDialect::Nav2},
       {"nav2_costmap_2d::RangeSensorLayer", "costmap_layers/RangeSensorLayer", TypeDialect::Nav2},
       {"nav2_costmap_2d::KeepoutFilter", "costmap_layers/KeepoutFilter", TypeDialect::Nav2},
       {"nav2_costmap_2d::SpeedFilter", "costmap_layers/SpeedFilter", TypeDialect::Nav2},

@@ -90,6 +90,7 @@ TEST(TypeAliases, EveryForeignNameLoadsOurClass)
       {"nav2_costmap_2d::ObstacleLayer", "costmap_layers/ObstacleLayer"},
       {"nav2_costmap_2d::VoxelLayer", "costmap_layers/VoxelLayer"},
       {"nav2_costmap_2d::InflationLayer", "costmap_layers/InflationLayer"},
+      {"nav2_costmap_2d::LegacyInflationLayer", "costmap_layers/InflationLayer"},
       {"nav2_costmap_2d::RangeSensorLayer", "costmap_layers/RangeSensorLayer"},
       {"nav2_costmap_2d::KeepoutFilter", "costmap_layers/KeepoutFilter"},
       {"nav2_costmap_2d::SpeedFilter", "costmap_layers/SpeedFilter"},
