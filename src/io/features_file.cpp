@@ -32,7 +32,7 @@ SpeedLimitsData speedLimitsFromParams(const ParamValue& root, const std::string&
 
 SpeedLimitsData loadFeaturesFile(const std::string& path)
 {
-  return speedLimitsFromParams(loadParamsYamlFile(path, kMaxFeaturesYamlBytes), path);
+  return speedLimitsFromParams(loadOwnFormatYamlFile(path, kMaxFeaturesYamlBytes), path);
 }
 
 std::vector<std::string> featuresFileProblems(const SpeedLimitsData& limits)

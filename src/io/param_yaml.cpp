@@ -184,7 +184,10 @@ std::optional<double> parseFloat(const std::string& s, bool rosparam_floats)
 class Converter
 {
 public:
-  Converter(const std::string& what, bool rosparam_floats) : what_(what), rosparam_floats_(rosparam_floats) {}
+  Converter(const std::string& what, bool rosparam_floats, std::vector<std::string>* repeated_keys)
+      : what_(what), rosparam_floats_(rosparam_floats), repeated_keys_(repeated_keys)
+  {
+  }
 
   ParamValue convert(const YAML::Node& node, int depth)
   {
@@ -259,6 +262,7 @@ private:
   {
     std::vector<std::pair<std::string, ParamValue>> own;
     std::vector<ParamValue> merged;
+    std::map<std::string, int> first_line;  // of each own key (0 when unknown)
     for (const auto& kv : node)
     {
       const YAML::Node& key = kv.first;
@@ -285,6 +289,13 @@ private:
         }
         continue;
       }
+      const int line = key.Mark().line >= 0 ? key.Mark().line + 1 : 0;
+      const auto [seen, is_new] = first_line.emplace(name, line);
+      if (!is_new && repeated_keys_ != nullptr)
+        repeated_keys_->push_back(what_ + (line > 0 ? " at line " + std::to_string(line) : std::string()) + ": key '" +
+                                  name + "' is written twice in one map" +
+                                  (seen->second > 0 ? " (first at line " + std::to_string(seen->second) + ")" : "") +
+                                  "; the last value is used");
       own.emplace_back(name, convert(kv.second, depth + 1));
     }
     ParamValue out = ParamValue::makeMap();
@@ -301,6 +312,7 @@ private:
 
   const std::string& what_;
   bool rosparam_floats_;  ///< type plain floats as PyYAML does (see parseParamsYaml)
+  std::vector<std::string>* repeated_keys_;
   uint64_t nodes_ = 0;
 };
 }  // namespace
@@ -319,7 +331,8 @@ ParamValue typePlainScalar(const std::string& text, bool rosparam_floats)
   return ParamValue::makeString(text);
 }
 
-ParamValue parseParamsYaml(const std::string& text, const std::string& what, bool rosparam_floats)
+ParamValue parseParamsYaml(const std::string& text, const std::string& what, bool rosparam_floats,
+                           std::vector<std::string>* repeated_keys)
 {
   YAML::Node root;
   try
@@ -333,7 +346,7 @@ ParamValue parseParamsYaml(const std::string& text, const std::string& what, boo
   }
   try
   {
-    return Converter(what, rosparam_floats).convert(root, 0);
+    return Converter(what, rosparam_floats, repeated_keys).convert(root, 0);
   }
   catch (const YAML::Exception& e)
   {
@@ -341,10 +354,27 @@ ParamValue parseParamsYaml(const std::string& text, const std::string& what, boo
   }
 }
 
-ParamValue loadParamsYamlFile(const std::string& path, uint64_t max_bytes, bool rosparam_floats)
+ParamValue loadParamsYamlFile(const std::string& path, uint64_t max_bytes, bool rosparam_floats,
+                              std::vector<std::string>* repeated_keys)
 {
   const std::vector<uint8_t> bytes = readRegularFile(path, "params file", max_bytes);
-  return parseParamsYaml(std::string(bytes.begin(), bytes.end()), "'" + path + "'", rosparam_floats);
+  return parseParamsYaml(std::string(bytes.begin(), bytes.end()), "'" + path + "'", rosparam_floats, repeated_keys);
+}
+
+void refuseRepeatedKeys(const std::vector<std::string>& repeated_keys)
+{
+  if (repeated_keys.empty()) return;
+  throw std::runtime_error(
+      repeated_keys.front() + ": a value would be lost, so the file is refused" +
+      (repeated_keys.size() > 1 ? " (" + std::to_string(repeated_keys.size() - 1) + " more repeated keys)" : ""));
+}
+
+ParamValue loadOwnFormatYamlFile(const std::string& path, uint64_t max_bytes)
+{
+  std::vector<std::string> repeated;
+  ParamValue tree = loadParamsYamlFile(path, max_bytes, false, &repeated);
+  refuseRepeatedKeys(repeated);
+  return tree;
 }
 }  // namespace io
 }  // namespace costmap_layers

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <fstream>
 #include <stdexcept>
+#include <vector>
 
 #include "costmap_layers/io/param_yaml.hpp"
 
@@ -16,13 +17,15 @@ namespace io
 {
 ZoneLayout loadZoneFile(const std::string& path)
 {
-  return parseZoneLayout(loadParamsYamlFile(path), "'" + path + "'");
+  return parseZoneLayout(loadOwnFormatYamlFile(path), "'" + path + "'");
 }
 
 std::optional<ZoneLayout> loadIfZoneFile(const std::string& path)
 {
-  const ParamValue tree = loadParamsYamlFile(path);
+  std::vector<std::string> repeated;
+  const ParamValue tree = loadParamsYamlFile(path, kMaxParamsYamlBytes, false, &repeated);
   if (!tree.isMap() || tree.find("shapes") == nullptr) return std::nullopt;
+  refuseRepeatedKeys(repeated);  // this package's own format: a lost value refuses the file
   return parseZoneLayout(tree, "'" + path + "'");
 }
 

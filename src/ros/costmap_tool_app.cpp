@@ -11,6 +11,7 @@
 #include <map>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 #include "costmap_layers/core/config_compat.hpp"
 #include "costmap_layers/core/costmap_builder.hpp"
@@ -250,7 +251,12 @@ private:
 int run(const ToolArgs& a, std::ostream& out, std::ostream& err)
 {
   // Typed as `rosparam load` types it (PyYAML's floats), so that the tool refuses what the node would.
-  ParamValue root = io::loadParamsYamlFile(a.params, io::kMaxParamsYamlBytes, true);
+  // A key written twice keeps its last value, as rosparam (PyYAML) loads it for costmap_node; said here,
+  // where the file is read.
+  std::vector<std::string> repeated_keys;
+  ParamValue root = io::loadParamsYamlFile(a.params, io::kMaxParamsYamlBytes, true, &repeated_keys);
+  for (const auto& r : repeated_keys)
+    err << "costmap_tool: warning: " << r << " (as rosparam loads it)\n";
   const ParamValue* raw = a.ns.empty() ? &root : root.findPath(a.ns);
   if (raw == nullptr || !raw->isMap())
     throw std::runtime_error(a.params + ": namespace '" + a.ns + "' not found (or not a map)");

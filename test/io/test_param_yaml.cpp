@@ -231,6 +231,26 @@ TEST(ParamYaml, StructureKeepsKeyOrderAndNests)
   EXPECT_EQ(dup.find("a")->asInt(), 3);
 }
 
+TEST(ParamYaml, RepeatedKeysAreDescribedWhenAsked)
+{
+  std::vector<std::string> repeated;
+  const ParamValue root =
+      parseParamsYaml("a: 1\nb:\n  c: 2\n  d: 3\n  c: 4\na: 5\ne: {f: 1, f: 2}\n", "p.yaml", false, &repeated);
+  EXPECT_EQ(root.findPath("b/c")->asInt(), 4);  // the last value, as without the list
+  EXPECT_EQ(root.find("a")->asInt(), 5);
+  ASSERT_EQ(repeated.size(), 3u);
+  EXPECT_EQ(repeated[0],
+            "p.yaml at line 5: key 'c' is written twice in one map (first at line 3); the last value is used");
+  EXPECT_EQ(repeated[1],
+            "p.yaml at line 6: key 'a' is written twice in one map (first at line 1); the last value is used");
+  EXPECT_NE(repeated[2].find("key 'f' is written twice"), std::string::npos) << repeated[2];
+  // Not repeats: the same key in two maps, a key that overrides a merged map's, the same key in list items.
+  repeated.clear();
+  parseParamsYaml("x: {k: 1}\ny: {k: 2}\nbase: &b {k: 1}\nz:\n  <<: *b\n  k: 2\nl: [{k: 1}, {k: 2}]\n", "q", false,
+                  &repeated);
+  EXPECT_TRUE(repeated.empty()) << repeated.front();
+}
+
 TEST(ParamYaml, AliasesAndMergeKeys)
 {
   const std::string text =
@@ -294,6 +314,25 @@ TEST(ParamYaml, Files)
   std::filesystem::remove_all(dir, ec);
 }
 }  // namespace
+
+// A features file is this package's own format: a key written twice would drop its first value (here a
+// whole list of limits), so the file is refused, naming both lines; the same limits once load.
+TEST(FeaturesFile, AKeyWrittenTwiceRefusesTheFile)
+{
+  char pattern[] = "/tmp/costmap_io_features_XXXXXX";
+  const char* dir = mkdtemp(pattern);
+  ASSERT_NE(dir, nullptr);
+  const std::string path = std::string(dir) + "/features.yaml";
+  std::ofstream(path) << "limits: [{area_id: 1, max_speed: 0.5}]\nlimits: [{area_id: 2, max_speed: 0.3}]\n";
+  const std::string e = errorOf([&] { costmap_layers::io::loadFeaturesFile(path); });
+  EXPECT_NE(e.find(path + "' at line 2: key 'limits' is written twice in one map (first at line 1)"), std::string::npos)
+      << e;
+  EXPECT_NE(e.find("refused"), std::string::npos) << e;
+  std::ofstream(path) << "limits: [{area_id: 1, max_speed: 0.5}, {area_id: 2, max_speed: 0.3}]\n";
+  EXPECT_EQ(costmap_layers::io::loadFeaturesFile(path).limits.size(), 2u);
+  std::error_code ec;
+  std::filesystem::remove_all(dir, ec);
+}
 
 // features_server says at load what every SpeedFilter will drop or remark (m/s rules, any mode):
 // an area id outside the mask's 1..100, a speed that is not a finite number >= 0, a repeated id.

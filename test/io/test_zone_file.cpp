@@ -95,6 +95,11 @@ TEST_F(ZoneFile, BadFilesNameThePathAndTheField)
   refused("resolution: 0.0001\nshapes:\n  - {name: a, type: circle, value: 100, center: [0, 0], radius: 9000}\n",
           "cells a mask may have");
   refused("shapes: [\n", "bad.yaml");
+  // A key written twice would lose its first value: this package's own format refuses it, naming both lines.
+  refused("shapes:\n  - {name: a, type: circle, value: 100, center: [0, 0], radius: 1}\nresolution: 0.05\nshapes: []\n",
+          "at line 4: key 'shapes' is written twice in one map (first at line 1)");
+  refused("shapes:\n  - {name: a, type: circle, value: 100, value: 40, center: [0, 0], radius: 1}\n",
+          "key 'value' is written twice");
   EXPECT_THROW(io::loadZoneFile(tmp("missing.yaml")), std::exception);
   // A misspelt top-level key of a zone file is named ...
   refused("frame_id: map\nshape: []\n", "unknown field 'shape'");

@@ -572,3 +572,37 @@ inflation:
   EXPECT_NE(r.err.find("'inflation_radius'"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("reads this as a string"), std::string::npos) << r.err;
 }
+
+// A key written twice in --params keeps its last value, as rosparam loads it for the node, and the tool
+// says so (where, which key, where it was first), so that the lost first value is not a silent surprise.
+TEST(CostmapTool, AKeyWrittenTwiceIsSaidAndTheLastValueIsUsed)
+{
+  TempDir dir;
+  std::vector<uint8_t> pixels(21 * 21, 254);
+  pixels[10 * 21 + 10] = 0;
+  const std::string map = writeMap(dir, "map", 21, 21, pixels, 0.1, 0.0, 0.0);
+  const std::string params = dir.write("params.yaml", R"(plugins:
+  - {name: static, type: costmap_layers/StaticLayer}
+  - {name: inflation, type: costmap_layers/InflationLayer}
+robot_radius: 0.05
+inflation:
+  inflation_radius: 0.2
+  cost_scaling_factor: 5.0
+  inflation_radius: 0.5
+)");
+  const ToolResult r = runTool({"--map", map, "--params", params, "--out-raw", dir.file("out.raw")}, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: '" + params +
+                       "' at line 8: key 'inflation_radius' is written twice in one map (first at line 6); the "
+                       "last value is used (as rosparam loads it)"),
+            std::string::npos)
+      << r.err;
+  const std::vector<uint8_t> cells = rawCells(dir.file("out.raw"));
+  ASSERT_EQ(cells.size(), 21u * 21u);
+  EXPECT_EQ(cells[10 * 21 + 10], 254);
+  // 0.4 m from the obstacle: inflated with 0.5 m (with 0.2 m it would be 0): 252 * exp(-5 * (0.4 - r)),
+  // r the inscribed radius of the padded 16-gon of robot_radius 0.05, between 0.05 and 0.07: 43.8 .. 48.4.
+  EXPECT_GE(cells[10 * 21 + 14], 43);
+  EXPECT_LE(cells[10 * 21 + 14], 48);
+  EXPECT_EQ(cells[10 * 21 + 16], 0);  // 0.6 m: beyond
+}

@@ -2,9 +2,10 @@
 // costmap_layers::ParamValue tree, without ROS. Uses yaml-cpp.
 //
 // Structure: maps become Map (keys in document order; a repeated key keeps its first position and
-// the last value), sequences become List, an empty document becomes Null. Aliases (*name) are
-// expanded, and the YAML 1.1 merge key `<<: *base` (or `<<: [*a, *b]`) merges the maps in as
-// rosparam/PyYAML do: keys written in the map itself win, then earlier merged maps win over later.
+// the last value, as rosparam does, and is described in repeated_keys when that is given), sequences become List, an
+// empty document becomes Null. Aliases (*name) are expanded, and the YAML 1.1 merge key `<<: *base` (or `<<: [*a, *b]`)
+// merges the maps in as rosparam/PyYAML do: keys written in the map itself win, then earlier merged maps win over
+// later.
 //
 // Scalars are typed the way rosparam (PyYAML, YAML 1.1 rules) types plain scalars:
 //   Null    ~  null Null NULL  and an empty value
@@ -38,6 +39,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "costmap_layers/core/param_value.hpp"
 #include "costmap_layers/io/file_limits.hpp"
@@ -50,12 +52,22 @@ namespace io
 constexpr uint64_t kMaxYamlNodes = uint64_t{1} << 18;
 
 /// Parses YAML text; `what` names the source in error messages (e.g. a file name or "--params").
-ParamValue parseParamsYaml(const std::string& text, const std::string& what, bool rosparam_floats = false);
+/// repeated_keys, when given, receives one line per key written twice in one map (where, which key,
+/// where it was first).
+ParamValue parseParamsYaml(const std::string& text, const std::string& what, bool rosparam_floats = false,
+                           std::vector<std::string>* repeated_keys = nullptr);
 
 /// Reads and parses a YAML file: a regular file of at most max_bytes (file_limits.hpp); an error
 /// names the path when it cannot be opened, is not a regular file or is too large.
 ParamValue loadParamsYamlFile(const std::string& path, uint64_t max_bytes = kMaxParamsYamlBytes,
-                              bool rosparam_floats = false);
+                              bool rosparam_floats = false, std::vector<std::string>* repeated_keys = nullptr);
+
+/// loadParamsYamlFile for this package's own file formats (zones, features): there is no rosparam
+/// habit to keep, so a key written twice in one map, whose first value would be lost, refuses the file.
+ParamValue loadOwnFormatYamlFile(const std::string& path, uint64_t max_bytes = kMaxParamsYamlBytes);
+
+/// Throws, naming the first of repeated_keys (parseParamsYaml's lines) and how many more, unless empty.
+void refuseRepeatedKeys(const std::vector<std::string>& repeated_keys);
 
 /// The typing rule for one plain (unquoted, untagged) scalar, exposed for tests and for tools that
 /// take "key:=value" arguments on a command line.
