@@ -270,6 +270,8 @@ ParamValue* foreignObstacleLayer(ParamValue& ns, const PluginSpec& spec)
 /// translation into this package's terms, said.
 ///  - combination_method: costmap_2d's layers write nothing for any value but 0 and 1 (its documented
 ///    99, "Do nothing"); Nav2's use 1 for any value but 0, 1 and 2 (with a warning).
+///  - min_obstacle_height (the layer's): Nav2's default 0.0 for nav2_costmap_2d:: types, where it is not
+///    set (costmap_2d has no such limit).
 ///  (An observation source without data_type: defaultSourceDataType().)
 void translateObstacleDefaults(ParamValue& ns, const PluginSpec& spec, CompatResult& r)
 {
@@ -297,6 +299,13 @@ void translateObstacleDefaults(ParamValue& ns, const PluginSpec& spec, CompatRes
     }
   }
   if (dialect != TypeDialect::Nav2) return;
+  // Nav2's layers drop hits below their own min_obstacle_height, 0.0 unless set (costmap_2d's have no
+  // such limit, nor has this package's own type unless it is set).
+  if (layer->find("min_obstacle_height") == nullptr)
+  {
+    layer->set("min_obstacle_height", ParamValue::makeDouble(0.0));
+    r.notes.push_back(spec.name + ": min_obstacle_height not set: 0.0 m, Nav2's default (hits below are not marked)");
+  }
   for (const auto& source : sourceNamesOf(layer->find("observation_sources")))
   {
     ParamValue& src = subMap(*layer, source);

@@ -115,7 +115,9 @@ ObstacleConfig parseObstacleConfig(const ParamReader& p, bool default_track_unkn
 {
   ObstacleConfig c;
   c.footprint_clearing_enabled = p.getBool("footprint_clearing_enabled", c.footprint_clearing_enabled);
+  c.min_obstacle_height = p.getDouble("min_obstacle_height", c.min_obstacle_height);
   c.max_obstacle_height = p.getDouble("max_obstacle_height", c.max_obstacle_height);
+  if (c.max_obstacle_height < c.min_obstacle_height) p.fail("max_obstacle_height", "must be >= min_obstacle_height");
   // 0 overwrite, 1 maximum, 2 maximum keeping unknown master cells (Nav2's), 99 nothing (costmap_2d's
   // "Do nothing"; costmap_2d and Nav2 type names are translated to these by applyCostmap2dRules).
   c.combination_method = p.getInt("combination_method", c.combination_method, 0, 99);
@@ -547,7 +549,7 @@ void ObstacleLayer::markObservation(const Observation& obs, double* min_x, doubl
   double px_min = kMax, py_min = kMax, px_max = -kMax, py_max = -kMax;
   for (const Point3f& p : obs.points)
   {
-    if (p.z > config_.max_obstacle_height) continue;
+    if (!config_.marksHeight(p.z)) continue;
     const double dx = p.x - obs.origin_x, dy = p.y - obs.origin_y, dz = p.z - obs.origin_z;
     const double d2 = dx * dx + dy * dy + dz * dz;
     if (d2 > max2 || d2 < min2) continue;

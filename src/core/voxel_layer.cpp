@@ -129,7 +129,7 @@ void VoxelLayer::markObservation(const Observation& obs, double* min_x, double* 
   uint8_t* grid = costmap_.data();
   for (const Point3f& p : obs.points)
   {
-    if (p.z > config_.max_obstacle_height) continue;
+    if (!config_.marksHeight(p.z)) continue;
     const double dx = p.x - obs.origin_x, dy = p.y - obs.origin_y, dz = p.z - obs.origin_z;
     const double d2 = dx * dx + dy * dy + dz * dz;
     if (d2 > max2 || d2 < min2) continue;

@@ -175,6 +175,30 @@ TEST(DropIn, SourcesReadTheirStacksDataTypeByDefault)
   EXPECT_EQ(stringAt(prepareCostmapNamespace(native, "").params, "voxels/cam/data_type"), "<none>");
 }
 
+// nav2_costmap_2d/plugins/obstacle_layer.cpp (and voxel_layer.cpp): declare_or_get_parameter(name_ +
+// ".min_obstacle_height", 0.0), and a hit with z below it is not marked. costmap_2d has no such limit.
+TEST(DropIn, Nav2LayersDropHitsBelowTheirMinObstacleHeight)
+{
+  ParamValue ns = ParamValue::makeMap();
+  ns.set("plugins", pluginList({{"obstacles", "nav2_costmap_2d::ObstacleLayer"},
+                                {"voxels", "nav2_costmap_2d::VoxelLayer"},
+                                {"set", "nav2_costmap_2d::ObstacleLayer"},
+                                {"ros1", "costmap_2d::ObstacleLayer"}}));
+  ns.set("obstacles", paramMap({{"observation_sources", S("")}}));
+  ns.set("voxels", paramMap({{"observation_sources", S("")}}));
+  ns.set("set", paramMap({{"observation_sources", S("")}, {"min_obstacle_height", D(-0.5)}}));
+  ns.set("ros1", paramMap({{"observation_sources", S("")}}));
+  const CompatResult r = prepareCostmapNamespace(ns, "");
+  EXPECT_EQ(r.params.findPath("obstacles/min_obstacle_height")->asDouble(), 0.0);
+  EXPECT_EQ(r.params.findPath("voxels/min_obstacle_height")->asDouble(), 0.0);
+  EXPECT_EQ(r.params.findPath("set/min_obstacle_height")->asDouble(), -0.5);  // as written
+  EXPECT_EQ(r.params.findPath("ros1/min_obstacle_height"), nullptr);
+  EXPECT_TRUE(anyContains(r.notes, {"obstacles: min_obstacle_height not set: 0.0 m, Nav2's default"}));
+  EXPECT_TRUE(anyContains(r.notes, {"voxels: min_obstacle_height not set"}));
+  EXPECT_FALSE(anyContains(r.notes, {"set: min_obstacle_height"}));
+  EXPECT_FALSE(anyContains(r.notes, {"ros1: min_obstacle_height"}));
+}
+
 TEST(DropIn, PreHydroValuesCostmap2dSkipsAreNamed)
 {
   // costmap_2d_ros.cpp loadOldParameters: getParam("static_map", bool) fails on a string or an int

@@ -403,6 +403,36 @@ TEST(ObstacleLayer, AReadingInTheSensorsOwnCellIsMarkedAndLaterRaysClearIt)
   EXPECT_EQ(count(at.master(), LETHAL_OBSTACLE), 1);
 }
 
+// The layer's own height limits (Nav2's min_obstacle_height, both layers' max_obstacle_height) bound
+// what is marked, inclusive at both ends, whatever the source allows; a reversed pair is refused.
+TEST(ObstacleLayer, TheLayersHeightLimitsBoundWhatIsMarked)
+{
+  Rig rig(
+      obstacleParams(
+          {{"footprint_clearing_enabled", B(false)}, {"min_obstacle_height", D(0.25)}, {"max_obstacle_height", D(1.5)}},
+          {{"min_obstacle_height", D(-5.0)}, {"max_obstacle_height", D(5.0)}}),
+      false, true);
+  rig.cloud({{2.5, 5.5, 0.24}, {3.5, 5.5, 0.25}, {4.5, 5.5, 1.0}, {6.5, 5.5, 1.5}, {7.5, 5.5, 1.51}, {8.5, 5.5, -1.0}},
+            poseAt(0.5, 5.5, 0.5));
+  rig.update();
+  EXPECT_NE(rig.master().getCost(2, 5), LETHAL_OBSTACLE);  // below the layer's minimum
+  EXPECT_EQ(rig.master().getCost(3, 5), LETHAL_OBSTACLE);  // at it
+  EXPECT_EQ(rig.master().getCost(4, 5), LETHAL_OBSTACLE);
+  EXPECT_EQ(rig.master().getCost(6, 5), LETHAL_OBSTACLE);  // at the maximum
+  EXPECT_NE(rig.master().getCost(7, 5), LETHAL_OBSTACLE);  // above it
+  EXPECT_NE(rig.master().getCost(8, 5), LETHAL_OBSTACLE);
+  EXPECT_EQ(count(rig.master(), LETHAL_OBSTACLE), 3);
+
+  // Unset, the layer has no minimum (costmap_2d's): a hit below the ground that the source allows marks.
+  Rig open(obstacleParams({{"footprint_clearing_enabled", B(false)}}, {{"min_obstacle_height", D(-5.0)}}), false, true);
+  open.cloud({{3.5, 5.5, -1.0}}, poseAt(0.5, 5.5, 0.5));
+  open.update();
+  EXPECT_EQ(open.master().getCost(3, 5), LETHAL_OBSTACLE);
+
+  EXPECT_THROW(Rig(obstacleParams({{"min_obstacle_height", D(1.0)}, {"max_obstacle_height", D(0.5)}}), false),
+               std::invalid_argument);
+}
+
 TEST(ObstacleLayer, LaserScanMarksAndClearsAndInfClearsOnly)
 {
   ParamValue p = paramMap({{"observation_sources", S("scan")}});

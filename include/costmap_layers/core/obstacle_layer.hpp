@@ -8,6 +8,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -56,7 +57,12 @@ struct ObservationSourceConfig
 struct ObstacleConfig
 {
   bool footprint_clearing_enabled = true;
+  /// [m] hits below are never marked: Nav2's layer-level limit (costmap_2d has none: -infinity unless
+  /// set; a layer typed nav2_costmap_2d:: gets Nav2's 0.0 from applyCostmap2dRules).
+  double min_obstacle_height = -std::numeric_limits<double>::infinity();
   double max_obstacle_height = 2.0;  ///< [m] hits above are never marked
+  /// Whether a hit at height z may be marked (the layer's limits; each source has its own too).
+  bool marksHeight(double z) const { return z >= min_obstacle_height && z <= max_obstacle_height; }
   /// 0: overwrite (own cost unless unknown), 1: max, 2: max without overwriting unknown master cells,
   /// 99: nothing (costmap_2d's "Do nothing").
   int combination_method = 1;
@@ -66,7 +72,7 @@ struct ObstacleConfig
 
 /// Reads one source from its own namespace. Throws std::invalid_argument naming the parameter.
 ObservationSourceConfig parseObservationSourceConfig(const ParamReader& params, const std::string& name);
-/// Reads footprint_clearing_enabled, max_obstacle_height, combination_method (0, 1, 2 or 99),
+/// Reads footprint_clearing_enabled, min_obstacle_height, max_obstacle_height, combination_method (0, 1, 2 or 99),
 /// track_unknown_space and observation_sources (a space-separated string or a list of names; each
 /// name's parameters in the sub-namespace of that name). Throws std::invalid_argument.
 ObstacleConfig parseObstacleConfig(const ParamReader& params, bool default_track_unknown);
