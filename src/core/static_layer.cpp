@@ -6,6 +6,7 @@
 
 #include "costmap_layers/core/cost_values.hpp"
 #include "costmap_layers/core/costmap_filter.hpp"
+#include "costmap_layers/core/footprint.hpp"
 #include "costmap_layers/core/layered_costmap.hpp"
 #include "costmap_layers/core/param_reader.hpp"
 #include "costmap_layers/core/stamp_order.hpp"
@@ -65,6 +66,8 @@ StaticConfig parseStaticConfig(const ParamReader& params, bool default_track_unk
   cfg.lethal_cost_threshold = std::clamp(params.getInt("lethal_cost_threshold", cfg.lethal_cost_threshold), 0, 100);
   cfg.unknown_cost_value = params.getInt("unknown_cost_value", cfg.unknown_cost_value, -128, 255);
   cfg.trinary_costmap = params.getBool("trinary_costmap", cfg.trinary_costmap);
+  cfg.footprint_clearing_enabled = params.getBool("footprint_clearing_enabled", cfg.footprint_clearing_enabled);
+  cfg.restore_cleared_footprint = params.getBool("restore_cleared_footprint", cfg.restore_cleared_footprint);
   return cfg;
 }
 
@@ -285,7 +288,8 @@ void StaticLayer::reset()
   if (map_received_) markDirty(0, 0, costmap_.getSizeInCellsX(), costmap_.getSizeInCellsY());
 }
 
-void StaticLayer::updateBounds(double, double, double, double* min_x, double* min_y, double* max_x, double* max_y)
+void StaticLayer::updateBounds(double robot_x, double robot_y, double robot_yaw, double* min_x, double* min_y,
+                               double* max_x, double* max_y)
 {
   std::shared_ptr<const OccupancyGridData> map;
   std::vector<PendingUpdate> updates;
@@ -309,6 +313,15 @@ void StaticLayer::updateBounds(double, double, double, double* min_x, double* mi
                        name_ + ": waiting for the map on " + config_.map_topic +
                            " (nothing received yet): the costmap has no walls from the map");
     return;
+  }
+  if (config_.footprint_clearing_enabled)
+  {
+    // Where the footprint was (drawn as the map again) and where it is (drawn free).
+    for (const auto& p : footprint_)
+      touch(p.x(), p.y(), min_x, min_y, max_x, max_y);
+    footprint_ = transformFootprint(robot_x, robot_y, robot_yaw, getFootprint());
+    for (const auto& p : footprint_)
+      touch(p.x(), p.y(), min_x, min_y, max_x, max_y);
   }
 
   if (!layered_costmap_->isRolling())
@@ -365,10 +378,15 @@ void StaticLayer::updateCosts(Costmap2D& master_grid, int min_i, int min_j, int 
   if (!map_received_ || !enabled_) return;
   if (!layered_costmap_->isRolling())
   {
+    // The own grid lies on the master (the map's yaw is ignored here, as costmap_2d does).
+    clearFootprintCells(GridPlacement{costmap_.getSizeInCellsX(), costmap_.getSizeInCellsY(), costmap_.getResolution(),
+                                      costmap_.getOriginX(), costmap_.getOriginY(), 0.0},
+                        Transform2D{});
     if (config_.use_maximum)
       updateWithMax(master_grid, min_i, min_j, max_i, max_j);
     else
       updateWithTrueOverwrite(master_grid, min_i, min_j, max_i, max_j);
+    restoreFootprintCells();
     return;
   }
   min_i = std::max(min_i, 0);
@@ -395,11 +413,48 @@ void StaticLayer::updateCosts(Costmap2D& master_grid, int min_i, int min_j, int 
   const GridPlacement map{costmap_.getSizeInCellsX(), costmap_.getSizeInCellsY(), costmap_.getResolution(),
                           costmap_.getOriginX(),      costmap_.getOriginY(),      map_yaw_};
   sampler_.build(master_grid, CellWindow{min_i, min_j, max_i, max_j}, map, to_map);
+  clearFootprintCells(map, to_map);
   if (config_.use_maximum)
     sampler_.forEach(master_grid, costmap_.data(), map.width, map.height,
                      [](uint8_t& cell, uint8_t v) { cell = std::max(cell, v); });
   else
     sampler_.forEach(master_grid, costmap_.data(), map.width, map.height, [](uint8_t& cell, uint8_t v) { cell = v; });
+  restoreFootprintCells();
+}
+
+void StaticLayer::clearFootprintCells(const GridPlacement& own, const Transform2D& to_map)
+{
+  cleared_.clear();
+  if (!config_.footprint_clearing_enabled || footprint_.size() < 3) return;
+  std::vector<MapLocation> polygon;
+  polygon.reserve(footprint_.size());
+  for (const auto& p : footprint_)
+  {
+    double gx, gy;
+    toGridCells(own, to_map, p.x(), p.y(), gx, gy);
+    if (!(gx >= 0.0) || !(gy >= 0.0) || gx >= own.width || gy >= own.height) return;
+    polygon.push_back({static_cast<unsigned int>(gx), static_cast<unsigned int>(gy)});
+  }
+  footprint_cells_.clear();
+  costmap_.convexFillCells(polygon, footprint_cells_);
+  uint8_t* grid = costmap_.data();
+  for (const auto& c : footprint_cells_)
+  {
+    const std::size_t k = costmap_.getIndex(c.x, c.y);
+    cleared_.emplace_back(k, grid[k]);
+    grid[k] = FREE_SPACE;
+  }
+}
+
+void StaticLayer::restoreFootprintCells()
+{
+  if (config_.restore_cleared_footprint)
+  {
+    uint8_t* grid = costmap_.data();
+    for (const auto& [k, cost] : cleared_)
+      grid[k] = cost;
+  }
+  cleared_.clear();
 }
 }  // namespace costmap_layers
 

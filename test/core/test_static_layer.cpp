@@ -598,3 +598,95 @@ TEST(StaticLayer, RollingWindowSamplesAnAxisAlignedMapAtAnyResolution)
     EXPECT_GT(inside, 200) << map_res;
   }
 }
+
+// Nav2's StaticLayer footprint_clearing_enabled (static_layer.cpp: the own cells under the footprint set
+// FREE_SPACE before the copy into the master, restored after it when restore_cleared_footprint, the
+// default): a robot that starts inside a mapped obstacle sees free cells under itself; the map itself
+// stays; where the robot was is the map's again once it has moved.
+TEST(StaticLayer, FootprintClearingAsNav2)
+{
+  auto run = [](bool enabled, bool restore, bool use_max)
+  {
+    auto rig = std::make_unique<Rig>(params({{"footprint_clearing_enabled", ParamValue::makeBool(enabled)},
+                                             {"restore_cleared_footprint", ParamValue::makeBool(restore)},
+                                             {"use_maximum", ParamValue::makeBool(use_max)}}));
+    // A 1.2 m square robot (cells 1 m): at (3.5, 3.5) it covers cells 2..4 in x and y.
+    rig->lc.setFootprint({{-0.6, -0.6}, {0.6, -0.6}, {0.6, 0.6}, {-0.6, 0.6}});
+    OccupancyGridData m = makeMap(10, 10, 1.0, 0, 0);
+    for (uint32_t y = 0; y < 10; ++y)
+      for (uint32_t x = 0; x < 10; ++x)
+        if (x <= 5 && y <= 5) setCell(m, x, y, 100);  // a lethal block around the robot's start
+    rig->publish(m);
+    rig->lc.updateMap(3.5, 3.5, 0);
+    return rig;
+  };
+  {
+    const auto rig = run(true, true, false);
+    for (unsigned y = 0; y < 10; ++y)
+      for (unsigned x = 0; x < 10; ++x)
+      {
+        const bool under = x >= 2 && x <= 4 && y >= 2 && y <= 4;
+        const uint8_t map_cost = x <= 5 && y <= 5 ? LETHAL_OBSTACLE : FREE_SPACE;
+        EXPECT_EQ(rig->at(x, y), under ? FREE_SPACE : map_cost) << x << "," << y;
+        EXPECT_EQ(rig->layer->costmap().getCost(x, y), map_cost) << x << "," << y;  // restored
+      }
+    // The robot moves to (7.5, 7.5): its old cells are the map's again, the new ones (free) stay free.
+    rig->lc.updateMap(7.5, 7.5, 0);
+    EXPECT_EQ(rig->at(3, 3), LETHAL_OBSTACLE);
+    EXPECT_EQ(rig->at(2, 4), LETHAL_OBSTACLE);
+    EXPECT_EQ(rig->at(5, 5), LETHAL_OBSTACLE);  // the new footprint covers cells 6..8 only
+    EXPECT_EQ(rig->at(7, 7), FREE_SPACE);
+  }
+  {
+    // restore_cleared_footprint false: the map's cells under the robot stay free after it moves on.
+    const auto rig = run(true, false, false);
+    EXPECT_EQ(rig->layer->costmap().getCost(3, 3), FREE_SPACE);
+    rig->lc.updateMap(7.5, 7.5, 0);
+    EXPECT_EQ(rig->at(3, 3), FREE_SPACE);
+    EXPECT_EQ(rig->at(1, 1), LETHAL_OBSTACLE);
+  }
+  {
+    // Off (the default, as Nav2's): the map under the robot.
+    const auto rig = run(false, true, false);
+    EXPECT_EQ(rig->at(3, 3), LETHAL_OBSTACLE);
+    EXPECT_EQ(rig->layer->config().footprint_clearing_enabled, false);
+  }
+  {
+    // use_maximum: the static layer gives FREE_SPACE there, so the master keeps what it held (its
+    // default here), the lethal block elsewhere.
+    const auto rig = run(true, true, true);
+    EXPECT_EQ(rig->at(3, 3), FREE_SPACE);
+    EXPECT_EQ(rig->at(1, 1), LETHAL_OBSTACLE);
+  }
+  {
+    // A vertex off the map: nothing is cleared (costmap_2d's and Nav2's polygon fill refuse it too).
+    auto rig = run(true, true, false);
+    rig->lc.updateMap(0.3, 3.5, 0);
+    EXPECT_EQ(rig->at(0, 3), LETHAL_OBSTACLE);
+    EXPECT_EQ(rig->at(1, 3), LETHAL_OBSTACLE);
+  }
+}
+
+// In a rolling window the footprint (in the costmap's frame) clears the map's cells it lies on, through
+// the transform into the map's frame.
+TEST(StaticLayer, FootprintClearingInARollingWindowGoesThroughTheTransform)
+{
+  Rig rig(params({{"footprint_clearing_enabled", ParamValue::makeBool(true)}}), true, true, "odom");
+  rig.lc.resizeMap(10, 10, 1.0, 0, 0);
+  rig.lc.setFootprint({{-0.4, -0.4}, {0.4, -0.4}, {0.4, 0.4}, {-0.4, 0.4}});
+  Transform2D odom_from_map{2.0, 1.0, 0.0};  // the map's origin lies at (2, 1) in odom
+  rig.ctx->transforms[{"odom", "map"}] = odom_from_map;
+  rig.ctx->transforms[{"map", "odom"}] = odom_from_map.inverse();
+  rig.publish(makeMap(20, 20, 1.0, 0, 0, 100, "map"));  // all lethal
+  rig.update(5.5, 5.5);  // the window [0, 10) in odom (whole cells from its origin); the robot: map cell (3, 4)
+  const Costmap2D& c = rig.lc.getCostmap();
+  unsigned i, j;
+  ASSERT_TRUE(c.worldToMap(5.5, 5.5, i, j));
+  EXPECT_EQ(c.getCost(i, j), FREE_SPACE);
+  int free_cells = 0;
+  for (unsigned y = 0; y < 10; ++y)
+    for (unsigned x = 0; x < 10; ++x)
+      free_cells += c.getCost(x, y) == FREE_SPACE;
+  EXPECT_EQ(free_cells, 1);                                        // the 0.8 m square lies inside the map cell (3, 4)
+  EXPECT_EQ(rig.layer->costmap().getCost(3, 4), LETHAL_OBSTACLE);  // restored
+}

@@ -9,6 +9,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "costmap_layers/core/costmap_layer.hpp"
@@ -29,6 +30,11 @@ struct StaticConfig
   int lethal_cost_threshold = 100;    ///< occupancy at or above this is lethal (clamped to [0, 100])
   int unknown_cost_value = -1;        ///< the occupancy value meaning "unknown" (compared as a byte)
   bool trinary_costmap = true;        ///< below the threshold: free, else scaled
+  /// Nav2's: the map's cells under the robot's footprint read FREE_SPACE in the copy into the master
+  /// (a robot started or localised inside a mapped obstacle can move out) ...
+  bool footprint_clearing_enabled = false;
+  /// ... and are the map's again afterwards (false: they stay free until the next map).
+  bool restore_cleared_footprint = true;
 };
 
 /// Reads the parameters with costmap_2d's names; track_unknown_space defaults to default_track_unknown.
@@ -98,6 +104,12 @@ private:
   void processMap(const OccupancyGridData& map);
   void processUpdate(const PendingUpdate& update);
   void markDirty(unsigned x0, unsigned y0, unsigned x1, unsigned y1);
+  /// footprint_clearing_enabled: sets the own cells under footprint_ to FREE_SPACE, remembering them
+  /// (none when a vertex is off the map, as costmap_2d's polygon fill); own: the own grid's placement
+  /// in the map's frame, to_map: the costmap's frame -> the map's.
+  void clearFootprintCells(const GridPlacement& own, const Transform2D& to_map);
+  /// Puts the cells clearFootprintCells() cleared back (restore_cleared_footprint), and forgets them.
+  void restoreFootprintCells();
   void rebuildTable();
 
   StaticConfig config_;
@@ -123,7 +135,10 @@ private:
   bool dirty_ = false;
   unsigned dirty_x0_ = 0, dirty_y0_ = 0, dirty_x1_ = 0, dirty_y1_ = 0;  ///< own cells [x0, x1) x [y0, y1)
   std::string map_frame_;
-  GridSampler sampler_;  ///< update thread only: master cells -> map cells in a rolling window
+  GridSampler sampler_;                       ///< update thread only: master cells -> map cells in a rolling window
+  std::vector<Eigen::Vector2d> footprint_;    ///< the robot's, in the costmap's frame (update)
+  std::vector<MapLocation> footprint_cells_;  ///< scratch of clearFootprintCells
+  std::vector<std::pair<std::size_t, uint8_t>> cleared_;  ///< own cells cleared this copy, their costs
   double map_yaw_ = 0.0;
 };
 }  // namespace costmap_layers
