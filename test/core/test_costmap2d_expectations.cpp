@@ -1,4 +1,4 @@
-// costmap_2d's own inflation, obstacle and footprint test scenarios (navigation noetic, costmap_2d/test/
+// costmap_2d's own inflation, obstacle, footprint and coordinates test scenarios (navigation noetic, costmap_2d/test/
 // inflation_tests.cpp, obstacle_tests.cpp, footprint_tests.cpp with footprint_tests.launch, BSD), rebuilt on this
 // package's layers: the same maps, footprints, parameters (its inflation_tests.launch sets cost_scaling_factor 1) and
 // observations, and the numbers costmap_2d's tests expect. The expected values are costmap_2d's, not this package's;
@@ -385,4 +385,77 @@ TEST(Costmap2dFootprintTests, FootprintEmpty)
   const Footprint f = footprintOf(ParamValue::makeMap());
   ASSERT_EQ(f.size(), 16u);
   EXPECT_NEAR(f[0].x(), 0.47, 1e-4);
+}
+
+// costmap_2d's coordinates_test.cpp (from locusrobotics' nav_grid): cell centres, the cell under a point
+// at and near cell borders, and the two unbounded forms, with its numbers.
+TEST(Costmap2dCoordinatesTests, EasyCoordinates)
+{
+  Costmap2D costmap(2, 3, 1.0, 0, 0);
+  double wx, wy;
+  costmap.mapToWorld(0u, 0u, wx, wy);
+  EXPECT_DOUBLE_EQ(wx, 0.5);
+  EXPECT_DOUBLE_EQ(wy, 0.5);
+  costmap.mapToWorld(1u, 2u, wx, wy);
+  EXPECT_DOUBLE_EQ(wx, 1.5);
+  EXPECT_DOUBLE_EQ(wy, 2.5);
+
+  unsigned int umx, umy;
+  int mx, my;
+  ASSERT_TRUE(costmap.worldToMap(wx, wy, umx, umy));
+  EXPECT_EQ(umx, 1u);
+  EXPECT_EQ(umy, 2u);
+  costmap.worldToMapNoBounds(wx, wy, mx, my);
+  EXPECT_EQ(mx, 1);
+  EXPECT_EQ(my, 2);
+
+  wx = 2.5;  // off the grid
+  EXPECT_FALSE(costmap.worldToMap(wx, wy, umx, umy));
+  costmap.worldToMapEnforceBounds(wx, wy, mx, my);
+  EXPECT_EQ(mx, 1);
+  EXPECT_EQ(my, 2);
+  costmap.worldToMapNoBounds(wx, wy, mx, my);
+  EXPECT_EQ(mx, 2);
+  EXPECT_EQ(my, 2);
+
+  // Borders: a cell spans [i, i + 1).
+  for (const auto& [x, cell] : std::vector<std::pair<double, unsigned int>>{
+           {0.0, 0u}, {0.25, 0u}, {0.75, 0u}, {0.9999, 0u}, {1.0, 1u}, {1.25, 1u}, {1.75, 1u}, {1.9999, 1u}})
+  {
+    EXPECT_TRUE(costmap.worldToMap(x, wy, umx, umy)) << x;
+    EXPECT_EQ(umx, cell) << x;
+  }
+  EXPECT_FALSE(costmap.worldToMap(2.0, wy, umx, umy));
+  costmap.worldToMapEnforceBounds(2.0, wy, mx, my);
+  EXPECT_EQ(mx, 1);
+}
+
+TEST(Costmap2dCoordinatesTests, HardCoordinates)
+{
+  Costmap2D costmap(2, 3, 0.1, -0.2, 0.2);
+  double wx, wy;
+  costmap.mapToWorld(0, 0, wx, wy);
+  EXPECT_DOUBLE_EQ(wx, -0.15);
+  EXPECT_DOUBLE_EQ(wy, 0.25);
+  costmap.mapToWorld(1, 2, wx, wy);
+  EXPECT_DOUBLE_EQ(wx, -0.05);
+  EXPECT_DOUBLE_EQ(wy, 0.45);
+
+  unsigned int umx, umy;
+  int mx, my;
+  EXPECT_TRUE(costmap.worldToMap(wx, wy, umx, umy));
+  EXPECT_EQ(umx, 1u);
+  EXPECT_EQ(umy, 2u);
+  costmap.worldToMapNoBounds(wx, wy, mx, my);
+  EXPECT_EQ(mx, 1);
+  EXPECT_EQ(my, 2);
+
+  wx = 2.5;
+  EXPECT_FALSE(costmap.worldToMap(wx, wy, umx, umy));
+  costmap.worldToMapEnforceBounds(wx, wy, mx, my);
+  EXPECT_EQ(mx, 1);
+  EXPECT_EQ(my, 2);
+  costmap.worldToMapNoBounds(wx, wy, mx, my);
+  EXPECT_EQ(mx, 27);
+  EXPECT_EQ(my, 2);
 }
