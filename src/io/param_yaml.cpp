@@ -291,11 +291,7 @@ private:
       }
       const int line = key.Mark().line >= 0 ? key.Mark().line + 1 : 0;
       const auto [seen, is_new] = first_line.emplace(name, line);
-      if (!is_new && repeated_keys_ != nullptr)
-        repeated_keys_->push_back(what_ + (line > 0 ? " at line " + std::to_string(line) : std::string()) + ": key '" +
-                                  name + "' is written twice in one map" +
-                                  (seen->second > 0 ? " (first at line " + std::to_string(seen->second) + ")" : "") +
-                                  "; the last value is used");
+      if (!is_new) noteRepeat(name, line, seen->second);
       own.emplace_back(name, convert(kv.second, depth + 1));
     }
     ParamValue out = ParamValue::makeMap();
@@ -310,9 +306,33 @@ private:
     return out;
   }
 
+  /// One line per repeated key, the first kMaxRepeatedKeyLines of them (a key cut to 64 characters);
+  /// finishRepeats() counts the rest.
+  void noteRepeat(const std::string& name, int line, int first)
+  {
+    if (repeated_keys_ == nullptr) return;
+    if (++repeats_ > kMaxRepeatedKeyLines) return;
+    const std::string shown = name.size() > 64 ? name.substr(0, 64) + "..." : name;
+    repeated_keys_->push_back(what_ + (line > 0 ? " at line " + std::to_string(line) : std::string()) + ": key '" +
+                              shown + "' is written twice in one map" +
+                              (first > 0 ? " (first at line " + std::to_string(first) + ")" : "") +
+                              "; the last value is used");
+  }
+
+public:
+  void finishRepeats() const
+  {
+    if (repeated_keys_ != nullptr && repeats_ > kMaxRepeatedKeyLines)
+      repeated_keys_->push_back(what_ + ": " + std::to_string(repeats_ - kMaxRepeatedKeyLines) +
+                                " more keys written twice (not listed); the last value of each is used");
+  }
+
+private:
+  static constexpr uint64_t kMaxRepeatedKeyLines = 20;
   const std::string& what_;
   bool rosparam_floats_;  ///< type plain floats as PyYAML does (see parseParamsYaml)
   std::vector<std::string>* repeated_keys_;
+  uint64_t repeats_ = 0;
   uint64_t nodes_ = 0;
 };
 }  // namespace
@@ -346,7 +366,10 @@ ParamValue parseParamsYaml(const std::string& text, const std::string& what, boo
   }
   try
   {
-    return Converter(what, rosparam_floats, repeated_keys).convert(root, 0);
+    Converter converter(what, rosparam_floats, repeated_keys);
+    ParamValue tree = converter.convert(root, 0);
+    converter.finishRepeats();
+    return tree;
   }
   catch (const YAML::Exception& e)
   {

@@ -249,6 +249,20 @@ TEST(ParamYaml, RepeatedKeysAreDescribedWhenAsked)
   parseParamsYaml("x: {k: 1}\ny: {k: 2}\nbase: &b {k: 1}\nz:\n  <<: *b\n  k: 2\nl: [{k: 1}, {k: 2}]\n", "q", false,
                   &repeated);
   EXPECT_TRUE(repeated.empty()) << repeated.front();
+  // Many repeats: 20 lines and one that counts the rest; a long key is cut.
+  std::string many;
+  for (int i = 0; i < 1000; ++i)
+    many += "k: " + std::to_string(i) + "\n";
+  many += std::string(100, 'x') + ": 1\n" + std::string(100, 'x') + ": 2\n";
+  repeated.clear();
+  EXPECT_EQ(parseParamsYaml(many, "m", false, &repeated).find("k")->asInt(), 999);
+  ASSERT_EQ(repeated.size(), 21u);
+  EXPECT_EQ(repeated.back(), "m: 980 more keys written twice (not listed); the last value of each is used");
+  repeated.clear();
+  parseParamsYaml(std::string(100, 'y') + ": 1\n" + std::string(100, 'y') + ": 2\n", "long", false, &repeated);
+  ASSERT_EQ(repeated.size(), 1u);
+  EXPECT_NE(repeated[0].find("key '" + std::string(64, 'y') + "...' is written twice"), std::string::npos)
+      << repeated[0];
 }
 
 TEST(ParamYaml, AliasesAndMergeKeys)

@@ -53,7 +53,7 @@ constexpr uint64_t kMaxYamlNodes = uint64_t{1} << 18;
 
 /// Parses YAML text; `what` names the source in error messages (e.g. a file name or "--params").
 /// repeated_keys, when given, receives one line per key written twice in one map (where, which key,
-/// where it was first).
+/// where it was first), for the first 20 such keys, then one line counting the rest.
 ParamValue parseParamsYaml(const std::string& text, const std::string& what, bool rosparam_floats = false,
                            std::vector<std::string>* repeated_keys = nullptr);
 
