@@ -750,6 +750,15 @@ const std::vector<IgnoredKey>& ignoredKeys()
        "costmap_2d's obstacle layer lets tf lag this much (default 0.2 s); here readings wait for tf in a bounded "
        "queue and the costmap's transform_tolerance applies to the robot pose"},
       {"StaticLayer", "map_subscribe_transient_local", "Nav2's QoS switch; ROS 1 map topics are latched"},
+      {"costmap", "introspection_mode", "Nav2's ROS 2 service introspection; ROS 1 has none"},
+      {"*", "allow_parameter_qos_overrides", "a ROS 2 QoS setting; ROS 1 topics have no QoS"},
+      {"ObstacleLayer", "tf_filter_tolerance",
+       "Nav2's tf message filter tolerance; here readings wait for tf in a bounded queue and the costmap's "
+       "transform_tolerance applies to the robot pose"},
+      {"VoxelLayer", "tf_filter_tolerance",
+       "Nav2's tf message filter tolerance; here readings wait for tf in a bounded queue and the costmap's "
+       "transform_tolerance applies to the robot pose"},
+      {"source", "transport_type", "Nav2's point cloud transport (ROS 2); ROS 1 subscribes to the topic itself"},
       {"StaticLayer", "transform_tolerance", "Nav2's; the map is placed with the costmap's transform_tolerance"},
       {"RangeSensorLayer", "ns", "the ROS 1 plugin's topic prefix; write the full topic names in `topics`"},
       {"KeepoutFilter", "transform_tolerance", "Nav2's; the mask is placed with the costmap's transform_tolerance"},

@@ -434,6 +434,43 @@ TEST(UnknownKeys, SourceNamespacesAreWalkedAndKnownForeignKeysExplained)
   EXPECT_EQ(unknown[1].suggestion, "topic");
 }
 
+// Keys of Nav2's own params file (nav2_bringup/params/nav2_params.yaml and Nav2's layers) that only mean
+// something in ROS 2: each is said to be ignored, with the reason, not taken for a misspelling.
+TEST(UnknownKeys, Nav2sRos2OnlyKeysAreExplained)
+{
+  ParamValue layer = ParamValue::makeMap();
+  layer.set("observation_sources", S("scan"));
+  layer.set("tf_filter_tolerance", D(0.35));
+  layer.set("allow_parameter_qos_overrides", B(true));
+  ParamValue scan = ParamValue::makeMap();
+  scan.set("data_type", S("PointCloud2"));
+  scan.set("transport_type", S("raw"));
+  layer.set("scan", scan);
+  ParamReadLog log;
+  parseObstacleConfig(ParamReader(layer, "obstacles"), false);
+  const auto unknown = unknownKeys(layer, log, "VoxelLayer");
+  ASSERT_EQ(unknown.size(), 3u);
+  for (const auto& u : unknown)
+  {
+    EXPECT_FALSE(u.known_elsewhere.empty()) << u.path;
+    EXPECT_TRUE(u.suggestion.empty()) << u.path;
+  }
+  EXPECT_EQ(describeUnknownKey(unknown[0], "/c/voxel_layer"),
+            "parameter 'tf_filter_tolerance' in /c/voxel_layer is ignored: Nav2's tf message filter tolerance; here "
+            "readings wait for tf in a bounded queue and the costmap's transform_tolerance applies to the robot pose");
+  EXPECT_EQ(unknown[2].path, "scan/transport_type");
+
+  ParamValue ns = ParamValue::makeMap();
+  ns.set("introspection_mode", S("disabled"));
+  ns.set("plugins", ParamValue::makeList());
+  ParamReadLog costmap_log;
+  parseCostmapConfig(ns);
+  parsePluginLists(ns);
+  const auto costmap_unknown = unknownKeys(ns, costmap_log, "costmap");
+  ASSERT_EQ(costmap_unknown.size(), 1u);
+  EXPECT_NE(costmap_unknown[0].known_elsewhere.find("introspection"), std::string::npos);
+}
+
 TEST(UnknownKeys, CostmapLevelWithSkipsAndNamespaces)
 {
   ParamValue ns = ParamValue::makeMap();
