@@ -21,9 +21,10 @@ InflationConfig parseInflationConfig(const ParamReader& params)
   cfg.cost_scaling_factor = params.getDouble("cost_scaling_factor", cfg.cost_scaling_factor, 0.0);
   cfg.inflate_unknown = params.getBool("inflate_unknown", cfg.inflate_unknown);
   cfg.inflate_around_unknown = params.getBool("inflate_around_unknown", cfg.inflate_around_unknown);
-  // Nav2's: >= 0 replaces the footprint's inscribed radius, anything below means "not set".
-  cfg.custom_inscribed_radius =
-      params.getDouble("custom_inscribed_radius", cfg.custom_inscribed_radius, -1.0, limits::kMaxDistance);
+  // Nav2's: >= 0 replaces the footprint's inscribed radius, any negative number means "not set" (Nav2
+  // tests >= 0 only, so -2 works there too).
+  cfg.custom_inscribed_radius = params.getDouble("custom_inscribed_radius", cfg.custom_inscribed_radius,
+                                                 -limits::kMaxDistance, limits::kMaxDistance);
   // Nav2's InflationLayer takes 0 or less (its default, -1) as "half the cores, at least one".
   cfg.num_threads = params.getInt("num_threads", cfg.num_threads, -1, 64);
   if (cfg.num_threads <= 0)

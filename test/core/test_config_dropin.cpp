@@ -498,4 +498,8 @@ TEST(DropIn, Nav2CustomInscribedRadiusReplacesTheFootprintsAndIsWarned)
   const auto custom = run(0.0);
   EXPECT_EQ(custom.first, static_cast<int>(252.0 * std::exp(-1.0 * (1.0 - 0.0))));  // 92
   EXPECT_TRUE(custom.second);
+  // Any negative number is "not set" in Nav2 (it tests >= 0), not only its default -1.
+  const auto minus_two = run(-2.5);
+  EXPECT_EQ(minus_two.first, INSCRIBED_INFLATED_OBSTACLE);
+  EXPECT_FALSE(minus_two.second);
 }
