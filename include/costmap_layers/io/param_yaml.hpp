@@ -2,10 +2,10 @@
 // costmap_layers::ParamValue tree, without ROS. Uses yaml-cpp.
 //
 // Structure: maps become Map (keys in document order; a repeated key keeps its first position and
-// the last value, as rosparam does, and is described in repeated_keys when that is given), sequences become List, an
-// empty document becomes Null. Aliases (*name) are expanded, and the YAML 1.1 merge key `<<: *base` (or `<<: [*a, *b]`)
-// merges the maps in as rosparam/PyYAML do: keys written in the map itself win, then earlier merged maps win over
-// later.
+// the last value, as rosparam does, and is described in repeated_keys when that is given),
+// sequences become List, an empty document becomes Null. Aliases (*name) are expanded, and the
+// YAML 1.1 merge key `<<: *base` (or `<<: [*a, *b]`) merges the maps in as rosparam/PyYAML do: keys
+// written in the map itself win, then earlier merged maps win over later.
 //
 // Scalars are typed the way rosparam (PyYAML, YAML 1.1 rules) types plain scalars:
 //   Null    ~  null Null NULL  and an empty value
