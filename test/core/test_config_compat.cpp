@@ -415,18 +415,32 @@ TEST(UnknownKeys, FoundWithTheirNearestName)
             "costmap_layers and is ignored (did you mean `inflation_radius`?)");
 }
 
-TEST(UnknownKeys, SourceNamespacesAreWalkedAndKnownForeignKeysExplained)
+namespace
+{
+/// The unknown keys of an obstacle layer with one source "scan": layer_extra in the layer's namespace,
+/// source_extra in the source's, read by parseObstacleConfig and walked in scope.
+std::vector<UnknownKey> obstacleUnknownKeys(const std::vector<std::pair<std::string, ParamValue>>& layer_extra,
+                                            const std::vector<std::pair<std::string, ParamValue>>& source_extra,
+                                            const std::string& scope)
 {
   ParamValue layer = ParamValue::makeMap();
   layer.set("observation_sources", S("scan"));
-  layer.set("transform_tolerance", D(0.2));
+  for (const auto& [k, v] : layer_extra)
+    layer.set(k, v);
   ParamValue scan = ParamValue::makeMap();
-  scan.set("data_type", S("LaserScan"));
-  scan.set("topc", S("scan"));
+  for (const auto& [k, v] : source_extra)
+    scan.set(k, v);
   layer.set("scan", scan);
   ParamReadLog log;
   parseObstacleConfig(ParamReader(layer, "obstacles"), false);
-  const auto unknown = unknownKeys(layer, log, "ObstacleLayer");
+  return unknownKeys(layer, log, scope);
+}
+}  // namespace
+
+TEST(UnknownKeys, SourceNamespacesAreWalkedAndKnownForeignKeysExplained)
+{
+  const auto unknown = obstacleUnknownKeys({{"transform_tolerance", D(0.2)}},
+                                           {{"data_type", S("LaserScan")}, {"topc", S("scan")}}, "ObstacleLayer");
   ASSERT_EQ(unknown.size(), 2u);
   EXPECT_EQ(unknown[0].path, "transform_tolerance");
   EXPECT_NE(unknown[0].known_elsewhere.find("0.2 s"), std::string::npos);
@@ -438,17 +452,9 @@ TEST(UnknownKeys, SourceNamespacesAreWalkedAndKnownForeignKeysExplained)
 // something in ROS 2: each is said to be ignored, with the reason, not taken for a misspelling.
 TEST(UnknownKeys, Nav2sRos2OnlyKeysAreExplained)
 {
-  ParamValue layer = ParamValue::makeMap();
-  layer.set("observation_sources", S("scan"));
-  layer.set("tf_filter_tolerance", D(0.35));
-  layer.set("allow_parameter_qos_overrides", B(true));
-  ParamValue scan = ParamValue::makeMap();
-  scan.set("data_type", S("PointCloud2"));
-  scan.set("transport_type", S("raw"));
-  layer.set("scan", scan);
-  ParamReadLog log;
-  parseObstacleConfig(ParamReader(layer, "obstacles"), false);
-  const auto unknown = unknownKeys(layer, log, "VoxelLayer");
+  const auto unknown =
+      obstacleUnknownKeys({{"tf_filter_tolerance", D(0.35)}, {"allow_parameter_qos_overrides", B(true)}},
+                          {{"data_type", S("PointCloud2")}, {"transport_type", S("raw")}}, "VoxelLayer");
   ASSERT_EQ(unknown.size(), 3u);
   for (const auto& u : unknown)
   {

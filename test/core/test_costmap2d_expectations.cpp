@@ -389,6 +389,31 @@ TEST(Costmap2dFootprintTests, FootprintEmpty)
 
 // costmap_2d's coordinates_test.cpp (from locusrobotics' nav_grid): cell centres, the cell under a point
 // at and near cell borders, and the two unbounded forms, with its numbers.
+namespace
+{
+/// The part both of its cases check: (wx, wy), the centre of cell (1, 2), maps back to that cell by both
+/// forms; at x = 2.5, off the grid, worldToMap refuses, the clamped form gives (1, 2) and the unbounded
+/// one (nobounds_x, 2).
+void expectCell12AndOffGrid(const Costmap2D& costmap, double wx, double wy, int nobounds_x)
+{
+  unsigned int umx, umy;
+  int mx, my;
+  EXPECT_TRUE(costmap.worldToMap(wx, wy, umx, umy));
+  EXPECT_EQ(umx, 1u);
+  EXPECT_EQ(umy, 2u);
+  costmap.worldToMapNoBounds(wx, wy, mx, my);
+  EXPECT_EQ(mx, 1);
+  EXPECT_EQ(my, 2);
+  EXPECT_FALSE(costmap.worldToMap(2.5, wy, umx, umy));
+  costmap.worldToMapEnforceBounds(2.5, wy, mx, my);
+  EXPECT_EQ(mx, 1);
+  EXPECT_EQ(my, 2);
+  costmap.worldToMapNoBounds(2.5, wy, mx, my);
+  EXPECT_EQ(mx, nobounds_x);
+  EXPECT_EQ(my, 2);
+}
+}  // namespace
+
 TEST(Costmap2dCoordinatesTests, EasyCoordinates)
 {
   Costmap2D costmap(2, 3, 1.0, 0, 0);
@@ -399,26 +424,10 @@ TEST(Costmap2dCoordinatesTests, EasyCoordinates)
   costmap.mapToWorld(1u, 2u, wx, wy);
   EXPECT_DOUBLE_EQ(wx, 1.5);
   EXPECT_DOUBLE_EQ(wy, 2.5);
-
-  unsigned int umx, umy;
-  int mx, my;
-  ASSERT_TRUE(costmap.worldToMap(wx, wy, umx, umy));
-  EXPECT_EQ(umx, 1u);
-  EXPECT_EQ(umy, 2u);
-  costmap.worldToMapNoBounds(wx, wy, mx, my);
-  EXPECT_EQ(mx, 1);
-  EXPECT_EQ(my, 2);
-
-  wx = 2.5;  // off the grid
-  EXPECT_FALSE(costmap.worldToMap(wx, wy, umx, umy));
-  costmap.worldToMapEnforceBounds(wx, wy, mx, my);
-  EXPECT_EQ(mx, 1);
-  EXPECT_EQ(my, 2);
-  costmap.worldToMapNoBounds(wx, wy, mx, my);
-  EXPECT_EQ(mx, 2);
-  EXPECT_EQ(my, 2);
+  expectCell12AndOffGrid(costmap, wx, wy, 2);
 
   // Borders: a cell spans [i, i + 1).
+  unsigned int umx, umy;
   for (const auto& [x, cell] : std::vector<std::pair<double, unsigned int>>{
            {0.0, 0u}, {0.25, 0u}, {0.75, 0u}, {0.9999, 0u}, {1.0, 1u}, {1.25, 1u}, {1.75, 1u}, {1.9999, 1u}})
   {
@@ -426,6 +435,7 @@ TEST(Costmap2dCoordinatesTests, EasyCoordinates)
     EXPECT_EQ(umx, cell) << x;
   }
   EXPECT_FALSE(costmap.worldToMap(2.0, wy, umx, umy));
+  int mx, my;
   costmap.worldToMapEnforceBounds(2.0, wy, mx, my);
   EXPECT_EQ(mx, 1);
 }
@@ -440,22 +450,5 @@ TEST(Costmap2dCoordinatesTests, HardCoordinates)
   costmap.mapToWorld(1, 2, wx, wy);
   EXPECT_DOUBLE_EQ(wx, -0.05);
   EXPECT_DOUBLE_EQ(wy, 0.45);
-
-  unsigned int umx, umy;
-  int mx, my;
-  EXPECT_TRUE(costmap.worldToMap(wx, wy, umx, umy));
-  EXPECT_EQ(umx, 1u);
-  EXPECT_EQ(umy, 2u);
-  costmap.worldToMapNoBounds(wx, wy, mx, my);
-  EXPECT_EQ(mx, 1);
-  EXPECT_EQ(my, 2);
-
-  wx = 2.5;
-  EXPECT_FALSE(costmap.worldToMap(wx, wy, umx, umy));
-  costmap.worldToMapEnforceBounds(wx, wy, mx, my);
-  EXPECT_EQ(mx, 1);
-  EXPECT_EQ(my, 2);
-  costmap.worldToMapNoBounds(wx, wy, mx, my);
-  EXPECT_EQ(mx, 27);
-  EXPECT_EQ(my, 2);
+  expectCell12AndOffGrid(costmap, wx, wy, 27);  // (2.5 + 0.2) / 0.1
 }
