@@ -199,6 +199,40 @@ TEST(DropIn, Nav2LayersDropHitsBelowTheirMinObstacleHeight)
   EXPECT_FALSE(anyContains(r.notes, {"ros1: min_obstacle_height"}));
 }
 
+// nav2_costmap_2d/src/costmap_2d_ros.cpp: publish_frequency 1.0, width and height 5, resolution 0.1,
+// robot_radius 0.1, where costmap_2d (and this package) default to 0.0 (never publish), 10, 0.05 and 0.46. A
+// Nav2 file (its ros__parameters level) gets Nav2's, each said; a value written stays; a ROS 1 file keeps
+// costmap_2d's.
+TEST(DropIn, ANav2FileGetsNav2sCostmapDefaults)
+{
+  ParamValue ros2 = ParamValue::makeMap();
+  ros2.set("ros__parameters", paramMap({{"width", D(3.0)}}));
+  const CompatResult r = prepareCostmapNamespace(ros2, "");
+  EXPECT_EQ(r.params.find("publish_frequency")->asDouble(), 1.0);
+  EXPECT_EQ(r.params.find("width")->asDouble(), 3.0);  // as written
+  EXPECT_EQ(r.params.find("height")->asDouble(), 5.0);
+  EXPECT_EQ(r.params.find("resolution")->asDouble(), 0.1);
+  EXPECT_EQ(r.params.find("robot_radius")->asDouble(), 0.1);
+  EXPECT_TRUE(anyContains(r.notes, {"publish_frequency not set: 1, Nav2's default (costmap_2d's is 0: never)"}));
+  EXPECT_TRUE(anyContains(r.notes, {"robot_radius not set: 0.1, Nav2's default (costmap_2d's is 0.46)"}));
+  EXPECT_FALSE(anyContains(r.notes, {"width not set"}));
+  const CostmapConfig c = parseCostmapConfig(r.params);
+  EXPECT_EQ(c.publish_frequency, 1.0);
+  EXPECT_EQ(c.height, 5.0);
+  EXPECT_EQ(c.footprint.robot_radius, 0.1);
+
+  // A footprint polygon makes robot_radius moot: not set then.
+  ParamValue with_footprint = ParamValue::makeMap();
+  with_footprint.set("ros__parameters", paramMap({{"footprint", S("[[0.3, 0.2], [0.3, -0.2], [-0.3, -0.2]]")}}));
+  EXPECT_EQ(prepareCostmapNamespace(with_footprint, "").params.find("robot_radius"), nullptr);
+
+  // A ROS 1 file: costmap_2d's defaults, nothing added.
+  const CompatResult ros1 = prepareCostmapNamespace(paramMap({{"width", D(3.0)}}), "");
+  EXPECT_EQ(ros1.params.find("publish_frequency"), nullptr);
+  EXPECT_EQ(ros1.params.find("robot_radius"), nullptr);
+  EXPECT_EQ(parseCostmapConfig(ros1.params).publish_frequency, 0.0);
+}
+
 TEST(DropIn, PreHydroValuesCostmap2dSkipsAreNamed)
 {
   // costmap_2d_ros.cpp loadOldParameters: getParam("static_map", bool) fails on a string or an int
