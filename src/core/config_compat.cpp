@@ -917,8 +917,10 @@ CompatResult prepareCostmapNamespace(ParamValue ns, const std::string& own_name,
                                      const std::vector<ParentNamespace>& parents)
 {
   const bool lifted = !own_name.empty() && liftOwnNamespace(ns, own_name);
-  // A Nav2 file keeps its parameters one level down, under ros__parameters (ROS 2's form).
-  const bool ros2 = liftOwnNamespace(ns, "ros__parameters");
+  // A Nav2 file keeps its parameters one level down, under ros__parameters (ROS 2's form); or the
+  // namespace named is that level itself (costmap_tool --namespace local_costmap/local_costmap/ros__parameters).
+  const bool named_level = own_name == "ros__parameters";
+  const bool ros2 = liftOwnNamespace(ns, "ros__parameters") || named_level;
   {
     const PluginLists named = parsePluginLists(ns);
     for (const auto* list : {&named.plugins, &named.filters})
@@ -926,9 +928,9 @@ CompatResult prepareCostmapNamespace(ParamValue ns, const std::string& own_name,
         hoistNestedPluginNamespace(ns, spec.name);
   }
   CompatResult r = applyCostmap2dRules(ns, parents);
-  if (ros2)
+  if (ros2) nav2CostmapDefaults(r);
+  if (ros2 && !named_level)
   {
-    nav2CostmapDefaults(r);
     r.warnings.insert(r.warnings.begin(),
                       "this namespace holds ROS 2's `ros__parameters:` level (a Nav2 file): its parameters apply "
                       "to this costmap; remove that level from the file for ROS 1");

@@ -221,6 +221,11 @@ TEST(DropIn, ANav2FileGetsNav2sCostmapDefaults)
   EXPECT_EQ(c.height, 5.0);
   EXPECT_EQ(c.footprint.robot_radius, 0.1);
 
+  // The namespace named may be that level itself (costmap_tool --namespace .../ros__parameters).
+  const CompatResult level = prepareCostmapNamespace(paramMap({{"width", D(3.0)}}), "ros__parameters");
+  EXPECT_EQ(level.params.find("resolution")->asDouble(), 0.1);
+  EXPECT_FALSE(anyContains(level.warnings, {"remove that level"}));
+
   // A footprint polygon makes robot_radius moot: not set then.
   ParamValue with_footprint = ParamValue::makeMap();
   with_footprint.set("ros__parameters", paramMap({{"footprint", S("[[0.3, 0.2], [0.3, -0.2], [-0.3, -0.2]]")}}));
