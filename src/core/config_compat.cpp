@@ -715,6 +715,13 @@ const std::vector<IgnoredKey>& ignoredKeys()
   static const char* kNeedsVoxel =
       "a pre-Hydro costmap-level key: with a plugins list costmap_2d copies it only into a plugin of type "
       "costmap_2d::VoxelLayer; set it in the voxel layer's namespace";
+  // How sensor readings meet tf here, for the two stacks' tolerance keys of obstacle and voxel layers.
+  static const char* kCostmap2dSensorTf =
+      "costmap_2d's obstacle layer lets tf lag this much (default 0.2 s); here readings wait for tf in a bounded "
+      "queue and the costmap's transform_tolerance applies to the robot pose";
+  static const char* kNav2SensorTf =
+      "Nav2's tf message filter tolerance; here readings wait for tf in a bounded queue and the costmap's "
+      "transform_tolerance applies to the robot pose";
   static const std::vector<IgnoredKey> table = {
       {"costmap", "footprint_topic",
        "costmap_2d subscribes to it for footprint changes at run time; costmap_layers takes the footprint from "
@@ -743,21 +750,13 @@ const std::vector<IgnoredKey>& ignoredKeys()
       {"costmap", "mark_threshold", kNeedsVoxel},
       {"costmap", "unknown_threshold", kNeedsVoxel},
       {"costmap", "publish_voxel_map", kNeedsVoxel},
-      {"ObstacleLayer", "transform_tolerance",
-       "costmap_2d's obstacle layer lets tf lag this much (default 0.2 s); here readings wait for tf in a bounded "
-       "queue and the costmap's transform_tolerance applies to the robot pose"},
-      {"VoxelLayer", "transform_tolerance",
-       "costmap_2d's obstacle layer lets tf lag this much (default 0.2 s); here readings wait for tf in a bounded "
-       "queue and the costmap's transform_tolerance applies to the robot pose"},
+      {"ObstacleLayer", "transform_tolerance", kCostmap2dSensorTf},
+      {"VoxelLayer", "transform_tolerance", kCostmap2dSensorTf},
       {"StaticLayer", "map_subscribe_transient_local", "Nav2's QoS switch; ROS 1 map topics are latched"},
       {"costmap", "introspection_mode", "Nav2's ROS 2 service introspection; ROS 1 has none"},
       {"*", "allow_parameter_qos_overrides", "a ROS 2 QoS setting; ROS 1 topics have no QoS"},
-      {"ObstacleLayer", "tf_filter_tolerance",
-       "Nav2's tf message filter tolerance; here readings wait for tf in a bounded queue and the costmap's "
-       "transform_tolerance applies to the robot pose"},
-      {"VoxelLayer", "tf_filter_tolerance",
-       "Nav2's tf message filter tolerance; here readings wait for tf in a bounded queue and the costmap's "
-       "transform_tolerance applies to the robot pose"},
+      {"ObstacleLayer", "tf_filter_tolerance", kNav2SensorTf},
+      {"VoxelLayer", "tf_filter_tolerance", kNav2SensorTf},
       {"source", "transport_type", "Nav2's point cloud transport (ROS 2); ROS 1 subscribes to the topic itself"},
       {"StaticLayer", "transform_tolerance", "Nav2's; the map is placed with the costmap's transform_tolerance"},
       {"RangeSensorLayer", "ns", "the ROS 1 plugin's topic prefix; write the full topic names in `topics`"},

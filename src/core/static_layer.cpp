@@ -379,9 +379,7 @@ void StaticLayer::updateCosts(Costmap2D& master_grid, int min_i, int min_j, int 
   if (!layered_costmap_->isRolling())
   {
     // The own grid lies on the master (the map's yaw is ignored here, as costmap_2d does).
-    clearFootprintCells(GridPlacement{costmap_.getSizeInCellsX(), costmap_.getSizeInCellsY(), costmap_.getResolution(),
-                                      costmap_.getOriginX(), costmap_.getOriginY(), 0.0},
-                        Transform2D{});
+    clearFootprintCells(ownPlacement(0.0), Transform2D{});
     if (config_.use_maximum)
       updateWithMax(master_grid, min_i, min_j, max_i, max_j);
     else
@@ -410,8 +408,7 @@ void StaticLayer::updateCosts(Costmap2D& master_grid, int min_i, int min_j, int 
     }
     to_map = *t;
   }
-  const GridPlacement map{costmap_.getSizeInCellsX(), costmap_.getSizeInCellsY(), costmap_.getResolution(),
-                          costmap_.getOriginX(),      costmap_.getOriginY(),      map_yaw_};
+  const GridPlacement map = ownPlacement(map_yaw_);
   sampler_.build(master_grid, CellWindow{min_i, min_j, max_i, max_j}, map, to_map);
   clearFootprintCells(map, to_map);
   if (config_.use_maximum)
@@ -422,6 +419,12 @@ void StaticLayer::updateCosts(Costmap2D& master_grid, int min_i, int min_j, int 
   restoreFootprintCells();
 }
 
+GridPlacement StaticLayer::ownPlacement(double yaw) const
+{
+  return {costmap_.getSizeInCellsX(), costmap_.getSizeInCellsY(), costmap_.getResolution(),
+          costmap_.getOriginX(),      costmap_.getOriginY(),      yaw};
+}
+
 void StaticLayer::clearFootprintCells(const GridPlacement& own, const Transform2D& to_map)
 {
   cleared_.clear();
@@ -430,10 +433,11 @@ void StaticLayer::clearFootprintCells(const GridPlacement& own, const Transform2
   polygon.reserve(footprint_.size());
   for (const auto& p : footprint_)
   {
-    double gx, gy;
-    toGridCells(own, to_map, p.x(), p.y(), gx, gy);
-    if (!(gx >= 0.0) || !(gy >= 0.0) || gx >= own.width || gy >= own.height) return;
-    polygon.push_back({static_cast<unsigned int>(gx), static_cast<unsigned int>(gy)});
+    std::size_t index;
+    if (!gridCellAt(own, to_map, p.x(), p.y(), index)) return;
+    MapLocation cell;
+    costmap_.indexToCells(static_cast<unsigned int>(index), cell.x, cell.y);
+    polygon.push_back(cell);
   }
   footprint_cells_.clear();
   costmap_.convexFillCells(polygon, footprint_cells_);

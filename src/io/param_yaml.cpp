@@ -289,9 +289,12 @@ private:
         }
         continue;
       }
-      const int line = key.Mark().line >= 0 ? key.Mark().line + 1 : 0;
-      const auto [seen, is_new] = first_line.emplace(name, line);
-      if (!is_new) noteRepeat(name, line, seen->second);
+      if (repeated_keys_ != nullptr)  // only asked for: no lookup table otherwise
+      {
+        const int line = key.Mark().line >= 0 ? key.Mark().line + 1 : 0;
+        const auto [seen, is_new] = first_line.emplace(name, line);
+        if (!is_new) noteRepeat(name, line, seen->second);
+      }
       own.emplace_back(name, convert(kv.second, depth + 1));
     }
     ParamValue out = ParamValue::makeMap();
@@ -306,11 +309,10 @@ private:
     return out;
   }
 
-  /// One line per repeated key, the first kMaxRepeatedKeyLines of them (a key cut to 64 characters);
-  /// finishRepeats() counts the rest.
+  /// One line per repeated key into repeated_keys_ (set), the first kMaxRepeatedKeyLines of them (a key
+  /// cut to 64 characters); finishRepeats() counts the rest.
   void noteRepeat(const std::string& name, int line, int first)
   {
-    if (repeated_keys_ == nullptr) return;
     if (++repeats_ > kMaxRepeatedKeyLines) return;
     const std::string shown = name.size() > 64 ? name.substr(0, 64) + "..." : name;
     repeated_keys_->push_back(what_ + (line > 0 ? " at line " + std::to_string(line) : std::string()) + ": key '" +

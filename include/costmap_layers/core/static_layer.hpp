@@ -108,6 +108,8 @@ private:
   /// (none when a vertex is off the map, as costmap_2d's polygon fill); own: the own grid's placement
   /// in the map's frame, to_map: the costmap's frame -> the map's.
   void clearFootprintCells(const GridPlacement& own, const Transform2D& to_map);
+  /// The own grid's placement (its cells), with the given yaw in the map's frame.
+  GridPlacement ownPlacement(double yaw) const;
   /// Puts the cells clearFootprintCells() cleared back (restore_cleared_footprint), and forgets them.
   void restoreFootprintCells();
   void rebuildTable();
