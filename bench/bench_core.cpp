@@ -9,11 +9,11 @@
 #include <random>
 #include <vector>
 
-#include "costmap_layers/core/cost_values.hpp"
-#include "costmap_layers/core/costmap_layer.hpp"
-#include "costmap_layers/core/gradient_layer.hpp"
-#include "costmap_layers/core/keepout_filter.hpp"
-#include "costmap_layers/core/layered_costmap.hpp"
+#include "costmap_layers/core/grid/cost_values.hpp"
+#include "costmap_layers/core/costmap/costmap_layer.hpp"
+#include "costmap_layers/core/layers/gradient_layer.hpp"
+#include "costmap_layers/core/filters/keepout_filter.hpp"
+#include "costmap_layers/core/costmap/layered_costmap.hpp"
 #include "fake_context.hpp"
 
 using namespace costmap_layers;

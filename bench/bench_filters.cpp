@@ -16,10 +16,10 @@
 #include <string>
 #include <vector>
 
-#include "costmap_layers/core/lanes_filter.hpp"
-#include "costmap_layers/core/layered_costmap.hpp"
-#include "costmap_layers/core/speed_filter.hpp"
-#include "costmap_layers/core/zone_shapes.hpp"
+#include "costmap_layers/core/filters/lanes_filter.hpp"
+#include "costmap_layers/core/costmap/layered_costmap.hpp"
+#include "costmap_layers/core/filters/speed_filter.hpp"
+#include "costmap_layers/core/zones/zone_shapes.hpp"
 #include "fake_context.hpp"
 
 using namespace costmap_layers;

@@ -13,15 +13,15 @@
 #include <string>
 #include <vector>
 
-#include "costmap_layers/core/cost_values.hpp"
-#include "costmap_layers/core/costmap_2d.hpp"
-#include "costmap_layers/core/distance_transform.hpp"
-#include "costmap_layers/core/footprint.hpp"
-#include "costmap_layers/core/inflation_layer.hpp"
-#include "costmap_layers/core/layer_context.hpp"
-#include "costmap_layers/core/layered_costmap.hpp"
-#include "costmap_layers/core/simd_targets.hpp"
-#include "costmap_layers/core/static_layer.hpp"
+#include "costmap_layers/core/grid/cost_values.hpp"
+#include "costmap_layers/core/grid/costmap_2d.hpp"
+#include "costmap_layers/core/kernels/distance_transform.hpp"
+#include "costmap_layers/core/grid/footprint.hpp"
+#include "costmap_layers/core/layers/inflation_layer.hpp"
+#include "costmap_layers/core/costmap/layer_context.hpp"
+#include "costmap_layers/core/costmap/layered_costmap.hpp"
+#include "costmap_layers/core/kernels/simd_targets.hpp"
+#include "costmap_layers/core/layers/static_layer.hpp"
 #include "costmap_layers/io/map_file.hpp"
 
 using namespace costmap_layers;
@@ -52,7 +52,7 @@ private:
 };
 
 /// The big map of the benchmarks, loaded once: the map file named by $COSTMAP_LAYERS_BENCH_MAP, which
-/// scripts/bench.sh sets to the synthetic 4000x4000 map it writes with scripts/make_synthetic_map.py.
+/// scripts/bench.sh sets to the synthetic 4000x4000 map it writes with scripts/dev/make_synthetic_map.py.
 /// Any map_server YAML works (e.g. a robot's own map).
 struct BenchMap
 {

@@ -12,11 +12,11 @@
 #include <memory>
 #include <vector>
 
-#include "costmap_layers/core/cost_values.hpp"
-#include "costmap_layers/core/inflation_layer.hpp"
-#include "costmap_layers/core/layered_costmap.hpp"
-#include "costmap_layers/core/obstacle_layer.hpp"
-#include "costmap_layers/core/voxel_layer.hpp"
+#include "costmap_layers/core/grid/cost_values.hpp"
+#include "costmap_layers/core/layers/inflation_layer.hpp"
+#include "costmap_layers/core/costmap/layered_costmap.hpp"
+#include "costmap_layers/core/layers/obstacle_layer.hpp"
+#include "costmap_layers/core/layers/voxel_layer.hpp"
 #include "fake_context.hpp"
 #include "sensor_test_helpers.hpp"
 

@@ -2,7 +2,7 @@
 # Builds (Release) and runs every benchmark in bench/, then prints each result as a ratio to the
 # memcpy of the same grid measured in the same run (median and minimum).
 #   COSTMAP_LAYERS_BENCH_MAP=/path/map.yaml     benchmarks another map than the synthetic 4000x4000
-#                                               one (scripts/make_synthetic_map.py); the inflation
+#                                               one (scripts/dev/make_synthetic_map.py); the inflation
 #                                               sweep then reads it at 0.025, 0.05 and 0.1 m
 #   COSTMAP_LAYERS_BENCH_MAPS="a.yaml b.yaml"   after that, the whole static + inflation update of
 #                                               each of these maps at its own resolution (the sweep
@@ -13,13 +13,13 @@
 #                                               two targets with the same binary
 # Extra arguments go to every benchmark program (e.g. --benchmark_filter=Sweep).
 set -euo pipefail
-source "$(dirname "$0")/common.sh"
+source "$(dirname "$0")/lib/common.sh"
 build_package
 OUT="${BENCH_OUTPUT:-$ROOT/log/bench}"
 mkdir -p "$OUT"
 # The big map: the synthetic 4000x4000 one, written here deterministically, unless a map is given.
 if [ -z "${COSTMAP_LAYERS_BENCH_MAP:-}" ]; then
-  python3 "$ROOT/scripts/make_synthetic_map.py" "$OUT/maps"
+  python3 "$ROOT/scripts/dev/make_synthetic_map.py" "$OUT/maps"
   export COSTMAP_LAYERS_BENCH_MAP="$OUT/maps/synthetic_indoor_4000.yaml"
 fi
 # bench_move_base (built when costmap_2d is found) hosts the bridge, which reads parameters: give it a
@@ -52,7 +52,7 @@ run() {  # run NAME EXE [ARGS...]: one benchmark program, its JSON, its ratios
   [ "$name" = bench_move_base ] && runner=(with_master)
   "${runner[@]}" "$exe" --benchmark_repetitions="${BENCH_REPETITIONS:-5}" --benchmark_report_aggregates_only=true \
     --benchmark_out="$OUT/$name.json" --benchmark_out_format=json "$@"
-  python3 "$ROOT/scripts/bench_ratios.py" "$OUT/$name.json"
+  python3 "$ROOT/scripts/dev/bench_ratios.py" "$OUT/$name.json"
 }
 for exe in "$BIN"/bench_*; do
   [ -x "$exe" ] && [ "${exe%.py}" = "$exe" ] || continue

@@ -14,8 +14,8 @@
 set -euo pipefail
 export PATH=/usr/bin:/bin:$PATH
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-# shellcheck source=scripts/navigation_underlay.sh
-source "$ROOT/scripts/navigation_underlay.sh"
+# shellcheck source=scripts/lib/navigation_underlay.sh
+source "$ROOT/scripts/lib/navigation_underlay.sh"
 
 if [ $# -lt 1 ] || [ $# -gt 2 ]; then
   echo "usage: $0 SOURCE_TARBALL_OR_DIR [UNDERLAY_DIR]" >&2
@@ -35,7 +35,7 @@ NAV_PKGS=(
   libmove-base-msgs-dev ros-move-base-msgs python3-move-base-msgs liblaser-geometry-dev librosbag-dev
   libmap-msgs-dev ros-map-msgs python3-map-msgs
 )
-bash "$ROOT/scripts/install_deps.sh"
+bash "$ROOT/scripts/lib/install_deps.sh"
 missing=()
 for p in "${NAV_PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -4,7 +4,7 @@
 # every /max_speed change printed with the robot's position, and the published costmap written as a
 # PNG into demo_output/. Ends by itself.
 set -euo pipefail
-source "$(dirname "$0")/common.sh"
+source "$(dirname "$0")/lib/common.sh"
 build_package
 source_install
 OUT="${DEMO_OUTPUT:-$ROOT/demo_output}"

@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # Every test: installs what is missing, builds (Release), runs the unit tests, the tool tests and the
 # rostests through colcon, then the core's unit tests under ASan + UBSan and a replay of every fuzz
-# target's committed seeds and regression inputs (deterministic: random fuzzing is scripts/fuzz.sh's
+# target's committed seeds and regression inputs (deterministic: random fuzzing is scripts/dev/fuzz.sh's
 # own job), prints every failure, and exits non-zero when any test fails.
 set -euo pipefail
-source "$(dirname "$0")/common.sh"
+source "$(dirname "$0")/lib/common.sh"
 build_package
 cd "$ROOT"
 export ROS_HOME="${ROS_HOME:-$ROOT/log/ros_home}"
@@ -14,12 +14,12 @@ colcon --log-base "$ROOT/log" test --base-paths "$ROOT" --build-base "$ROOT/buil
   --event-handlers console_cohesion+ --return-code-on-test-failure
 test_rc=$?
 # The core's unit tests again under AddressSanitizer + UndefinedBehaviorSanitizer (own small build).
-bash "$ROOT/scripts/sanitize.sh" > "$ROOT/log/sanitize.log" 2>&1
+bash "$ROOT/scripts/dev/sanitize.sh" > "$ROOT/log/sanitize.log" 2>&1
 sanitize_rc=$?
 tail -n 3 "$ROOT/log/sanitize.log"
 [ "$sanitize_rc" -eq 0 ] || { echo "test.sh: the sanitizer run failed, see log/sanitize.log:"; tail -n 60 "$ROOT/log/sanitize.log"; }
 # Every libFuzzer target on its committed seeds and regression inputs, each run once.
-FUZZ_SECONDS=0 bash "$ROOT/scripts/fuzz.sh" > "$ROOT/log/fuzz.log" 2>&1
+FUZZ_SECONDS=0 bash "$ROOT/scripts/dev/fuzz.sh" > "$ROOT/log/fuzz.log" 2>&1
 fuzz_rc=$?
 tail -n 12 "$ROOT/log/fuzz.log"
 [ "$fuzz_rc" -eq 0 ] || { echo "test.sh: a fuzz target failed, see log/fuzz.log:"; tail -n 60 "$ROOT/log/fuzz.log"; }

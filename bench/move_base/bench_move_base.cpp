@@ -14,9 +14,9 @@
 #include <memory>
 #include <vector>
 
-#include "costmap_layers/core/gradient_layer.hpp"
-#include "costmap_layers/core/layer_context.hpp"
-#include "costmap_layers/core/layered_costmap.hpp"
+#include "costmap_layers/core/layers/gradient_layer.hpp"
+#include "costmap_layers/core/costmap/layer_context.hpp"
+#include "costmap_layers/core/costmap/layered_costmap.hpp"
 #include "costmap_layers/move_base/layer_bridge.hpp"
 
 namespace

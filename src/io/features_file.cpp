@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "costmap_layers/core/speed_filter.hpp"
+#include "costmap_layers/core/filters/speed_filter.hpp"
 #include "costmap_layers/io/param_yaml.hpp"
 
 namespace costmap_layers::io

@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "costmap_layers/core/limits.hpp"
+#include "costmap_layers/core/rules/limits.hpp"
 #include "costmap_layers/io/file_limits.hpp"
 
 namespace costmap_layers

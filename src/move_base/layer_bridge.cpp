@@ -8,13 +8,13 @@
 #include <type_traits>
 #include <vector>
 
-#include "costmap_layers/core/config_compat.hpp"
-#include "costmap_layers/core/costmap_clearing.hpp"
-#include "costmap_layers/core/costmap_filter.hpp"
-#include "costmap_layers/core/costmap_layer.hpp"
-#include "costmap_layers/core/footprint.hpp"
-#include "costmap_layers/core/layered_costmap.hpp"
-#include "costmap_layers/core/static_layer.hpp"
+#include "costmap_layers/core/config/config_compat.hpp"
+#include "costmap_layers/core/costmap/costmap_clearing.hpp"
+#include "costmap_layers/core/filters/costmap_filter.hpp"
+#include "costmap_layers/core/costmap/costmap_layer.hpp"
+#include "costmap_layers/core/grid/footprint.hpp"
+#include "costmap_layers/core/costmap/layered_costmap.hpp"
+#include "costmap_layers/core/layers/static_layer.hpp"
 #include "costmap_layers/ros/conversions.hpp"
 #include "costmap_layers/ros/costmap_node.hpp"
 #include "costmap_layers/ros/layer_ports.hpp"

@@ -2,17 +2,17 @@
 // base class costmap_2d::Layer (move_base_plugins.xml), built only when costmap_2d is found.
 #include <pluginlib/class_list_macros.hpp>
 
-#include "costmap_layers/core/binary_filter.hpp"
-#include "costmap_layers/core/gradient_layer.hpp"
-#include "costmap_layers/core/inflation_layer.hpp"
-#include "costmap_layers/core/keepout_filter.hpp"
-#include "costmap_layers/core/lanes_filter.hpp"
-#include "costmap_layers/core/obstacle_layer.hpp"
-#include "costmap_layers/core/range_sensor_layer.hpp"
-#include "costmap_layers/core/speed_filter.hpp"
-#include "costmap_layers/core/static_layer.hpp"
-#include "costmap_layers/core/voxel_layer.hpp"
-#include "costmap_layers/core/zone_parameter_filter.hpp"
+#include "costmap_layers/core/filters/binary_filter.hpp"
+#include "costmap_layers/core/layers/gradient_layer.hpp"
+#include "costmap_layers/core/layers/inflation_layer.hpp"
+#include "costmap_layers/core/filters/keepout_filter.hpp"
+#include "costmap_layers/core/filters/lanes_filter.hpp"
+#include "costmap_layers/core/layers/obstacle_layer.hpp"
+#include "costmap_layers/core/layers/range_sensor_layer.hpp"
+#include "costmap_layers/core/filters/speed_filter.hpp"
+#include "costmap_layers/core/layers/static_layer.hpp"
+#include "costmap_layers/core/layers/voxel_layer.hpp"
+#include "costmap_layers/core/filters/zone_parameter_filter.hpp"
 #include "costmap_layers/move_base/layer_bridge.hpp"
 
 // One class per core type, named as the core class, in namespace costmap_layers::move_base. The

@@ -19,7 +19,7 @@
 #include <stdexcept>
 
 #include "costmap_layers/CostmapFilterInfo.h"
-#include "costmap_layers/core/filter_info.hpp"
+#include "costmap_layers/core/filters/filter_info.hpp"
 #include "costmap_layers/ros/node_params.hpp"
 
 namespace

@@ -9,8 +9,8 @@
 #include <mutex>
 #include <utility>
 
-#include "costmap_layers/core/costmap_filter.hpp"
-#include "costmap_layers/core/limits.hpp"
+#include "costmap_layers/core/filters/costmap_filter.hpp"
+#include "costmap_layers/core/rules/limits.hpp"
 #include "costmap_layers/io/png_writer.hpp"
 #include "costmap_layers/ros/conversions.hpp"
 

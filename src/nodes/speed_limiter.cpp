@@ -9,8 +9,8 @@
 #include <mutex>
 
 #include "costmap_layers/MaxSpeed.h"
-#include "costmap_layers/core/limits.hpp"
-#include "costmap_layers/core/speed_limiter.hpp"
+#include "costmap_layers/core/rules/limits.hpp"
+#include "costmap_layers/core/filters/speed_limiter.hpp"
 
 namespace
 {

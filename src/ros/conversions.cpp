@@ -9,9 +9,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "costmap_layers/core/cost_translation.hpp"
-#include "costmap_layers/core/publish_schedule.hpp"
-#include "costmap_layers/core/sensor_parsing.hpp"
+#include "costmap_layers/core/rules/cost_translation.hpp"
+#include "costmap_layers/core/costmap/publish_schedule.hpp"
+#include "costmap_layers/core/layers/sensor_parsing.hpp"
 
 namespace costmap_layers_ros
 {

@@ -10,11 +10,11 @@
 #include <cmath>
 #include <thread>
 
-#include "costmap_layers/core/config_compat.hpp"
-#include "costmap_layers/core/costmap_builder.hpp"
-#include "costmap_layers/core/costmap_clearing.hpp"
-#include "costmap_layers/core/layer.hpp"
-#include "costmap_layers/core/layer_status.hpp"
+#include "costmap_layers/core/config/config_compat.hpp"
+#include "costmap_layers/core/costmap/costmap_builder.hpp"
+#include "costmap_layers/core/costmap/costmap_clearing.hpp"
+#include "costmap_layers/core/costmap/layer.hpp"
+#include "costmap_layers/core/costmap/layer_status.hpp"
 #include "costmap_layers/ros/conversions.hpp"
 
 namespace costmap_layers_ros

@@ -23,8 +23,8 @@
 #include "costmap_layers/MaxSpeed.h"
 #include "costmap_layers/Nav2SpeedLimit.h"
 #include "costmap_layers/SpeedLimits.h"
-#include "costmap_layers/core/costmap_filter.hpp"
-#include "costmap_layers/core/input_error.hpp"
+#include "costmap_layers/core/filters/costmap_filter.hpp"
+#include "costmap_layers/core/config/input_error.hpp"
 #include "costmap_layers/ros/conversions.hpp"
 #include "costmap_layers/ros/tf_verdict.hpp"
 

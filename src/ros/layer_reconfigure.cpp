@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "costmap_layers/core/input_error.hpp"
+#include "costmap_layers/core/config/input_error.hpp"
 
 namespace costmap_layers_ros
 {

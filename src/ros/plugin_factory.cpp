@@ -3,7 +3,7 @@
 #include <pluginlib/class_loader.hpp>
 #include <stdexcept>
 
-#include "costmap_layers/core/config_compat.hpp"
+#include "costmap_layers/core/config/config_compat.hpp"
 
 namespace costmap_layers_ros
 {

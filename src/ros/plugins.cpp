@@ -1,17 +1,17 @@
 // Every pluginlib export of the package, in one file built into its own library.
 #include <pluginlib/class_list_macros.hpp>
 
-#include "costmap_layers/core/binary_filter.hpp"
-#include "costmap_layers/core/gradient_layer.hpp"
-#include "costmap_layers/core/inflation_layer.hpp"
-#include "costmap_layers/core/keepout_filter.hpp"
-#include "costmap_layers/core/lanes_filter.hpp"
-#include "costmap_layers/core/obstacle_layer.hpp"
-#include "costmap_layers/core/range_sensor_layer.hpp"
-#include "costmap_layers/core/speed_filter.hpp"
-#include "costmap_layers/core/static_layer.hpp"
-#include "costmap_layers/core/voxel_layer.hpp"
-#include "costmap_layers/core/zone_parameter_filter.hpp"
+#include "costmap_layers/core/filters/binary_filter.hpp"
+#include "costmap_layers/core/layers/gradient_layer.hpp"
+#include "costmap_layers/core/layers/inflation_layer.hpp"
+#include "costmap_layers/core/filters/keepout_filter.hpp"
+#include "costmap_layers/core/filters/lanes_filter.hpp"
+#include "costmap_layers/core/layers/obstacle_layer.hpp"
+#include "costmap_layers/core/layers/range_sensor_layer.hpp"
+#include "costmap_layers/core/filters/speed_filter.hpp"
+#include "costmap_layers/core/layers/static_layer.hpp"
+#include "costmap_layers/core/layers/voxel_layer.hpp"
+#include "costmap_layers/core/filters/zone_parameter_filter.hpp"
 
 PLUGINLIB_EXPORT_CLASS(costmap_layers::GradientLayer, costmap_layers::Layer)
 PLUGINLIB_EXPORT_CLASS(costmap_layers::KeepoutFilter, costmap_layers::Layer)

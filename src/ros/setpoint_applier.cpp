@@ -10,7 +10,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "costmap_layers/core/input_error.hpp"
+#include "costmap_layers/core/config/input_error.hpp"
 
 namespace costmap_layers_ros
 {

@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <cstdio>
 
-#include "costmap_layers/core/input_error.hpp"
+#include "costmap_layers/core/config/input_error.hpp"
 
 namespace costmap_layers_ros
 {

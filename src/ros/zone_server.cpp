@@ -9,7 +9,7 @@
 #include <optional>
 #include <stdexcept>
 
-#include "costmap_layers/core/limits.hpp"
+#include "costmap_layers/core/rules/limits.hpp"
 #include "costmap_layers/io/zone_file.hpp"
 #include "costmap_layers/ros/node_params.hpp"
 

@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "costmap_layers/core/costmap_2d.hpp"
+#include "costmap_layers/core/grid/costmap_2d.hpp"
 
 namespace costmap_layers_test
 {

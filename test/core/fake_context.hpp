@@ -10,9 +10,9 @@
 #include <utility>
 #include <vector>
 
-#include "costmap_layers/core/costmap_filter.hpp"
-#include "costmap_layers/core/layer.hpp"
-#include "costmap_layers/core/layer_context.hpp"
+#include "costmap_layers/core/filters/costmap_filter.hpp"
+#include "costmap_layers/core/costmap/layer.hpp"
+#include "costmap_layers/core/costmap/layer_context.hpp"
 
 namespace costmap_layers_test
 {

@@ -10,8 +10,8 @@
 #include <utility>
 #include <vector>
 
-#include "costmap_layers/core/param_value.hpp"
-#include "costmap_layers/core/sensor_data.hpp"
+#include "costmap_layers/core/config/param_value.hpp"
+#include "costmap_layers/core/data/sensor_data.hpp"
 
 namespace costmap_layers_test
 {

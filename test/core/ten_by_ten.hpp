@@ -4,7 +4,7 @@
 
 #include <cstddef>
 
-#include "costmap_layers/core/grid_data.hpp"
+#include "costmap_layers/core/data/grid_data.hpp"
 
 namespace costmap_layers_test
 {

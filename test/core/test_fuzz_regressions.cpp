@@ -1,16 +1,16 @@
 // Regression tests for the crashes the fuzz targets (test/fuzz) found, one readable test per bug.
-// The raw crashing inputs are kept in test/fuzz/regressions/<target>/ and replayed by scripts/fuzz.sh.
+// The raw crashing inputs are kept in test/fuzz/regressions/<target>/ and replayed by scripts/dev/fuzz.sh.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 #include <memory>
 
-#include "costmap_layers/core/costmap_2d.hpp"
-#include "costmap_layers/core/keepout_filter.hpp"
-#include "costmap_layers/core/layered_costmap.hpp"
-#include "costmap_layers/core/speed_filter.hpp"
-#include "costmap_layers/core/voxel_layer.hpp"
+#include "costmap_layers/core/grid/costmap_2d.hpp"
+#include "costmap_layers/core/filters/keepout_filter.hpp"
+#include "costmap_layers/core/costmap/layered_costmap.hpp"
+#include "costmap_layers/core/filters/speed_filter.hpp"
+#include "costmap_layers/core/layers/voxel_layer.hpp"
 #include "fake_context.hpp"
 
 using namespace costmap_layers;

@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "costmap_layers/core/costmap_2d.hpp"
-#include "costmap_layers/core/footprint.hpp"
-#include "costmap_layers/core/grid_data.hpp"
-#include "costmap_layers/core/layered_costmap.hpp"
+#include "costmap_layers/core/grid/costmap_2d.hpp"
+#include "costmap_layers/core/grid/footprint.hpp"
+#include "costmap_layers/core/data/grid_data.hpp"
+#include "costmap_layers/core/costmap/layered_costmap.hpp"
 #include "fake_context.hpp"
 #include "fuzz_decoder.hpp"
 
@@ -92,7 +92,7 @@ inline void checkMasterUnchanged(const LayeredCostmap& lc, unsigned w, unsigned 
 }
 }  // namespace costmap_layers_fuzz
 
-#include "costmap_layers/core/voxel_layer.hpp"
+#include "costmap_layers/core/layers/voxel_layer.hpp"
 
 namespace costmap_layers_fuzz
 {

@@ -10,8 +10,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "costmap_layers/core/costmap_filter.hpp"
-#include "costmap_layers/core/static_layer.hpp"
+#include "costmap_layers/core/filters/costmap_filter.hpp"
+#include "costmap_layers/core/layers/static_layer.hpp"
 #include "costmap_layers/io/map_file.hpp"
 #include "fuzz_common.hpp"
 

@@ -7,9 +7,9 @@
 #include <cstdint>
 #include <memory>
 
-#include "costmap_layers/core/keepout_filter.hpp"
-#include "costmap_layers/core/lanes_filter.hpp"
-#include "costmap_layers/core/speed_filter.hpp"
+#include "costmap_layers/core/filters/keepout_filter.hpp"
+#include "costmap_layers/core/filters/lanes_filter.hpp"
+#include "costmap_layers/core/filters/speed_filter.hpp"
 #include "fuzz_common.hpp"
 
 using namespace costmap_layers;

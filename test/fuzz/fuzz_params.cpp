@@ -14,16 +14,16 @@
 #include <stdexcept>
 #include <string>
 
-#include "costmap_layers/core/costmap_builder.hpp"
-#include "costmap_layers/core/costmap_config.hpp"
-#include "costmap_layers/core/gradient_layer.hpp"
-#include "costmap_layers/core/inflation_layer.hpp"
-#include "costmap_layers/core/keepout_filter.hpp"
-#include "costmap_layers/core/lanes_filter.hpp"
-#include "costmap_layers/core/range_sensor_layer.hpp"
-#include "costmap_layers/core/speed_filter.hpp"
-#include "costmap_layers/core/static_layer.hpp"
-#include "costmap_layers/core/voxel_layer.hpp"
+#include "costmap_layers/core/costmap/costmap_builder.hpp"
+#include "costmap_layers/core/costmap/costmap_config.hpp"
+#include "costmap_layers/core/layers/gradient_layer.hpp"
+#include "costmap_layers/core/layers/inflation_layer.hpp"
+#include "costmap_layers/core/filters/keepout_filter.hpp"
+#include "costmap_layers/core/filters/lanes_filter.hpp"
+#include "costmap_layers/core/layers/range_sensor_layer.hpp"
+#include "costmap_layers/core/filters/speed_filter.hpp"
+#include "costmap_layers/core/layers/static_layer.hpp"
+#include "costmap_layers/core/layers/voxel_layer.hpp"
 #include "costmap_layers/io/param_yaml.hpp"
 #include "fuzz_common.hpp"
 

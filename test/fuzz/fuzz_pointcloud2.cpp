@@ -11,7 +11,7 @@
 #include <memory>
 #include <stdexcept>
 
-#include "costmap_layers/core/sensor_parsing.hpp"
+#include "costmap_layers/core/layers/sensor_parsing.hpp"
 #include "fuzz_common.hpp"
 
 using namespace costmap_layers;

@@ -10,7 +10,7 @@
 #include <memory>
 #include <stdexcept>
 
-#include "costmap_layers/core/range_sensor_layer.hpp"
+#include "costmap_layers/core/layers/range_sensor_layer.hpp"
 #include "fuzz_common.hpp"
 
 using namespace costmap_layers;

@@ -12,7 +12,7 @@
 #include <memory>
 #include <stdexcept>
 
-#include "costmap_layers/core/speed_filter.hpp"
+#include "costmap_layers/core/filters/speed_filter.hpp"
 #include "costmap_layers/io/features_file.hpp"
 #include "costmap_layers/io/param_yaml.hpp"
 #include "fuzz_common.hpp"

@@ -8,9 +8,9 @@
 #include <cstdint>
 #include <memory>
 
-#include "costmap_layers/core/costmap_filter.hpp"
-#include "costmap_layers/core/inflation_layer.hpp"
-#include "costmap_layers/core/static_layer.hpp"
+#include "costmap_layers/core/filters/costmap_filter.hpp"
+#include "costmap_layers/core/layers/inflation_layer.hpp"
+#include "costmap_layers/core/layers/static_layer.hpp"
 #include "fuzz_common.hpp"
 
 using namespace costmap_layers;

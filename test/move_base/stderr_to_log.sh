@@ -3,7 +3,7 @@
 # is written, to <this run's log directory>/move_base-stderr.log (roslaunch-logs names the directory;
 # the test finds it from /run_id), and still to the console. A subscriber to /rosout sees only the
 # lines written after it connects, so a check of what move_base says at start-up reads this file.
-# (LD_PRELOAD, set by scripts/sanitize_package.sh for move_base, is kept away from the helpers.)
+# (LD_PRELOAD, set by scripts/dev/sanitize_package.sh for move_base, is kept away from the helpers.)
 set -euo pipefail
 dir=$(env -u LD_PRELOAD roslaunch-logs)
 log="$dir/move_base-stderr.log"

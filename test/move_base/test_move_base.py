@@ -296,7 +296,7 @@ class MoveBaseTest(unittest.TestCase):
             "local_costmap": {"global_frame": "map", "robot_base_frame": "base_link", "plugins": []},
         })
         # The program itself (not rosrun's shell script), behind the prefix move_base.test puts before
-        # move_base: scripts/sanitize_package.sh sets it to preload the sanitizer runtime for the
+        # move_base: scripts/dev/sanitize_package.sh sets it to preload the sanitizer runtime for the
         # instrumented plugins; empty otherwise.
         prefix = shlex.split(os.environ.get("COSTMAP_LAYERS_MOVE_BASE_PREFIX", ""))
         program = roslib.packages.find_node("move_base", "move_base")

@@ -8,8 +8,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "costmap_layers/core/costmap_2d.hpp"
-#include "costmap_layers/core/sensor_parsing.hpp"
+#include "costmap_layers/core/grid/costmap_2d.hpp"
+#include "costmap_layers/core/layers/sensor_parsing.hpp"
 #include "costmap_layers/ros/conversions.hpp"
 #include "sensor_test_helpers.hpp"
 

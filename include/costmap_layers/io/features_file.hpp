@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "costmap_layers/core/grid_data.hpp"
-#include "costmap_layers/core/param_value.hpp"
+#include "costmap_layers/core/data/grid_data.hpp"
+#include "costmap_layers/core/config/param_value.hpp"
 
 namespace costmap_layers::io
 {

@@ -74,7 +74,7 @@
 #include <string>
 #include <vector>
 
-#include "costmap_layers/core/grid_data.hpp"
+#include "costmap_layers/core/data/grid_data.hpp"
 
 namespace costmap_layers
 {

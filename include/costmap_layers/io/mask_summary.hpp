@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "costmap_layers/core/grid_data.hpp"
+#include "costmap_layers/core/data/grid_data.hpp"
 #include "costmap_layers/io/map_file.hpp"
 
 namespace costmap_layers

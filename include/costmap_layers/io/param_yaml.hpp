@@ -41,7 +41,7 @@
 #include <string>
 #include <vector>
 
-#include "costmap_layers/core/param_value.hpp"
+#include "costmap_layers/core/config/param_value.hpp"
 #include "costmap_layers/io/file_limits.hpp"
 
 namespace costmap_layers

@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "costmap_layers/core/zone_shapes.hpp"
+#include "costmap_layers/core/zones/zone_shapes.hpp"
 
 namespace costmap_layers
 {

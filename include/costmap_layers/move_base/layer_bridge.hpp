@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "costmap_layers/core/layer.hpp"
-#include "costmap_layers/core/param_value.hpp"
+#include "costmap_layers/core/costmap/layer.hpp"
+#include "costmap_layers/core/config/param_value.hpp"
 
 namespace costmap_layers
 {

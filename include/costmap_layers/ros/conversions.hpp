@@ -15,12 +15,12 @@
 
 #include "costmap_layers/CostmapFilterInfo.h"
 #include "costmap_layers/SpeedLimits.h"
-#include "costmap_layers/core/costmap_2d.hpp"
-#include "costmap_layers/core/grid_data.hpp"
-#include "costmap_layers/core/layered_costmap.hpp"
-#include "costmap_layers/core/param_value.hpp"
-#include "costmap_layers/core/path_data.hpp"
-#include "costmap_layers/core/sensor_data.hpp"
+#include "costmap_layers/core/grid/costmap_2d.hpp"
+#include "costmap_layers/core/data/grid_data.hpp"
+#include "costmap_layers/core/costmap/layered_costmap.hpp"
+#include "costmap_layers/core/config/param_value.hpp"
+#include "costmap_layers/core/data/path_data.hpp"
+#include "costmap_layers/core/data/sensor_data.hpp"
 
 namespace costmap_layers_ros
 {

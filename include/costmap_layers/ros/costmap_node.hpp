@@ -12,12 +12,12 @@
 #include <optional>
 #include <stdexcept>
 
-#include "costmap_layers/core/config_compat.hpp"
-#include "costmap_layers/core/costmap_config.hpp"
-#include "costmap_layers/core/layered_costmap.hpp"
-#include "costmap_layers/core/loop_pacer.hpp"
-#include "costmap_layers/core/publish_schedule.hpp"
-#include "costmap_layers/core/transform2d.hpp"
+#include "costmap_layers/core/config/config_compat.hpp"
+#include "costmap_layers/core/costmap/costmap_config.hpp"
+#include "costmap_layers/core/costmap/layered_costmap.hpp"
+#include "costmap_layers/core/costmap/loop_pacer.hpp"
+#include "costmap_layers/core/costmap/publish_schedule.hpp"
+#include "costmap_layers/core/grid/transform2d.hpp"
 #include "costmap_layers/ros/layer_ports.hpp"
 #include "costmap_layers/ros/layer_reconfigure.hpp"
 #include "costmap_layers/ros/plugin_factory.hpp"

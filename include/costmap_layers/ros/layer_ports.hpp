@@ -17,7 +17,7 @@
 #include <utility>
 #include <vector>
 
-#include "costmap_layers/core/layer.hpp"
+#include "costmap_layers/core/costmap/layer.hpp"
 #include "costmap_layers/ros/ros_layer_context.hpp"
 #include "costmap_layers/ros/setpoint_applier.hpp"
 

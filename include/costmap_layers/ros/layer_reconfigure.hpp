@@ -14,7 +14,7 @@
 #include <mutex>
 #include <vector>
 
-#include "costmap_layers/core/layer.hpp"
+#include "costmap_layers/core/costmap/layer.hpp"
 #include "costmap_layers/ros/ros_layer_context.hpp"
 
 namespace costmap_layers_ros

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "costmap_layers/core/layer.hpp"
+#include "costmap_layers/core/costmap/layer.hpp"
 
 namespace costmap_layers_ros
 {

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "costmap_layers/core/layer_context.hpp"
+#include "costmap_layers/core/costmap/layer_context.hpp"
 
 namespace costmap_layers_ros
 {

@@ -41,7 +41,7 @@
 #include <thread>
 #include <vector>
 
-#include "costmap_layers/core/layer_io.hpp"
+#include "costmap_layers/core/costmap/layer_io.hpp"
 #include "costmap_layers/ros/ros_layer_context.hpp"
 
 namespace costmap_layers_ros

@@ -7,7 +7,7 @@
 
 #include <string>
 
-#include "costmap_layers/core/stamp_order.hpp"
+#include "costmap_layers/core/rules/stamp_order.hpp"
 
 namespace costmap_layers_ros
 {

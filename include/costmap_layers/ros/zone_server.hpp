@@ -31,7 +31,7 @@
 #include "costmap_layers/SaveZones.h"
 #include "costmap_layers/SetZoneShape.h"
 #include "costmap_layers/ZoneShapeDescription.h"
-#include "costmap_layers/core/zone_shapes.hpp"
+#include "costmap_layers/core/zones/zone_shapes.hpp"
 #include "costmap_layers/ros/ros_layer_context.hpp"
 
 namespace costmap_layers_ros

@@ -16,10 +16,10 @@
 #include <thread>
 #include <vector>
 
-#include "costmap_layers/core/inflation_layer.hpp"
-#include "costmap_layers/core/keepout_filter.hpp"
-#include "costmap_layers/core/obstacle_layer.hpp"
-#include "costmap_layers/core/static_layer.hpp"
+#include "costmap_layers/core/layers/inflation_layer.hpp"
+#include "costmap_layers/core/filters/keepout_filter.hpp"
+#include "costmap_layers/core/layers/obstacle_layer.hpp"
+#include "costmap_layers/core/layers/static_layer.hpp"
 #include "costmap_layers/move_base/layer_bridge.hpp"
 
 #ifdef COSTMAP_LAYERS_TEST_CLEAR_RECOVERY
@@ -441,7 +441,7 @@ TEST(Bridge, MoveBasesClearCostmapRecoveryClearsTheBridgedObstacleLayer)
 // update thread does to the layer's cells, its costmap_2d view and its extra bounds must happen under
 // that mutex too, and without the costmap's mutex taken inside it (updateMap holds the costmap's mutex
 // before the layer's: the other order would deadlock). This case is for ThreadSanitizer
-// (SANITIZE=thread scripts/sanitize_package.sh with ROSTESTS=bridge reports a race or a lock-order
+// (SANITIZE=thread scripts/dev/sanitize_package.sh with ROSTESTS=bridge reports a race or a lock-order
 // inversion here); built normally it checks that the recovery and the updates finish and that the
 // last clear holds.
 TEST(Bridge, MoveBasesClearCostmapRecoveryDuringUpdatesIsSafe)

@@ -1,0 +1,77 @@
+// Typed, validated reads from one parameter namespace. Each config struct has one parse function
+// built on this, so every parameter name is written once, next to its default and its limits.
+#pragma once
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "costmap_layers/core/config/param_value.hpp"
+
+namespace costmap_layers
+{
+/// What a parse function read: a parameter's name, type, limits, default and the value it used.
+/// Recorded by ParamReader, so a run-time description (dynamic_reconfigure) comes from the same
+/// single declaration as the parsing.
+struct ParamSpec
+{
+  std::string name;
+  ParamValue::Type type = ParamValue::Type::Null;  ///< Bool, Int, Double or String
+  ParamValue default_value;
+  ParamValue value;
+  double min = 0.0, max = 0.0;       ///< Int and Double only
+  std::vector<std::string> choices;  ///< String choices, when limited
+};
+
+class ParamReader
+{
+public:
+  /// @param ns     the namespace (a Map, or Null for "nothing set")
+  /// @param owner  who reads, for error messages (e.g. "gradient_layer_1")
+  ParamReader(const ParamValue& ns, std::string owner) : ns_(ns), owner_(std::move(owner)) {}
+
+  bool has(const std::string& name) const { return ns_.find(name) != nullptr; }
+  const ParamValue* raw(const std::string& name) const { return ns_.find(name); }
+  const ParamValue& ns() const { return ns_; }
+  const std::string& owner() const { return owner_; }
+
+  /// Each getter returns the default when the name is absent and throws std::invalid_argument
+  /// ("owner: parameter 'name' ...: value") when the value has the wrong type or is out of range.
+  bool getBool(const std::string& name, bool def) const;
+  int getInt(const std::string& name, int def, int min = std::numeric_limits<int>::min(),
+             int max = std::numeric_limits<int>::max()) const;
+  /// Rejects NaN and infinities as well as values outside [min, max].
+  double getDouble(const std::string& name, double def, double min = std::numeric_limits<double>::lowest(),
+                   double max = std::numeric_limits<double>::max()) const;
+  std::string getString(const std::string& name, const std::string& def) const;
+  /// A topic name: fails naming the parameter unless it is a ROS name (rosNameProblem), or empty when
+  /// allow_empty (a topic that may be left out).
+  std::string getTopic(const std::string& name, const std::string& def, bool allow_empty = false) const;
+  /// Accepts one of the given choices only.
+  std::string getChoice(const std::string& name, const std::string& def, const std::vector<std::string>& choices) const;
+
+  /// Throws "owner: parameter 'name' <what> (value)".
+  [[noreturn]] void fail(const std::string& name, const std::string& what) const;
+
+  /// From now on, every getter call appends what it read to *out (nullptr stops recording).
+  void recordInto(std::vector<ParamSpec>* out) { record_ = out; }
+
+private:
+  void note(ParamSpec spec) const;
+
+  const ParamValue& ns_;
+  std::string owner_;
+  std::vector<ParamSpec>* record_ = nullptr;
+};
+
+/// Runs parse(reader) on params with recording on and returns what it read.
+template <class Parse>
+std::vector<ParamSpec> recordParameters(const ParamValue& params, const std::string& owner, Parse&& parse)
+{
+  std::vector<ParamSpec> specs;
+  ParamReader reader(params, owner);
+  reader.recordInto(&specs);
+  parse(reader);
+  return specs;
+}
+}  // namespace costmap_layers

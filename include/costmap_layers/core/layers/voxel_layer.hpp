@@ -1,0 +1,51 @@
+// costmap_2d's VoxelLayer: the ObstacleLayer (same sources, buffers, parameters and merge) with a 3-D
+// grid of bit-packed columns (VoxelGrid) behind the 2-D one. Hits mark voxels; a cell becomes lethal
+// when its column has more than mark_threshold marked voxels. Rays clear voxels in 3-D; each cleared
+// voxel re-evaluates its column: with at most mark_threshold marked voxels the cell becomes FREE_SPACE,
+// or NO_INFORMATION when more than unknown_threshold of its z_voxels voxels are still unknown.
+#pragma once
+
+#include "costmap_layers/core/layers/obstacle_layer.hpp"
+#include "costmap_layers/core/grid/voxel_grid.hpp"
+
+namespace costmap_layers
+{
+struct VoxelConfig
+{
+  double origin_z = 0.0;           ///< [m] bottom of the lowest voxel (global z)
+  double z_resolution = 0.2;       ///< [m] voxel height (> 0)
+  int z_voxels = 10;               ///< levels per column, 1..16
+  int unknown_threshold = 15;      ///< 0..16: more unknown voxels than this make a cleared cell unknown
+  int mark_threshold = 0;          ///< 0..16: more marked voxels than this make the cell lethal
+  bool publish_voxel_map = false;  ///< accepted for configuration compatibility; nothing is published yet
+};
+
+/// Reads origin_z, z_resolution, z_voxels, unknown_threshold, mark_threshold and publish_voxel_map.
+/// Throws std::invalid_argument naming the parameter.
+VoxelConfig parseVoxelConfig(const ParamReader& params);
+
+class VoxelLayer : public ObstacleLayer
+{
+public:
+  void matchSize() override;
+  void reset() override;
+  /// The cells and their columns: a cleared cell keeps no marked voxel that would make it lethal again
+  /// when another voxel of its column is marked and cleared.
+  void clearCells(unsigned int x0, unsigned int y0, unsigned int xn, unsigned int yn, uint8_t value) override;
+
+  const VoxelConfig& voxelConfig() const { return voxel_config_; }
+  const VoxelGrid& voxels() const { return voxels_; }
+
+protected:
+  void onInitialize() override;
+  void onGridShifted(int cells_x, int cells_y) override;
+  void raytraceFreespace(const Observation& observation, double* min_x, double* min_y, double* max_x,
+                         double* max_y) override;
+  void markObservation(const Observation& observation, double* min_x, double* min_y, double* max_x,
+                       double* max_y) override;
+
+private:
+  VoxelConfig voxel_config_;
+  VoxelGrid voxels_;
+};
+}  // namespace costmap_layers

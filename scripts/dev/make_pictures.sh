@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# Redraws the README's pictures: runs costmap_tool on the bundled example (example/) once per
+# picture and writes docs/pictures/<name>.png. Each picture has its params file in
+# docs/pictures/params/ (the "all filters" one uses params/costmap_example.yaml, the demo's own).
+# Needs a built package (install/); no ROS master. Deterministic: same inputs, same pictures.
+#   scripts/dev/make_pictures.sh [OUTPUT_DIR]     (default: docs/pictures)
+set -euo pipefail
+export PATH=/usr/bin:/bin:$PATH
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+OUT="${1:-$ROOT/docs/pictures}"
+PARAMS="$ROOT/docs/pictures/params"
+EX="$ROOT/example"
+
+if [ ! -f "$ROOT/install/setup.bash" ]; then
+  echo "make_pictures: $ROOT/install/setup.bash not found: build the package first (scripts/dev/build.sh)" >&2
+  exit 1
+fi
+# setup.bash reads unset variables: relax -u while sourcing it.
+set +u
+# shellcheck disable=SC1091
+source "$ROOT/install/setup.bash"
+set -u
+mkdir -p "$OUT"
+
+# picture NAME MAP PARAMS [costmap_tool options...]: one costmap_tool run, its JSON line echoed.
+picture() {
+  local name="$1" map="$2" params="$3"
+  shift 3
+  local json
+  json="$(rosrun costmap_layers costmap_tool --map "$map" --params "$params" "$@" --out-png "$OUT/$name.png" | tail -n 1)"
+  test -s "$OUT/$name.png" || { echo "make_pictures: $name.png was not written" >&2; exit 1; }
+  echo "make_pictures: $name.png  $json"
+}
+
+picture static "$EX/warehouse.yaml" "$PARAMS/static.yaml"
+picture inflation "$EX/warehouse.yaml" "$PARAMS/inflation.yaml"
+picture keepout "$EX/warehouse.yaml" "$PARAMS/keepout.yaml" \
+  --mask keepout_filter="$EX/keepout_mask.yaml"
+# The robot half inside the loading dock: escape mode writes the dock as a ramp toward the way out.
+picture keepout_escape "$EX/warehouse.yaml" "$PARAMS/keepout_escape.yaml" \
+  --mask keepout_filter="$EX/keepout_mask.yaml" --pose 14.0,6.95,1.5708
+picture lanes "$EX/warehouse.yaml" "$PARAMS/lanes.yaml" \
+  --mask lanes_filter="$EX/lanes_mask.yaml"
+picture speed_mask "$EX/speed_mask.yaml" "$PARAMS/speed_mask_as_map.yaml"
+# The demo's configuration; the robot stands in speed area 1, so the JSON line reports its limit.
+picture all_filters "$EX/warehouse.yaml" "$ROOT/params/costmap_example.yaml" \
+  --mask keepout_filter="$EX/keepout_mask.yaml" --mask speed_filter="$EX/speed_mask.yaml" \
+  --mask lanes_filter="$EX/lanes_mask.yaml" --features speed_filter="$EX/speed_limits.yaml" \
+  --mask zone_keepout="$EX/zones.yaml" --mask binary_filter="$EX/binary_mask.yaml" \
+  --pose 5.0,1.5,0.0
+# zone_server's mask (example/zones.yaml, rasterised as zone_server publishes it) in a KeepoutFilter.
+picture zones "$EX/warehouse.yaml" "$PARAMS/zones.yaml" --mask zone_keepout="$EX/zones.yaml"
+picture gradient "$EX/warehouse.yaml" "$PARAMS/gradient.yaml"
+echo "make_pictures: done, pictures in $OUT"

@@ -1,0 +1,167 @@
+#include "costmap_layers/core/costmap/costmap_config.hpp"
+
+#include <cmath>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "costmap_layers/core/rules/limits.hpp"
+#include "costmap_layers/core/config/param_reader.hpp"
+
+namespace costmap_layers
+{
+namespace
+{
+constexpr double kMaxCellsPerSide = 100000.0;
+
+/// A loop frequency [Hz] that may be off: 0 or in [kMinFrequency, kMaxFrequency], so that
+/// 1 / frequency is a period ros::Duration and the loop can hold.
+double getFrequency(const ParamReader& p, const std::string& name, double def)
+{
+  const double f = p.getDouble(name, def, 0.0, limits::kMaxFrequency);
+  if (f != 0.0 && f < limits::kMinFrequency)
+  {
+    std::ostringstream what;
+    what << "must be 0 (off) or in [" << limits::kMinFrequency << ", " << limits::kMaxFrequency << "] Hz";
+    p.fail(name, what.str());
+  }
+  return f;
+}
+}  // namespace
+
+unsigned int CostmapConfig::sizeInCellsX() const
+{
+  return static_cast<unsigned int>(std::max(1.0, std::round(width / resolution)));
+}
+
+unsigned int CostmapConfig::sizeInCellsY() const
+{
+  return static_cast<unsigned int>(std::max(1.0, std::round(height / resolution)));
+}
+
+CostmapConfig parseCostmapConfig(const ParamValue& ns)
+{
+  const ParamReader p(ns, "costmap");
+  CostmapConfig c;
+  c.global_frame = p.getString("global_frame", c.global_frame);
+  c.robot_base_frame = p.getString("robot_base_frame", c.robot_base_frame);
+  if (c.global_frame.empty()) p.fail("global_frame", "must not be empty");
+  if (c.robot_base_frame.empty()) p.fail("robot_base_frame", "must not be empty");
+  c.transform_tolerance = p.getDouble("transform_tolerance", c.transform_tolerance, 0.0, limits::kMaxDuration);
+  // The update loop always runs (the node refuses 0): at least kMinFrequency.
+  c.update_frequency =
+      p.getDouble("update_frequency", c.update_frequency, limits::kMinFrequency, limits::kMaxFrequency);
+  c.publish_frequency = getFrequency(p, "publish_frequency", c.publish_frequency);
+  c.resolution = p.getDouble("resolution", c.resolution, limits::kMinResolution, limits::kMaxResolution);
+  c.width = p.getDouble("width", c.width, c.resolution, kMaxCellsPerSide * c.resolution);
+  c.height = p.getDouble("height", c.height, c.resolution, kMaxCellsPerSide * c.resolution);
+  if (static_cast<uint64_t>(c.sizeInCellsX()) * c.sizeInCellsY() > limits::kMaxGridCells)
+  {
+    std::ostringstream what;
+    what << "makes " << c.sizeInCellsX() << " x " << c.sizeInCellsY() << " cells with 'width' " << c.width
+         << " m at 'resolution' " << c.resolution << " m/cell, more than the limit of " << limits::kMaxGridCells;
+    p.fail("height", what.str());
+  }
+  c.origin_x = p.getDouble("origin_x", c.origin_x, -limits::kMaxCoordinate, limits::kMaxCoordinate);
+  c.origin_y = p.getDouble("origin_y", c.origin_y, -limits::kMaxCoordinate, limits::kMaxCoordinate);
+  c.rolling_window = p.getBool("rolling_window", c.rolling_window);
+  c.track_unknown_space = p.getBool("track_unknown_space", c.track_unknown_space);
+  c.always_send_full_costmap = p.getBool("always_send_full_costmap", c.always_send_full_costmap);
+  c.reset_distance = p.getDouble("reset_distance", c.reset_distance, 0.0, limits::kMaxDistance);
+  c.footprint = parseFootprintConfig(p);
+  return c;
+}
+
+namespace
+{
+std::string typeOfNamed(const ParamValue& ns, const std::string& list_key, const std::string& name)
+{
+  const ParamValue* sub = ns.find(name);
+  const ParamValue* type = sub != nullptr ? sub->find("plugin") : nullptr;
+  if (type == nullptr && sub != nullptr) type = sub->find("type");
+  if (type == nullptr || type->type() != ParamValue::Type::String)
+    throw std::invalid_argument("costmap: " + list_key + " names '" + name + "' but '" + name +
+                                "/plugin' (its type) is not set");
+  return type->asString();
+}
+
+std::vector<PluginSpec> parseOneList(const ParamValue& ns, const std::string& key)
+{
+  std::vector<PluginSpec> specs;
+  const ParamValue* list = ns.find(key);
+  const std::string names_key = key == "plugins" ? "plugin_names" : "filter_names";
+  const std::string types_key = key == "plugins" ? "plugin_types" : "filter_types";
+  const ParamValue* names = ns.find(names_key);
+  const ParamValue* types = ns.find(types_key);
+  if (list != nullptr && !list->isNull())
+  {
+    if (!list->isList())
+      throw std::invalid_argument("costmap: parameter '" + key + "' must be a list (got " + list->toString() + ")");
+    for (const auto& item : list->asList())
+    {
+      if (item.isMap())
+      {
+        const ParamValue* name = item.find("name");
+        const ParamValue* type = item.find("type");
+        if (type == nullptr) type = item.find("plugin");
+        if (name == nullptr || name->type() != ParamValue::Type::String || type == nullptr ||
+            type->type() != ParamValue::Type::String)
+          throw std::invalid_argument("costmap: each entry of '" + key + "' needs string fields name and type (got " +
+                                      item.toString() + ")");
+        specs.push_back({name->asString(), type->asString()});
+      }
+      else if (item.type() == ParamValue::Type::String)
+      {
+        specs.push_back({item.asString(), typeOfNamed(ns, key, item.asString())});
+      }
+      else
+      {
+        throw std::invalid_argument("costmap: entries of '" + key + "' must be {name, type} maps or names (got " +
+                                    item.toString() + ")");
+      }
+    }
+  }
+  else if (names != nullptr || types != nullptr)
+  {
+    if (names == nullptr || types == nullptr || !names->isList() || !types->isList())
+      throw std::invalid_argument("costmap: '" + names_key + "' and '" + types_key + "' must both be lists");
+    if (names->asList().size() != types->asList().size())
+      throw std::invalid_argument("costmap: '" + names_key + "' has " + std::to_string(names->asList().size()) +
+                                  " entries but '" + types_key + "' has " + std::to_string(types->asList().size()));
+    for (std::size_t k = 0; k < names->asList().size(); ++k)
+    {
+      const ParamValue& n = names->asList()[k];
+      const ParamValue& t = types->asList()[k];
+      if (n.type() != ParamValue::Type::String || t.type() != ParamValue::Type::String)
+        throw std::invalid_argument("costmap: '" + names_key + "' and '" + types_key + "' must hold strings");
+      specs.push_back({n.asString(), t.asString()});
+    }
+  }
+  for (const auto& s : specs)
+  {
+    if (s.name.empty()) throw std::invalid_argument("costmap: a plugin in '" + key + "' has an empty name");
+    if (s.type.empty()) throw std::invalid_argument("costmap: plugin '" + s.name + "' has an empty type");
+  }
+  return specs;
+}
+}  // namespace
+
+PluginLists parsePluginLists(const ParamValue& ns)
+{
+  PluginLists lists;
+  lists.plugins = parseOneList(ns, "plugins");
+  lists.filters = parseOneList(ns, "filters");
+  std::set<std::string> seen;
+  for (const auto* l : {&lists.plugins, &lists.filters})
+  {
+    for (const auto& s : *l)
+    {
+      if (!seen.insert(s.name).second)
+        throw std::invalid_argument("costmap: plugin name '" + s.name +
+                                    "' is used twice; each instance needs its "
+                                    "own name (and parameter namespace)");
+    }
+  }
+  return lists;
+}
+}  // namespace costmap_layers
