@@ -9,12 +9,71 @@
 #include <stdexcept>
 #include <vector>
 
+#include <yaml-cpp/yaml.h>
+
 #include "costmap_layers/io/param_yaml.hpp"
 
 namespace costmap_layers
 {
 namespace io
 {
+namespace
+{
+/// One point as a flow pair [x, y].
+void emitPoint(YAML::Emitter& out, const ZonePoint& p)
+{
+  out << YAML::Flow << YAML::BeginSeq << p.x << p.y << YAML::EndSeq;
+}
+}  // namespace
+
+std::string zoneLayoutToYaml(const ZoneLayout& l)
+{
+  YAML::Emitter out;
+  // 17 significant digits: every double reads back to itself (yaml-cpp's default too; said here
+  // because the round trip depends on it).
+  out.SetDoublePrecision(17);
+  out << YAML::Comment("zone_server shapes (written by zone_server's save service)");
+  out << YAML::BeginMap;
+  // Frame ids and names are quoted: a name like "1" or "yes" must read back as a string.
+  out << YAML::Key << "frame_id" << YAML::Value << YAML::DoubleQuoted << l.frame_id;
+  out << YAML::Key << "resolution" << YAML::Value << l.resolution;
+  out << YAML::Key << "default_value" << YAML::Value << l.default_value;
+  out << YAML::Key << "overlay" << YAML::Value << zoneOverlayName(l.overlay);
+  out << YAML::Key << "shapes" << YAML::Value;
+  if (l.shapes.empty())
+    out << YAML::Flow << YAML::BeginSeq << YAML::EndSeq;
+  else
+  {
+    out << YAML::BeginSeq;
+    for (const auto& s : l.shapes)
+    {
+      out << YAML::BeginMap;
+      out << YAML::Key << "name" << YAML::Value << YAML::DoubleQuoted << s.name;
+      out << YAML::Key << "type" << YAML::Value << (s.type == ZoneShapeType::Circle ? "circle" : "polygon");
+      out << YAML::Key << "value" << YAML::Value << s.value;
+      out << YAML::Key << "fill" << YAML::Value << s.fill;
+      if (s.type == ZoneShapeType::Circle)
+      {
+        out << YAML::Key << "center" << YAML::Value;
+        emitPoint(out, s.center);
+        out << YAML::Key << "radius" << YAML::Value << s.radius;
+      }
+      else
+      {
+        out << YAML::Key << "points" << YAML::Value << YAML::BeginSeq;
+        for (const auto& p : s.points)
+          emitPoint(out, p);
+        out << YAML::EndSeq;
+      }
+      out << YAML::EndMap;
+    }
+    out << YAML::EndSeq;
+  }
+  out << YAML::EndMap;
+  if (!out.good()) throw std::logic_error("zoneLayoutToYaml: the YAML emitter failed: " + out.GetLastError());
+  return std::string(out.c_str()) + "\n";
+}
+
 ZoneLayout loadZoneFile(const std::string& path)
 {
   return parseZoneLayout(loadOwnFormatYamlFile(path), "'" + path + "'");

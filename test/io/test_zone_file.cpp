@@ -2,6 +2,8 @@
 #include <fstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "costmap_layers/io/zone_file.hpp"
 #include "temp_dir_test.hpp"
@@ -130,4 +132,95 @@ TEST_F(ZoneFile, SaveRefusesAnInvalidLayoutAndAnUnwritablePath)
   l.resolution = 0.0;
   EXPECT_THROW(io::saveZoneFile(tmp("x.yaml"), l), std::runtime_error);
   EXPECT_THROW(io::saveZoneFile(tmp("no/such/dir/x.yaml"), ZoneLayout{}), std::runtime_error);
+}
+
+namespace
+{
+ZoneShape polygonShape(const std::string& name, std::vector<ZonePoint> points, int value, bool fill)
+{
+  ZoneShape s;
+  s.name = name;
+  s.type = ZoneShapeType::Polygon;
+  s.points = std::move(points);
+  s.value = value;
+  s.fill = fill;
+  return s;
+}
+
+ZoneShape circleShape(const std::string& name, ZonePoint center, double radius, int value)
+{
+  ZoneShape s;
+  s.name = name;
+  s.type = ZoneShapeType::Circle;
+  s.center = center;
+  s.radius = radius;
+  s.value = value;
+  return s;
+}
+
+/// The text read back as parseZoneLayout() reads a file (through the io library's YAML reader).
+ZoneLayout reread(const std::string& text, const std::string& path)
+{
+  std::ofstream(path) << text;
+  return io::loadZoneFile(path);
+}
+}  // namespace
+
+// Moved from test/core/zones/test_zone_shapes.cpp with the writer (the core no longer writes YAML).
+TEST(ZoneLayoutParse, YamlTextReadsBackToAnEqualLayout)
+{
+  // zoneLayoutToYaml is read back in the tests below; here, the text itself: 17 significant digits,
+  // names quoted.
+  ZoneLayout l;
+  l.shapes = {polygonShape("dock", {{0.1, 0.2}, {1.0 / 3.0, 0.2}, {0.3, 0.7}}, 100, false)};
+  const std::string y = io::zoneLayoutToYaml(l);
+  EXPECT_NE(y.find("0.33333333333333331"), std::string::npos) << y;
+  EXPECT_NE(y.find("name: \"dock\""), std::string::npos) << y;
+  EXPECT_NE(y.find("fill: false"), std::string::npos) << y;
+}
+
+TEST_F(ZoneFile, WrittenTextReadsBackBitForBit)
+{
+  ZoneLayout l;
+  l.frame_id = "odd \"frame\" \\ name";
+  l.resolution = 0.1;
+  l.default_value = -1;
+  l.overlay = ZoneOverlay::Min;
+  // Names YAML would read as other types unquoted; integral and awkward doubles; a circle and an outline.
+  l.shapes = {polygonShape("1", {{-2.0, 1e-7}, {4.0, 0.0}, {1.0 / 7.0, 3.0}}, 0, true),
+              polygonShape("yes", {{10.0, 10.0}, {12.5, 10.0}, {12.5, 11.0 + 1e-12}}, -1, false),
+              circleShape("null", {5.0, -3.0 / 11.0}, 2.0 / 3.0, 55)};
+  const ZoneLayout back = reread(io::zoneLayoutToYaml(l), tmp("w.yaml"));
+  EXPECT_EQ(back.frame_id, l.frame_id);
+  EXPECT_EQ(back.resolution, l.resolution);
+  EXPECT_EQ(back.default_value, l.default_value);
+  EXPECT_EQ(back.overlay, l.overlay);
+  ASSERT_EQ(back.shapes.size(), l.shapes.size());
+  for (std::size_t k = 0; k < l.shapes.size(); ++k)
+  {
+    const ZoneShape& a = l.shapes[k];
+    const ZoneShape& b = back.shapes[k];
+    EXPECT_EQ(b.name, a.name);
+    EXPECT_EQ(b.type, a.type);
+    EXPECT_EQ(b.value, a.value);
+    EXPECT_EQ(b.fill, a.fill);
+    EXPECT_EQ(b.radius, a.radius);
+    EXPECT_EQ(b.center.x, a.center.x);
+    EXPECT_EQ(b.center.y, a.center.y);
+    ASSERT_EQ(b.points.size(), a.points.size());
+    for (std::size_t i = 0; i < a.points.size(); ++i)
+    {
+      EXPECT_EQ(b.points[i].x, a.points[i].x) << k << "/" << i;
+      EXPECT_EQ(b.points[i].y, a.points[i].y) << k << "/" << i;
+    }
+  }
+  EXPECT_EQ(rasterizeZones(back).data, rasterizeZones(l).data);
+}
+
+TEST_F(ZoneFile, EmptyLayoutWritesAnEmptyShapeList)
+{
+  const std::string y = io::zoneLayoutToYaml(ZoneLayout{});
+  EXPECT_NE(y.find("shapes: []"), std::string::npos) << y;
+  EXPECT_EQ(y.rfind("# zone_server shapes", 0), 0u) << y;
+  EXPECT_TRUE(reread(y, tmp("e.yaml")).shapes.empty());
 }

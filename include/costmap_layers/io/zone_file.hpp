@@ -1,7 +1,7 @@
 // Zone files (what zone_server loads and saves): a YAML with frame_id, resolution, default_value,
 // overlay and a list of shapes, read with the same bounded YAML reader as the params files
 // (param_yaml.hpp: a regular file, at most kMaxParamsYamlBytes) and checked by the core
-// (core/zone_shapes.hpp says every field and rule).
+// (core/zones/zone_shapes.hpp says every field and rule).
 #pragma once
 
 #include <optional>
@@ -21,6 +21,11 @@ ZoneLayout loadZoneFile(const std::string& path);
 /// some other YAML (a map_server map file): what lets costmap_tool's --mask take either. Throws as
 /// loadZoneFile() for a zone file with a bad field.
 std::optional<ZoneLayout> loadIfZoneFile(const std::string& path);
+
+/// The layout as zone-file YAML (written with yaml-cpp's emitter) that parseZoneLayout() reads back to an
+/// equal layout: names and the frame double-quoted (a name like "1" or "yes" stays a string), numbers
+/// with 17 significant digits, so that every double reads back to itself.
+std::string zoneLayoutToYaml(const ZoneLayout& layout);
 
 /// Writes the layout so that loadZoneFile() reads back an equal layout: to a temporary file next to
 /// `path`, then renamed over it, so that a reader never sees half a file. Throws std::runtime_error

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "costmap_layers/core/config/input_error.hpp"
+#include "costmap_layers/core/filters/speed_lookahead.hpp"
 #include "costmap_layers/core/rules/limits.hpp"
 #include "costmap_layers/core/config/param_reader.hpp"
 #include "costmap_layers/core/rules/stamp_order.hpp"
@@ -64,61 +65,10 @@ SpeedFilterConfig parseSpeedFilterConfig(const ParamReader& params)
   return c;
 }
 
-Nav2SpeedLimit nav2SpeedLimit(int v, double base, double multiplier, bool percent)
-{
-  Nav2SpeedLimit r;
-  if (v == 0) return r;  // a free cell: no limit
-  r.computed = base + multiplier * v;
-  const bool in_range =
-      percent ? (r.computed >= 0.0 && r.computed <= 100.0) : (std::isfinite(r.computed) && r.computed >= 0.0);
-  if (in_range)
-    r.speed_limit = r.computed;
-  else
-    r.out_of_range = true;  // Nav2: "setting it to no-limit value"
-  return r;
-}
-
 SpeedLimitTable buildSpeedLimitTable(const SpeedLimitsData& limits, const SpeedFilterConfig& config,
                                      std::vector<SpeedLimitIssue>* issues)
 {
-  SpeedLimitTable table;
-  std::array<bool, SpeedLimitTable::kMaxAreaId + 1> seen{};
-  auto issue = [&](bool error, std::size_t index, uint32_t id, const std::string& text)
-  {
-    if (issues) issues->push_back({error, index, id, text});
-  };
-  for (std::size_t k = 0; k < limits.limits.size(); ++k)
-  {
-    const SpeedLimitEntry& e = limits.limits[k];
-    const std::string what = "limits[" + std::to_string(k) + "] (area_id " + std::to_string(e.area_id) +
-                             ", max_speed " + valueText(e.max_speed) + ")";
-    if (e.area_id < 1 || e.area_id > static_cast<uint32_t>(SpeedLimitTable::kMaxAreaId))
-    {
-      issue(true, k, e.area_id, what + " dropped: area ids must be in 1..100 (mask cell values)");
-      continue;
-    }
-    if (!std::isfinite(e.max_speed) || e.max_speed < 0.0)
-    {
-      issue(true, k, e.area_id, what + " dropped: max_speed must be a finite number >= 0");
-      continue;
-    }
-    double mps = e.max_speed;
-    if (config.speed_limit_in_percent)
-    {
-      if (!(e.max_speed > 0.0 && e.max_speed <= 100.0))
-      {
-        issue(true, k, e.area_id, what + " dropped: in percent mode max_speed must be in (0, 100] [%]");
-        continue;
-      }
-      mps = config.default_max_speed * (e.max_speed / 100.0);  // <= default_max_speed: cannot overflow
-    }
-    if (seen[e.area_id])
-      issue(false, k, e.area_id,
-            what + " repeats area id " + std::to_string(e.area_id) + ": this later entry replaces the earlier one");
-    seen[e.area_id] = true;
-    table.limit_mps[e.area_id] = mps;
-  }
-  return table;
+  return buildSpeedLimitTable(limits, config.speed_limit_in_percent, config.default_max_speed, issues);
 }
 
 void SpeedFilter::onInitializeFilter(const ParamReader& params)
@@ -165,11 +115,6 @@ std::string SpeedFilter::setPath(const std::shared_ptr<const PathData>& path)
   return error.message;
 }
 
-namespace
-{
-constexpr uint64_t kSpeedWindowNs = 300'000'000;  ///< Nav2's odometry smoother averages 0.3 s
-}
-
 std::string SpeedFilter::setOdometry(const OdometryData& odom)
 {
   InputError error = validateOdometry(odom);
@@ -184,14 +129,12 @@ std::string SpeedFilter::setOdometry(const OdometryData& odom)
       reportOdometryJump(dropped_at, now);
       lock.lock();
     }
-    if (speeds_.empty() || !isOutOfOrder(odom.stamp_ns, speeds_.back().stamp_ns, now))
+    if (speeds_.empty() || !isOutOfOrder(odom.stamp_ns, speeds_.newestStamp(), now))
     {
-      speeds_.push_back({now, odom.stamp_ns, odom.linear_x});
-      while (speeds_.size() > 1 && (speeds_.size() > 1000 || speeds_.front().received_ns + kSpeedWindowNs < now))
-        speeds_.pop_front();
+      speeds_.add(now, odom.stamp_ns, odom.linear_x);
       return {};
     }
-    error = InputError::of("header.stamp", outOfOrderError(odom.stamp_ns, speeds_.back().stamp_ns, "odometry"));
+    error = InputError::of("header.stamp", outOfOrderError(odom.stamp_ns, speeds_.newestStamp(), "odometry"));
   }
   if (context_)
     context_->report(Severity::Error, "odom/" + error.field,
@@ -220,30 +163,22 @@ void SpeedFilter::reportOdometryJump(uint64_t from_ns, uint64_t now)
 std::optional<double> SpeedFilter::currentSpeed()
 {
   const uint64_t now = context_->nowNs();
-  double sum = 0.0;
-  std::size_t n = 0;
-  uint64_t newest = 0;
+  OdometrySpeedWindow::Mean mean;
   uint64_t dropped_at = 0;
   {
     std::lock_guard<std::mutex> lock(motion_mutex_);
     dropped_at = dropOdometryBeforeJumpLocked(now);
-    if (!speeds_.empty()) newest = speeds_.back().received_ns;
-    for (const SpeedSample& s : speeds_)
-      if (s.received_ns + kSpeedWindowNs >= newest)
-      {
-        sum += s.linear_x;
-        ++n;
-      }
+    mean = speeds_.mean();
   }
   if (dropped_at != 0) reportOdometryJump(dropped_at, now);
-  if (n == 0)
+  if (mean.samples == 0)
   {
     context_->report(Severity::Error, "odom/missing",
                      name_ + ": no odometry yet on " + config_.odom_topic + ": looking max_lookahead (" +
                          valueText(config_.max_lookahead) + " m) ahead");
     return std::nullopt;
   }
-  const double age = secondsBetween(newest, now);
+  const double age = secondsBetween(mean.newest_received_ns, now);
   if (age > config_.odom_timeout)
   {
     context_->report(Severity::Error, "odom/stale",
@@ -252,7 +187,7 @@ std::optional<double> SpeedFilter::currentSpeed()
                          " s): looking max_lookahead (" + valueText(config_.max_lookahead) + " m) ahead");
     return std::nullopt;
   }
-  return std::fabs(sum / static_cast<double>(n));
+  return std::fabs(mean.linear_x);
 }
 
 std::size_t SpeedFilter::setSpeedLimits(const SpeedLimitsData& limits)
@@ -365,32 +300,22 @@ bool SpeedFilter::percentUnit() const
   return config_.speed_limit_in_percent;
 }
 
-SpeedFilter::Publication SpeedFilter::noLimit() const
+SpeedRule SpeedFilter::rule() const
 {
-  Publication p;
-  p.max_speed = config_.default_max_speed;
-  if (nav2Rule())
-  {
-    p.percentage = percentUnit();
-    p.speed_limit = 0.0;
-  }
-  else
-    p.speed_limit = config_.default_max_speed;  // area_id: the same m/s value as MaxSpeed
-  return p;
+  SpeedRule r;
+  r.nav2 = nav2Rule();
+  r.percent = percentUnit();
+  r.default_max_speed = config_.default_max_speed;
+  // The filter-info form: the info in force gives base and multiplier.
+  const FilterInfoData* info = activeInfo().get();
+  r.base = info ? info->base : config_.base;
+  r.multiplier = info ? info->multiplier : config_.multiplier;
+  return r;
 }
 
-SpeedFilter::Publication SpeedFilter::fromNav2Limit(double speed_limit) const
+SpeedFilter::Publication SpeedFilter::noLimit() const
 {
-  Publication p;
-  p.percentage = percentUnit();
-  p.speed_limit = speed_limit;
-  if (speed_limit == 0.0)
-    p.max_speed = config_.default_max_speed;
-  else if (!p.percentage)
-    p.max_speed = speed_limit;
-  else if (config_.default_max_speed > 0.0)
-    p.max_speed = config_.default_max_speed * speed_limit / 100.0;
-  return p;  // a percentage without default_max_speed has no m/s value
+  return speedNoLimit(rule());
 }
 
 std::string SpeedFilter::describe(const Publication& p) const
@@ -427,48 +352,36 @@ void SpeedFilter::onFilterInfo(const FilterInfoData& info)
 
 SpeedFilter::Publication SpeedFilter::limitForValue(int8_t v, const SpeedLimitTable* table)
 {
-  const Publication none = noLimit();
-  if (v == 0) return none;
-  if (v < 0 || v > 100)
+  const SpeedRule r = rule();
+  const SpeedVerdict verdict = speedLimitForValue(v, r, table);
+  const Publication& p = verdict.publication;
+  switch (verdict.warning)
   {
-    warnValueOnce(v, "the mask holds the value " + std::to_string(v) +
-                         " (outside -1..100, invalid in an OccupancyGrid); " + describe(none) + " there");
-    return none;
+    case SpeedWarning::None:
+      break;
+    case SpeedWarning::InvalidValue:
+      warnValueOnce(v, "the mask holds the value " + std::to_string(v) +
+                           " (outside -1..100, invalid in an OccupancyGrid); " + describe(p) + " there");
+      break;
+    case SpeedWarning::UnknownArea:
+      if (!warned_ids_.test(static_cast<std::size_t>(v)))
+      {
+        warned_ids_.set(static_cast<std::size_t>(v));
+        context_->report(Severity::Warn, "mask/area_id",
+                         name_ + ": the robot is (or its path ahead runs) in area " + std::to_string(v) +
+                             " of the mask, which has no speed "
+                             "limit" +
+                             (table ? " in the last message on " : " yet (nothing received on ") +
+                             config_.features_topic + (table ? "" : ")") + "; treating it as no area: " + describe(p));
+      }
+      break;
+    case SpeedWarning::OutOfRange:
+      warnValueOnce(v, "mask value " + std::to_string(v) + " gives base + multiplier * v = " + valueText(r.base) +
+                           " + " + valueText(r.multiplier) + " * " + std::to_string(v) + " = " +
+                           valueText(verdict.computed) + (r.percent ? " %, outside [0, 100]" : " m/s, below 0") +
+                           " (Nav2's rule: no limit); " + describe(p) + " there");
+      break;
   }
-  if (!nav2Rule())
-  {
-    Publication p;
-    p.max_speed = config_.default_max_speed;
-    p.speed_limit = config_.default_max_speed;
-    if (table && table->limit_mps[static_cast<std::size_t>(v)])
-    {
-      p.max_speed = p.speed_limit = *table->limit_mps[static_cast<std::size_t>(v)];
-      return p;
-    }
-    if (!warned_ids_.test(static_cast<std::size_t>(v)))
-    {
-      warned_ids_.set(static_cast<std::size_t>(v));
-      context_->report(Severity::Warn, "mask/area_id",
-                       name_ + ": the robot is (or its path ahead runs) in area " + std::to_string(v) +
-                           " of the mask, which has no speed "
-                           "limit" +
-                           (table ? " in the last message on " : " yet (nothing received on ") +
-                           config_.features_topic + (table ? "" : ")") + "; treating it as no area: " + describe(p));
-    }
-    return p;
-  }
-  // Nav2's speed mask: the value encodes the limit.
-  const bool percent = percentUnit();
-  const FilterInfoData* info = activeInfo().get();
-  const double base = info ? info->base : config_.base;
-  const double multiplier = info ? info->multiplier : config_.multiplier;
-  const Nav2SpeedLimit limit = nav2SpeedLimit(v, base, multiplier, percent);
-  const Publication p = fromNav2Limit(limit.speed_limit);
-  if (limit.out_of_range)
-    warnValueOnce(v, "mask value " + std::to_string(v) + " gives base + multiplier * v = " + valueText(base) + " + " +
-                         valueText(multiplier) + " * " + std::to_string(v) + " = " + valueText(limit.computed) +
-                         (percent ? " %, outside [0, 100]" : " m/s, below 0") + " (Nav2's rule: no limit); " +
-                         describe(p) + " there");
   return p;
 }
 
@@ -503,15 +416,6 @@ void SpeedFilter::processPose(const OccupancyGridData& mask, const Transform2D& 
   else if (!last_published_ && !last_speed_limit_)
     publishIfChanged(noLimit());  // unknown: keep what was published (no limit when nothing was)
 }
-
-namespace
-{
-/// How strict a limit is: smaller is stricter; 0 (no limit) is the least strict.
-double strictness(double speed_limit)
-{
-  return speed_limit > 0.0 ? speed_limit : std::numeric_limits<double>::infinity();
-}
-}  // namespace
 
 std::optional<SpeedFilter::Publication> SpeedFilter::lookahead(const OccupancyGridData& mask,
                                                                const Transform2D& to_mask, double robot_x,
@@ -560,26 +464,23 @@ std::optional<SpeedFilter::Publication> SpeedFilter::lookahead(const OccupancyGr
     to_global.apply(path->poses[i].x, path->poses[i].y, path_global_[i].x, path_global_[i].y);
 
   const std::optional<double> speed = currentSpeed();
-  double distance = config_.max_lookahead;
-  if (speed && config_.max_decel < 0.0)
-    distance = std::max(lookaheadDistance(*speed, config_.max_decel, config_.min_lookahead, config_.max_lookahead),
-                        held_lookahead_);
+  const double distance = speedLookaheadDistance(speed, config_.max_decel, config_.min_lookahead,
+                                                 config_.max_lookahead, held_lookahead_);
   last_lookahead_ = distance;
 
   segment_ = closestSegment(path_global_, robot_x, robot_y, segment_);
   const std::size_t end = lookaheadEnd(path_global_, segment_, distance);
-  std::optional<Publication> best = at_robot;
-  for (std::size_t i = segment_; i < end; ++i)
-  {
-    const std::optional<int8_t> v = maskValueAt(mask, to_mask, path_global_[i].x, path_global_[i].y);
-    if (!v || *v == -1) continue;
-    const Publication p = limitForValue(*v, active_limits_.get());
-    const double bound = best ? strictness(best->speed_limit) : std::numeric_limits<double>::infinity();
-    if (strictness(p.speed_limit) < bound) best = p;
-  }
-  const double here = at_robot ? strictness(at_robot->speed_limit) : std::numeric_limits<double>::infinity();
-  held_lookahead_ = best && strictness(best->speed_limit) != here ? distance : 0.0;
-  return best;
+  const SpeedAhead ahead =
+      strictestAhead(path_global_, segment_, end, at_robot, distance,
+                     [&](const PathData::Point& pose) -> std::optional<Publication>
+                     {
+                       // Outside the mask or on an unknown cell a pose adds nothing.
+                       const std::optional<int8_t> v = maskValueAt(mask, to_mask, pose.x, pose.y);
+                       if (!v || *v == -1) return std::nullopt;
+                       return limitForValue(*v, active_limits_.get());
+                     });
+  held_lookahead_ = ahead.held_lookahead;
+  return ahead.best;
 }
 
 void SpeedFilter::publishIfChanged(const Publication& p)

@@ -530,14 +530,3 @@ TEST(ZoneLayoutParse, ReadsAFileTreeAndRefusesBadFieldsByName)
   t.set("origin", pt(0, 0));
   refused(t, "unknown field 'origin'");
 }
-
-TEST(ZoneLayoutParse, YamlTextReadsBackToAnEqualLayout)
-{
-  // zoneLayoutToYaml is read back by the io library in test_zone_file.cpp; here, the text itself: 17
-  // significant digits, names quoted.
-  ZoneLayout l = layout({polygon("dock", {{0.1, 0.2}, {1.0 / 3.0, 0.2}, {0.3, 0.7}}, 100, false)});
-  const std::string y = zoneLayoutToYaml(l);
-  EXPECT_NE(y.find("0.33333333333333331"), std::string::npos) << y;
-  EXPECT_NE(y.find("name: \"dock\""), std::string::npos) << y;
-  EXPECT_NE(y.find("fill: false"), std::string::npos) << y;
-}

@@ -13,7 +13,7 @@
 //    speed_limit_in_percent and features_topic must not be set in this form (a start-up error names
 //    the parameter): the info holds them.
 //
-// Nav2's rule for a mask value v (nav2SpeedLimit()), in the nav2 and filter_info forms:
+// Nav2's rule for a mask value v (nav2SpeedLimit(), rules/speed_rules.hpp), in the nav2 and filter_info forms:
 //   v = 0 -> no limit; v in 1..100 -> L = base + multiplier * v; in percent, L < 0 or L > 100 is
 //   out of range; in m/s, L < 0 (or not finite) is; an out-of-range L becomes "no limit" (warned once
 //   per mask value). L = 0 is "no limit" too (what 0 means in Nav2's message), without a warning.
@@ -77,9 +77,7 @@
 //   odom_timeout           0.5   [s] > 0: older odometry is stale (this package's own)
 #pragma once
 
-#include <array>
 #include <bitset>
-#include <deque>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -87,7 +85,9 @@
 #include <utility>
 #include <vector>
 
-#include "costmap_layers/core/filters/costmap_filter.hpp"
+#include "costmap_layers/core/filters/output_filter.hpp"
+#include "costmap_layers/core/filters/speed_window.hpp"
+#include "costmap_layers/core/rules/speed_rules.hpp"
 #include "costmap_layers/core/rules/stamp_order.hpp"
 
 namespace costmap_layers
@@ -125,34 +125,9 @@ struct SpeedFilterConfig
 /// filter_info_topic is set together with a parameter the info holds.
 SpeedFilterConfig parseSpeedFilterConfig(const ParamReader& params);
 
-/// Nav2's speed limit for a mask value v in 0..100 (see the file comment).
-struct Nav2SpeedLimit
-{
-  double speed_limit = 0.0;   ///< what Nav2 publishes: [%] or [m/s], 0 = no limit
-  double computed = 0.0;      ///< base + multiplier * v (0 for v = 0)
-  bool out_of_range = false;  ///< computed was replaced by "no limit"
-};
-Nav2SpeedLimit nav2SpeedLimit(int v, double base, double multiplier, bool percent);
-
-/// The valid limits of one features message, by area id, already in m/s.
-struct SpeedLimitTable
-{
-  static constexpr int kMaxAreaId = 100;
-  /// limit_mps[id] for id in 1..100; nullopt when the message gave none (or only bad ones).
-  std::array<std::optional<double>, kMaxAreaId + 1> limit_mps{};
-};
-
-/// One problem found in a features message.
-struct SpeedLimitIssue
-{
-  bool error = true;      ///< true: the entry was dropped; false: a warning (duplicate id)
-  std::size_t index = 0;  ///< index of the entry in the message
-  uint32_t area_id = 0;
-  std::string message;  ///< one line, names the entry, its values and the rule
-};
-
 /// Checks a features message entry by entry (see the file comment) and converts percentages into
-/// m/s with config.default_max_speed. Problems are appended to issues (may be nullptr).
+/// m/s with config.default_max_speed (the rule: buildSpeedLimitTable() in rules/speed_rules.hpp).
+/// Problems are appended to issues (may be nullptr).
 SpeedLimitTable buildSpeedLimitTable(const SpeedLimitsData& limits, const SpeedFilterConfig& config,
                                      std::vector<SpeedLimitIssue>* issues);
 
@@ -199,22 +174,17 @@ protected:
 
 private:
   /// One evaluation's result, for both outputs.
-  struct Publication
-  {
-    std::optional<double> max_speed;  ///< [m/s]; nullopt: cannot be given in m/s (percent, no default)
-    bool percentage = false;          ///< Nav2SpeedLimit
-    double speed_limit = 0.0;         ///< Nav2SpeedLimit: [%] or [m/s], 0 = no limit
-  };
+  using Publication = SpeedPublication;
   /// The unit, base and multiplier in force: from the info in the filter_info form.
   bool nav2Rule() const;
   bool percentUnit() const;
+  /// The settings the speed rules read, as in force now.
+  SpeedRule rule() const;
   Publication noLimit() const;
-  /// Nav2's limit L ([%] or [m/s]) as both outputs carry it.
-  Publication fromNav2Limit(double speed_limit) const;
   /// "publishing ... on <topic> and ... on <topic>", for warnings.
   std::string describe(const Publication& p) const;
   void publishIfChanged(const Publication& p);
-  /// What to publish for a mask value other than -1, warning as documented.
+  /// What to publish for a mask value other than -1 (speedLimitForValue()), warning as documented.
   Publication limitForValue(int8_t v, const SpeedLimitTable* table);
   void warnValueOnce(int8_t v, const std::string& message);
   /// The robot's speed for the lookahead [m/s], or nullopt (reported) when odometry is missing or stale.
@@ -247,13 +217,7 @@ private:
   mutable std::mutex motion_mutex_;
   ClockWatch odom_clock_;  ///< the odometry's clock: a jump back drops speeds_
   std::shared_ptr<const PathData> path_;
-  struct SpeedSample
-  {
-    uint64_t received_ns;
-    uint64_t stamp_ns;
-    double linear_x;
-  };
-  std::deque<SpeedSample> speeds_;  ///< the last 0.3 s of odometry, oldest first
+  OdometrySpeedWindow speeds_;  ///< the last 0.3 s of odometry
   // ... and their use (update thread only).
   std::shared_ptr<const PathData> active_path_;
   std::vector<PathData::Point> path_global_;  ///< active_path_ in the global frame
