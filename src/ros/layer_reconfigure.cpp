@@ -75,6 +75,32 @@ void addToConfig(dynamic_reconfigure::Config& config, const std::string& name, c
   }
 }
 
+ReconfigureChange applyConfig(const ParamValue& current, const std::vector<ParamSpec>& specs,
+                              const dynamic_reconfigure::Config& config)
+{
+  ReconfigureChange change;
+  change.next = current.isMap() ? current : ParamValue::makeMap();
+  ParamValue& next = change.next;
+  auto known = [&specs](const std::string& name)
+  { return std::any_of(specs.begin(), specs.end(), [&name](const ParamSpec& s) { return s.name == name; }); };
+  // The names a caller sent that cannot change: the first few, each clipped, and how many in all.
+  auto ignore = [&change](const std::string& name)
+  {
+    if (change.ignored_count++ < kReconfigureNamesShown) change.ignored += " " + costmap_layers::shownText(name);
+  };
+  for (const auto& p : config.bools)
+    known(p.name) ? (void)next.set(p.name, ParamValue::makeBool(p.value)) : ignore(p.name);
+  for (const auto& p : config.ints)
+    known(p.name) ? (void)next.set(p.name, ParamValue::makeInt(p.value)) : ignore(p.name);
+  for (const auto& p : config.doubles)
+    known(p.name) ? (void)next.set(p.name, ParamValue::makeDouble(p.value)) : ignore(p.name);
+  for (const auto& p : config.strs)
+    known(p.name) ? (void)next.set(p.name, ParamValue::makeString(p.value)) : ignore(p.name);
+  if (change.ignored_count > kReconfigureNamesShown)
+    change.ignored += " (" + std::to_string(change.ignored_count) + " in all)";
+  return change;
+}
+
 LayerReconfigure::LayerReconfigure(ros::NodeHandle layer_nh, std::shared_ptr<costmap_layers::Layer> layer,
                                    ParamValue params, RunLocked run_locked)
     : nh_(std::move(layer_nh)), layer_(std::move(layer)), params_(std::move(params)), run_locked_(std::move(run_locked))
@@ -158,37 +184,16 @@ bool LayerReconfigure::onSet(dynamic_reconfigure::Reconfigure::Request& req,
                              dynamic_reconfigure::Reconfigure::Response& res)
 {
   std::lock_guard<std::mutex> lock(mutex_);
-  const auto specs = layer_->tunableParameters(params_);
-  ParamValue next = params_.isMap() ? params_ : ParamValue::makeMap();
-  auto known = [&specs](const std::string& name)
-  { return std::any_of(specs.begin(), specs.end(), [&name](const ParamSpec& s) { return s.name == name; }); };
-  // The names a caller sent that cannot change: the first few, each clipped, and how many in all (a
-  // caller's thousands of megabyte names must not become a log line that size).
-  constexpr std::size_t kNamesShown = 8;
-  std::string unknown;
-  std::size_t unknown_count = 0;
-  auto ignore = [&](const std::string& name)
-  {
-    if (unknown_count++ < kNamesShown) unknown += " " + costmap_layers::shownText(name);
-  };
-  for (const auto& p : req.config.bools)
-    known(p.name) ? (void)next.set(p.name, ParamValue::makeBool(p.value)) : ignore(p.name);
-  for (const auto& p : req.config.ints)
-    known(p.name) ? (void)next.set(p.name, ParamValue::makeInt(p.value)) : ignore(p.name);
-  for (const auto& p : req.config.doubles)
-    known(p.name) ? (void)next.set(p.name, ParamValue::makeDouble(p.value)) : ignore(p.name);
-  for (const auto& p : req.config.strs)
-    known(p.name) ? (void)next.set(p.name, ParamValue::makeString(p.value)) : ignore(p.name);
-  if (unknown_count > kNamesShown) unknown += " (" + std::to_string(unknown_count) + " in all)";
+  ReconfigureChange change = applyConfig(params_, layer_->tunableParameters(params_), req.config);
   // One key for both lines: at most one error line per layer per second, whatever a caller floods.
   const std::string error_key = nh_.getNamespace() + "/set_parameters";
-  if (unknown_count > 0)
+  if (change.ignored_count > 0)
     errors_.log(costmap_layers::Severity::Error, error_key,
-                layer_->getName() + ": ignored parameters that cannot change at run time:" + unknown);
+                layer_->getName() + ": ignored parameters that cannot change at run time:" + change.ignored);
   try
   {
-    run_locked_([&] { layer_->reconfigure(next); });
-    params_ = next;
+    run_locked_([&] { layer_->reconfigure(change.next); });
+    params_ = change.next;
     ROS_INFO("%s: reconfigured", layer_->getName().c_str());
   }
   catch (const std::exception& e)

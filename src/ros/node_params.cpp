@@ -6,11 +6,25 @@
 
 namespace costmap_layers_ros
 {
-NodeParams::NodeParams(const ros::NodeHandle& private_nh)
+namespace
+{
+/// What the parameter server holds under ns; an invalid value when it holds nothing there.
+XmlRpc::XmlRpcValue readTree(const std::string& ns)
 {
   XmlRpc::XmlRpcValue all;
-  if (!ros::param::get(private_nh.getNamespace(), all) || all.getType() != XmlRpc::XmlRpcValue::TypeStruct) return;
-  const std::string& ns = private_nh.getNamespace();
+  if (!ros::param::get(ns, all)) return XmlRpc::XmlRpcValue();
+  return all;
+}
+}  // namespace
+
+NodeParams::NodeParams(const ros::NodeHandle& private_nh)
+    : NodeParams(readTree(private_nh.getNamespace()), private_nh.getNamespace())
+{
+}
+
+NodeParams::NodeParams(XmlRpc::XmlRpcValue all, const std::string& ns)
+{
+  if (all.getType() != XmlRpc::XmlRpcValue::TypeStruct) return;
   const std::string own = ns.substr(ns.rfind('/') + 1);
   values_ = all;
   // A section named like the node: the file was loaded with ns="<node name>" (one level down), or with

@@ -4,7 +4,6 @@
 #include <visualization_msgs/InteractiveMarkerControl.h>
 #include <visualization_msgs/Marker.h>
 
-#include <climits>
 #include <cmath>
 #include <optional>
 #include <stdexcept>
@@ -105,27 +104,6 @@ visualization_msgs::InteractiveMarker outlineMarker(const std::string& frame, co
 }
 }  // namespace
 
-costmap_layers::ZoneShape fromMsg(const costmap_layers::ZoneShapeDescription& msg)
-{
-  costmap_layers::ZoneShape s;
-  s.name = msg.name;
-  if (msg.type == "polygon")
-    s.type = ZoneShapeType::Polygon;
-  else if (msg.type == "circle")
-    s.type = ZoneShapeType::Circle;
-  else
-    throw std::invalid_argument("shape '" + msg.name.substr(0, 64) +
-                                "': type must be \"polygon\" or \"circle\" (got \"" + msg.type.substr(0, 64) + "\")");
-  s.value = msg.value;
-  s.fill = msg.fill;
-  if (s.type == ZoneShapeType::Polygon)
-    for (const auto& p : msg.points)
-      s.points.push_back({p.x, p.y});
-  s.center = {msg.center.x, msg.center.y};
-  s.radius = msg.radius;
-  return s;
-}
-
 nav_msgs::OccupancyGrid toMaskMsg(const costmap_layers::OccupancyGridData& grid, const ros::Time& stamp)
 {
   nav_msgs::OccupancyGrid msg;
@@ -141,29 +119,6 @@ nav_msgs::OccupancyGrid toMaskMsg(const costmap_layers::OccupancyGridData& grid,
   msg.info.origin.orientation.w = 1.0;
   msg.data.assign(grid.data.begin(), grid.data.end());
   return msg;
-}
-
-bool parseHandleName(const std::string& marker, std::string* shape, std::size_t* index)
-{
-  const auto slash = marker.rfind('/');
-  if (slash == std::string::npos || slash == 0 || slash + 1 >= marker.size()) return false;
-  *shape = marker.substr(0, slash);
-  const std::string tail = marker.substr(slash + 1);
-  if (tail == "center")
-  {
-    *index = 0;
-    return true;
-  }
-  if (tail == "radius")
-  {
-    *index = 1;
-    return true;
-  }
-  if (tail.size() > 6) return false;  // no polygon has a million vertices
-  for (const char c : tail)
-    if (c < '0' || c > '9') return false;
-  *index = static_cast<std::size_t>(std::stoul(tail));
-  return true;
 }
 
 ZoneServer::Options ZoneServer::readOptions(const ros::NodeHandle& pnh)
@@ -188,7 +143,7 @@ ZoneServer::ZoneServer(ros::NodeHandle nh, ros::NodeHandle pnh, Options options)
       options_(std::move(options)),
       node_(ros::this_node::getName()),
       log_(std::make_shared<ThrottledLog>()),
-      zones_(costmap_layers::io::loadZoneFile(options_.yaml_filename))
+      editor_(costmap_layers::ZoneSet(costmap_layers::io::loadZoneFile(options_.yaml_filename)), options_.yaml_filename)
 {
   mask_pub_ = nh_.advertise<nav_msgs::OccupancyGrid>(options_.topic, 1, true);
   if (options_.markers) markers_ = std::make_unique<interactive_markers::InteractiveMarkerServer>(node_);
@@ -200,23 +155,24 @@ ZoneServer::ZoneServer(ros::NodeHandle nh, ros::NodeHandle pnh, Options options)
   {
     std::lock_guard<std::mutex> lock(mutex_);
     publish();
-    drawn = zones_.layout();
+    drawn = editor_.zones().layout();
   }
   rebuildMarkers(drawn);
 }
 
 void ZoneServer::publish()
 {
-  const costmap_layers::OccupancyGridData grid = zones_.rasterize();
+  const costmap_layers::ZoneSet& zones = editor_.zones();
+  const costmap_layers::OccupancyGridData grid = zones.rasterize();
   mask_pub_.publish(toMaskMsg(grid, ros::Time::now()));
   std::size_t claimed = 0;
   for (const int8_t v : grid.data)
-    claimed += v != zones_.layout().default_value;
+    claimed += v != zones.layout().default_value;
   ROS_INFO(
       "%s: publishing %zu shape(s) on %s: %ux%u cells at %g m/cell, origin (%g, %g), frame %s, %zu cell(s) "
       "not at default_value %d [%s/published]",
-      node_.c_str(), zones_.layout().shapes.size(), mask_pub_.getTopic().c_str(), grid.width, grid.height,
-      grid.resolution, grid.origin_x, grid.origin_y, grid.frame_id.c_str(), claimed, zones_.layout().default_value,
+      node_.c_str(), zones.layout().shapes.size(), mask_pub_.getTopic().c_str(), grid.width, grid.height,
+      grid.resolution, grid.origin_x, grid.origin_y, grid.frame_id.c_str(), claimed, zones.layout().default_value,
       node_.c_str());
 }
 
@@ -253,7 +209,7 @@ bool ZoneServer::redraw(std::unique_lock<std::mutex>& lock)
 {
   // The marker server calls onFeedback holding its own lock, and onFeedback takes mutex_: so mutex_ is
   // never held while calling into the marker server, or two callback threads could deadlock.
-  const ZoneLayout drawn = zones_.layout();
+  const ZoneLayout drawn = editor_.zones().layout();
   lock.unlock();
   rebuildMarkers(drawn);
   return true;
@@ -268,42 +224,25 @@ void ZoneServer::refuse(const std::string& what, const InputError& error)
 void ZoneServer::onFeedback(const visualization_msgs::InteractiveMarkerFeedbackConstPtr& f)
 {
   if (f->event_type != visualization_msgs::InteractiveMarkerFeedback::POSE_UPDATE) return;
-  std::string shape;
-  std::size_t index = 0;
-  if (!parseHandleName(f->marker_name, &shape, &index)) return;
   // Decided under mutex_, drawn after it is released (see redraw()): the handle put back, or this
   // shape's outline and its other handles (a circle's radius handle follows its centre); the dragged
   // handle itself is where the user holds it.
-  std::optional<ZonePoint> put_back;
-  std::optional<costmap_layers::ZoneShape> moved;
-  std::string frame;
+  ZoneDrag drag;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    const costmap_layers::ZoneShape* before = zones_.find(shape);
-    if (!before) return;
-    const std::vector<ZonePoint> old_handles = costmap_layers::zoneHandles(*before);
-    frame = zones_.layout().frame_id;
-    InputError error;
-    // RViz stamps feedback with the marker's frame: a pose in no frame, or another, cannot be placed.
-    if (f->header.frame_id != frame)
-      error = InputError::of("feedback/header.frame_id", "marker feedback for " + f->marker_name + " is in frame '" +
-                                                             f->header.frame_id.substr(0, 64) +
-                                                             "', the zones are in '" + frame + "'");
-    else
-      error = zones_.moveHandle(shape, index, f->pose.position.x, f->pose.position.y);
-    if (!error.ok())
-    {
+    drag = editor_.drag(f->marker_name, f->header.frame_id, f->pose.position.x, f->pose.position.y);
+    if (!drag.applies) return;
+    if (!drag.error.ok())
       refuse("moving " + f->marker_name + " to (" + std::to_string(f->pose.position.x) + ", " +
                  std::to_string(f->pose.position.y) + ")",
-             error);
-      if (index < old_handles.size()) put_back = old_handles[index];
-    }
+             drag.error);
     else
-    {
       publish();
-      moved = *zones_.find(shape);
-    }
   }
+  const std::optional<ZonePoint>& put_back = drag.put_back;
+  const std::optional<costmap_layers::ZoneShape>& moved = drag.moved;
+  const std::string& frame = drag.frame;
+  const std::size_t index = drag.index;
   if (!markers_) return;
   if (put_back)
   {
@@ -331,20 +270,12 @@ void ZoneServer::onFeedback(const visualization_msgs::InteractiveMarkerFeedbackC
 bool ZoneServer::onSet(costmap_layers::SetZoneShape::Request& req, costmap_layers::SetZoneShape::Response& res)
 {
   std::unique_lock<std::mutex> lock(mutex_);
-  InputError error;
-  try
+  const ZoneEdit edit = editor_.set(req.shape);
+  res.success = edit.success;
+  res.message = edit.message;
+  if (!edit.success)
   {
-    error = zones_.upsert(fromMsg(req.shape));
-  }
-  catch (const std::invalid_argument& e)
-  {
-    error = InputError::of("shapes/type", e.what());
-  }
-  res.success = error.ok();
-  res.message = error.ok() ? "shape '" + req.shape.name + "' in force" : error.message;
-  if (!error.ok())
-  {
-    refuse("set_shape", error);
+    refuse("set_shape", edit.error);
     return true;
   }
   publish();
@@ -354,88 +285,43 @@ bool ZoneServer::onSet(costmap_layers::SetZoneShape::Request& req, costmap_layer
 bool ZoneServer::onRemove(costmap_layers::RemoveZoneShape::Request& req, costmap_layers::RemoveZoneShape::Response& res)
 {
   std::unique_lock<std::mutex> lock(mutex_);
-  const InputError error = zones_.remove(req.name);
-  res.success = error.ok();
-  res.message = error.ok() ? "shape '" + req.name + "' removed" : error.message;
-  if (!error.ok())
+  const ZoneEdit edit = editor_.remove(req.name);
+  res.success = edit.success;
+  res.message = edit.message;
+  if (!edit.success)
   {
-    refuse("remove_shape", error);
+    refuse("remove_shape", edit.error);
     return true;
   }
   publish();
   return redraw(lock);
 }
 
-namespace
-{
-/// Why a file name a peer sent cannot be used ("" when it can; an empty one means ~yaml_filename, taken
-/// as configured). No path is longer than PATH_MAX, and a peer's megabyte name must not come back whole
-/// in the answer and the log. Zone files are YAML by their name: a peer cannot make the server read or
-/// overwrite any other file (/etc/passwd, a key, a sudoers.d entry), only *.yaml and *.yml ones.
-std::string badFilename(const std::string& name)
-{
-  if (name.empty()) return "";
-  if (name.size() > static_cast<std::size_t>(PATH_MAX))
-    return "filename '" + name.substr(0, 64) + "...' has " + std::to_string(name.size()) + " characters, more than " +
-           std::to_string(PATH_MAX) + " (PATH_MAX)";
-  auto ends_with = [&](const std::string& tail)
-  { return name.size() > tail.size() && name.compare(name.size() - tail.size(), tail.size(), tail) == 0; };
-  if (!ends_with(".yaml") && !ends_with(".yml"))
-    return "filename '" + name.substr(0, 64) + (name.size() > 64 ? "..." : "") +
-           "' does not end in .yaml or .yml: zone files are YAML, and no other file is read or written";
-  return "";
-}
-}  // namespace
-
 bool ZoneServer::onSave(costmap_layers::SaveZones::Request& req, costmap_layers::SaveZones::Response& res)
 {
   std::lock_guard<std::mutex> lock(mutex_);
-  const std::string path = req.filename.empty() ? options_.yaml_filename : req.filename;
-  if (const std::string why = badFilename(req.filename); !why.empty())
+  const ZoneEdit edit = editor_.save(req.filename);
+  res.success = edit.success;
+  res.message = edit.message;
+  if (!edit.success)
   {
-    res.success = false;
-    res.message = why;
-    refuse("save", InputError::of("save/filename", why));
+    refuse("save", edit.error);
     return true;
   }
-  try
-  {
-    costmap_layers::io::saveZoneFile(path, zones_.layout());
-    res.success = true;
-    res.message = path;
-    ROS_INFO("%s: saved %zu shape(s) to %s [%s/saved]", node_.c_str(), zones_.layout().shapes.size(), path.c_str(),
-             node_.c_str());
-  }
-  catch (const std::exception& e)
-  {
-    res.success = false;
-    res.message = e.what();
-    refuse("save", InputError::of("save", e.what()));
-  }
+  ROS_INFO("%s: saved %zu shape(s) to %s [%s/saved]", node_.c_str(), editor_.zones().layout().shapes.size(),
+           edit.message.c_str(), node_.c_str());
   return true;
 }
 
 bool ZoneServer::onLoad(costmap_layers::LoadZones::Request& req, costmap_layers::LoadZones::Response& res)
 {
   std::unique_lock<std::mutex> lock(mutex_);
-  const std::string path = req.filename.empty() ? options_.yaml_filename : req.filename;
-  InputError error;
-  if (const std::string why = badFilename(req.filename); !why.empty())
-    error = InputError::of("load/filename", why);
-  else
-    try
-    {
-      error = zones_.replace(costmap_layers::io::loadZoneFile(path));
-    }
-    catch (const std::exception& e)
-    {
-      error = InputError::of("load", e.what());
-    }
-  res.success = error.ok();
-  res.message = error.ok() ? "loaded " + path : error.message;
-  if (!error.ok())
+  const ZoneEdit edit = editor_.load(req.filename);
+  res.success = edit.success;
+  res.message = edit.message;
+  if (!edit.success)
   {
-    refuse("load", error);
+    refuse("load", edit.error);
     return true;
   }
   publish();

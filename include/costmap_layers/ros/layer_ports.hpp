@@ -2,13 +2,14 @@
 // in the core. Each input port becomes a subscription (sensors through a tf gate: a reading reaches
 // the layer once tf can place it), each output port a latched publisher of the layer's events (a
 // Setpoints port: a SetpointApplier, which sets them through dynamic_reconfigure on its own thread), and a
-// filter's switch a ~<name>/toggle service.
+// filter's switch a ~<name>/toggle service. What happens to a message once it arrives is in
+// port_dispatch.hpp (conversion and delivery), tf_gate.hpp (sensors) and port_receipts.hpp (counts):
+// plain functions and classes a test can feed without a master.
 #pragma once
 
 #include <ros/ros.h>
 #include <tf2_ros/buffer.h>
 
-#include <atomic>
 #include <deque>
 #include <map>
 #include <memory>
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "costmap_layers/core/costmap/layer.hpp"
+#include "costmap_layers/ros/port_receipts.hpp"
 #include "costmap_layers/ros/ros_layer_context.hpp"
 #include "costmap_layers/ros/setpoint_applier.hpp"
 
@@ -41,13 +43,8 @@ public:
   /// Per subscribed topic (resolved name): "N message(s), last X s ago" or "nothing yet", counted when a
   /// message arrives (before tf or validation), for /diagnostics.
   std::vector<std::pair<std::string, std::string>> receipts() const;
-  /// How many messages arrived on a topic and when (ros::SteadyTime, seconds; 0 = never). Any thread.
-  struct Receipts
-  {
-    std::atomic<uint64_t> count{0};
-    std::atomic<double> last{0.0};
-    void note();
-  };
+  /// How many messages arrived on a topic and when (port_receipts.hpp).
+  using Receipts = PortReceipts;
   ~LayerPorts();
   LayerPorts(const LayerPorts&) = delete;
   LayerPorts& operator=(const LayerPorts&) = delete;
@@ -55,16 +52,12 @@ public:
 private:
   /// The subscription of one non-sensor port (none when its topic is empty).
   ros::Subscriber subscribe(const costmap_layers::InputPort& in);
-  ros::Subscriber subscribeGrid(const std::string& topic, costmap_layers::GridCallback cb);
-  ros::Subscriber subscribeGridUpdates(const std::string& topic, costmap_layers::GridUpdateCallback cb);
-  ros::Subscriber subscribeSpeedLimits(const std::string& topic, costmap_layers::SpeedLimitsCallback cb);
-  ros::Subscriber subscribeFilterInfo(const std::string& topic, costmap_layers::FilterInfoCallback cb);
-  /// A message converted by fromMsg() and handed over as is (the layer validates it); a conversion
-  /// that throws is logged (keyed by the layer and topic) and dropped. `what` names it in the log.
+  /// Subscribes topic with the given queue length; each message is counted and handed to dispatch()
+  /// (port_dispatch.hpp) with cb.
   template <class Msg, class Callback>
-  ros::Subscriber subscribeTyped(const std::string& topic, const std::string& what, Callback cb, uint32_t queue);
-  /// Subscribes through a tf gate (see layer_ports.cpp): a reading is delivered once its frame can be
-  /// transformed into the global frame at its stamp, or dropped with a throttled warning.
+  ros::Subscriber subscribePort(const std::string& topic, uint32_t queue, Callback cb);
+  /// Subscribes through a tf gate (tf_gate.hpp), retried by a wall timer: a reading is delivered once its
+  /// frame can be transformed into the global frame at its stamp, or dropped with a throttled warning.
   template <class Msg, class Reading>
   void subscribeSensor(const std::string& topic, const std::string& sensor_frame,
                        costmap_layers::SensorCallback<Reading> cb);
@@ -84,7 +77,7 @@ private:
   std::vector<std::string> port_topics_;              ///< their topics as receipts_ keys them (the same)
   std::deque<double> move_log_times_;                 ///< [s] when replaced ports were logged (ports_mutex_)
   std::size_t moves_unlogged_ = 0;                    ///< replacements since, not logged (ports_mutex_)
-  std::vector<std::shared_ptr<void>> sensor_inputs_;  ///< tf gates with their subscribers
+  std::vector<std::shared_ptr<void>> sensor_inputs_;  ///< tf gates with their subscribers and timers
   std::map<std::pair<costmap_layers::OutputKind, std::string>, ros::Publisher> publishers_;  ///< by kind, topic
   std::vector<ros::ServiceServer> toggles_;     ///< a filter's switch: `toggle` and Nav2's `toggle_filter`
   std::unique_ptr<SetpointApplier> setpoints_;  ///< the Setpoints output's worker (ZoneParameterFilter)

@@ -25,6 +25,24 @@ const char* reconfigureTypeName(costmap_layers::ParamValue::Type t);
 /// other type).
 void addToConfig(dynamic_reconfigure::Config& config, const std::string& name, const costmap_layers::ParamValue& value);
 
+/// What a set_parameters request makes of a layer's parameters (the part of the service that needs no
+/// layer and no node, for tests).
+struct ReconfigureChange
+{
+  costmap_layers::ParamValue next;  ///< current (a map; a new one when current is not) with each known name set
+  std::string ignored;              ///< the names that cannot change, as logged: " a b ... (N in all)"
+  std::size_t ignored_count = 0;    ///< how many names in all could not change
+};
+/// Applies config's bools, ints, doubles and strs, in that order, to current: a name among specs is set
+/// to the value of its list's type; any other is ignored (the first kReconfigureNamesShown listed, each
+/// clipped to 64 characters, then "(N in all)" when there were more).
+ReconfigureChange applyConfig(const costmap_layers::ParamValue& current,
+                              const std::vector<costmap_layers::ParamSpec>& specs,
+                              const dynamic_reconfigure::Config& config);
+/// How many ignored names a log line lists: a caller's thousands of megabyte names must not become a
+/// log line that size.
+constexpr std::size_t kReconfigureNamesShown = 8;
+
 class LayerReconfigure
 {
 public:

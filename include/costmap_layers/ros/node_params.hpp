@@ -22,6 +22,10 @@ public:
   /// the <node> tag); parameters both there and beside it are an error (std::invalid_argument naming
   /// both).
   explicit NodeParams(const ros::NodeHandle& private_nh);
+  /// The same rules on a tree already read: `all` is what the parameter server holds under `ns` (the
+  /// node's private namespace, e.g. "/mask_server"); anything but a dictionary is no parameters. For
+  /// tests, which have no parameter server.
+  NodeParams(XmlRpc::XmlRpcValue all, const std::string& ns);
 
   /// "~" or "~<node name>/": where the parameters were read from (for messages).
   const std::string& where() const { return where_; }

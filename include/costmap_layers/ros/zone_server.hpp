@@ -14,7 +14,8 @@
 //   ~load          costmap_layers/LoadZones        replace every shape by a zone file's
 // Every refused change (a service request, a marker drag that would make a self-intersecting polygon,
 // a file that does not load) keeps the shapes in force, is answered with the reason (services) or
-// logged with a stable key "[<node>/<field>]" (markers), and a refused drag puts the handle back.
+// logged with a stable key "[<node>/<field>]" (markers), and a refused drag puts the handle back. What
+// each request does to the shapes is ZoneEditor's (zone_editor.hpp); this class is its ROS wiring.
 #pragma once
 
 #include <interactive_markers/interactive_marker_server.h>
@@ -33,19 +34,12 @@
 #include "costmap_layers/ZoneShapeDescription.h"
 #include "costmap_layers/core/zones/zone_shapes.hpp"
 #include "costmap_layers/ros/ros_layer_context.hpp"
+#include "costmap_layers/ros/zone_editor.hpp"
 
 namespace costmap_layers_ros
 {
-/// The shape a message describes (not yet validated: ZoneSet does that).
-/// Throws std::invalid_argument for a type other than "polygon" or "circle".
-costmap_layers::ZoneShape fromMsg(const costmap_layers::ZoneShapeDescription& msg);
-
 /// The mask as a message: frame, resolution, origin, cells; stamped now.
 nav_msgs::OccupancyGrid toMaskMsg(const costmap_layers::OccupancyGridData& grid, const ros::Time& stamp);
-
-/// How a marker name maps to a shape handle: "<shape>/<k>" for polygon vertex k, "<shape>/center" and
-/// "<shape>/radius" for a circle's handles 0 and 1. @return false for any other name.
-bool parseHandleName(const std::string& marker, std::string* shape, std::size_t* index);
 
 class ZoneServer
 {
@@ -84,7 +78,7 @@ private:
   std::string node_;
   std::shared_ptr<ThrottledLog> log_;
   std::mutex mutex_;
-  costmap_layers::ZoneSet zones_;  ///< guarded by mutex_
+  ZoneEditor editor_;  ///< the shapes in force and what requests do to them; guarded by mutex_
   ros::Publisher mask_pub_;
   std::unique_ptr<interactive_markers::InteractiveMarkerServer> markers_;
   ros::ServiceServer set_srv_, remove_srv_, save_srv_, load_srv_;

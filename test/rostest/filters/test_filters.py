@@ -32,18 +32,32 @@ class FiltersTest(unittest.TestCase):
                 cls.speeds.append(round(msg.max_speed, 6))
                 cls.speed_cond.notify_all()
 
+        # Recorded from here on, before any case can start the robot (it holds its first pose until
+        # ~start): the whole route's values, whichever case drives it.
         rospy.Subscriber("/max_speed", MaxSpeed, on_speed)
+
+    def drive_route(self):
+        """Brings the robot to the end of its route (9.0, 5.1), where it then stays. fake_robot drives
+        its route once: the first case that needs it there starts it, the others find it done. Each case
+        that depends on where the robot stands calls this itself, so no case relies on another having
+        run before it (unittest runs them in name order, and a single case may be run alone)."""
+        rospy.set_param("/fake_robot/start", True)
+        deadline = rospy.Time.now() + rospy.Duration(60.0)
+        while not rospy.get_param("/fake_robot/done", False) and rospy.Time.now() < deadline:
+            rospy.sleep(0.1)  # polling a condition (the robot's ~done), with a deadline
+        self.assertTrue(rospy.get_param("/fake_robot/done", False), "the robot did not finish its route")
+
+    def set_keepout(self, on):
+        toggle = rospy.ServiceProxy("/costmap_node/keepout_filter/toggle", SetBool)
+        toggle.wait_for_service(10.0)
+        self.assertTrue(toggle(on).success)
 
     def test_1_speed_limits_along_the_route(self):
         # The first (latched) value arrives while the robot waits at its start, in no area.
         with self.speed_cond:
             self.speed_cond.wait_for(lambda: self.speeds, timeout=30.0)
         self.assertEqual(self.speeds[:1], [1.0])
-        rospy.set_param("/fake_robot/start", True)
-        deadline = rospy.Time.now() + rospy.Duration(60.0)
-        while not rospy.get_param("/fake_robot/done", False) and rospy.Time.now() < deadline:
-            rospy.sleep(0.1)
-        self.assertTrue(rospy.get_param("/fake_robot/done", False), "the robot did not finish its route")
+        self.drive_route()
         # start in no area: default 1.0; area 1: 0.3; the -1 strip keeps 0.3; no area: 1.0; area 2: 0.6;
         # up the lane, in no area: 1.0. (The last change may come a cycle after the robot stopped.)
         expected = [1.0, 0.3, 1.0, 0.6, 1.0]
@@ -59,6 +73,8 @@ class FiltersTest(unittest.TestCase):
         self.assertEqual(self.grid.at(14.5, 1.2), translate(127))
         toggle = rospy.ServiceProxy("/costmap_node/keepout_filter/toggle", SetBool)
         toggle.wait_for_service(10.0)
+        # On again whatever fails below: no later case may find the filter switched off.
+        self.addCleanup(self.set_keepout, True)
         self.assertTrue(toggle(False).success)
         self.assertTrue(self.grid.wait_until(lambda g: g.at(14.0, 8.5) == 0 and g.at(14.5, 1.2) == 0, 20.0),
                         "switching the keepout filter off did not remove its effect")
@@ -78,6 +94,10 @@ class FiltersTest(unittest.TestCase):
                         "toggle_filter true did not switch the keepout filter on again")
 
     def test_3_tool_gives_the_nodes_grid(self):
+        # Its own state: the robot where the tool is told it stands (--pose, the route's end) and the
+        # keepout filter on, as the tool computes it; not what the cases before left.
+        self.drive_route()
+        self.set_keepout(True)
         example = rospy.get_param("~example")
         tool = roslib.packages.find_node("costmap_layers", "costmap_tool")
         self.assertTrue(tool, "costmap_tool not found")

@@ -109,7 +109,10 @@ class ZoneServerTest(unittest.TestCase):
         initial = expected_mask([(DOCK, 100)], [(SLOW, 40)])
         self.assertTrue(self.mask.wait(matches(initial), 30.0), "the initial mask is not the expected one")
         self.assertGreater(initial[4].count(100), 150)  # 19 x 10 cells
-        # Drag dock's vertex 2 from (2.97, 2.04) to (3.46, 2.57), as RViz would.
+        # Drag dock's vertex 2 from (2.97, 2.04) to (3.46, 2.57), as RViz would; dock is put back as the
+        # file has it at the end, so that no other case sees this one's drag.
+        self.addCleanup(self.set_shape, ZoneShape(name="dock", type="polygon", value=100, fill=True,
+                                                  points=[Point(x, y, 0.0) for x, y in DOCK]))
         moved = [DOCK[0], DOCK[1], (3.46, 2.57), DOCK[3]]
         expected = expected_mask([(moved, 100)], [(SLOW, 40)])
         self.assertNotEqual(expected[4], initial[4])
