@@ -191,8 +191,7 @@ void LayerBridgeOn<Base>::updateBounds(double robot_x, double robot_y, double ro
   const auto own = lockOwnGrid();
   viewMaster();  // a rolling master has moved its origin since the last cycle
   const bool on = core_->enabled();
-  const bool switched = on != drawn_enabled_;
-  drawn_enabled_ = on;
+  const bool switched = core_->takeEnabledFlip();  // the core layer's switch flipped since the last cycle
   if (on) core_->updateBounds(robot_x, robot_y, robot_yaw, min_x, min_y, max_x, max_y);
   if (full_update_.exchange(false) || host_->takeFullUpdateRequest() || switched)
     expandToWholeMap(min_x, min_y, max_x, max_y);

@@ -90,7 +90,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
         break;
       }
       default:
-        filter->setFilterEnabled(in.flag());
+        filter->setEnabled(in.flag());
         break;
     }
   }

@@ -108,7 +108,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
         break;
       }
       case 2:
-        filter->setFilterEnabled(in.flag());
+        filter->setEnabled(in.flag());
         break;
       default:
       {

@@ -92,7 +92,6 @@ private:
   std::unique_ptr<costmap_layers_ros::LayerPorts> ports_;
   std::unique_ptr<costmap_layers_ros::LayerReconfigure> reconfigure_;
   std::atomic<bool> full_update_{true};     ///< redraw the whole map next cycle (start, reconfigure, reset)
-  bool drawn_enabled_ = true;               ///< the core layer's switch as of the last cycle
   std::vector<std::string> consumed_keys_;  ///< layer keys costmap_2d's rules used up (not "unknown")
   std::string order_problem_;               ///< see orderProblem()
 };

@@ -18,6 +18,13 @@ void Layer::initialize(LayeredCostmap* parent, const std::string& name, std::sha
   initialized_ = true;
 }
 
+void Layer::setEnabled(bool on)
+{
+  if (enabled_.exchange(on) == on) return;
+  enabled_flipped_ = true;
+  onEnabledChanged(on);
+}
+
 void Layer::reconfigure(const ParamValue& params)
 {
   const bool on = ParamReader(params, name_).getBool("enabled", true);
@@ -121,11 +128,11 @@ const char* inputKindName(InputKind kind)
 LayerStatus Layer::status() const
 {
   LayerStatus s;
-  s.add("enabled", enabled_ ? "true" : "false");
+  s.add("enabled", enabled() ? "true" : "false");
   s.add("current", current_ ? "true" : "false");
   for (const auto& in : inputs_)
     s.add(std::string("input ") + inputKindName(in.kind), in.topic);
-  if (!enabled_)
+  if (!enabled())
     s.message = "disabled";
   else if (!current_)
     s.raise(StatusLevel::Warn, "not current: its inputs are out of date");

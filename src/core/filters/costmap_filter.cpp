@@ -92,9 +92,6 @@ void CostmapFilter::onInitialize()
                     "): set one of them: filter_info_topic (Nav2's form) takes the mask topic from the filter info "
                     "(costmap_filter_info_server), mask_topic names the mask directly");
   if (!usesFilterInfo()) mask_topic_ = params.getTopic("mask_topic", defaultMaskTopic(), true);
-  // The filter always takes part in updates, so that switching it off can clear its own effect.
-  filter_enabled_ = enabled_;
-  enabled_ = true;
   onInitializeFilter(params);
   mask_port_ = inputs().size();
   addInput(InputPort::grid(InputKind::Mask, mask_topic_,
@@ -102,6 +99,8 @@ void CostmapFilter::onInitialize()
   if (usesFilterInfo())
     addInput(InputPort::filterInfo(filter_info_topic_,
                                    [this](const std::shared_ptr<const FilterInfoData>& info) { setFilterInfo(info); }));
+  // Switched off from the start: the outputs say "no effect" once (the host never calls the filter).
+  if (!enabled()) processInactive();
 }
 
 std::string CostmapFilter::maskTopic() const
@@ -168,19 +167,20 @@ std::string CostmapFilter::setFilterInfo(std::shared_ptr<const FilterInfoData> i
   return {};
 }
 
-void CostmapFilter::setEnabled(bool on)
+void CostmapFilter::onEnabledChanged(bool on)
 {
-  setFilterEnabled(on);
-}
-
-void CostmapFilter::setFilterEnabled(bool on)
-{
-  std::lock_guard<std::mutex> lock(mask_mutex_);
-  if (filter_enabled_ == on) return;
-  filter_enabled_ = on;
-  // The mask drawn so far must be redrawn even if another one replaces it before the next update.
-  if (!mask_changed_) pending_old_ = mask_;
-  mask_changed_ = true;  // the mask's extent must be redrawn
+  {
+    std::lock_guard<std::mutex> lock(mask_mutex_);
+    // The mask drawn so far must be redrawn even if another one replaces it before the next update.
+    if (!mask_changed_) pending_old_ = mask_;
+    mask_changed_ = true;  // the mask's extent must be redrawn
+  }
+  // Switched off: the outputs say "no effect" now, since the host calls a disabled filter no more.
+  if (!on)
+  {
+    std::lock_guard<std::mutex> lock(outputs_mutex_);
+    processInactive();
+  }
 }
 
 std::string CostmapFilter::setMask(std::shared_ptr<const OccupancyGridData> mask)
@@ -342,9 +342,17 @@ void CostmapFilter::updateBounds(double robot_x, double robot_y, double robot_ya
                              shownText(active_mask_->frame_id) +
                              ", filter skipped this update: " + shownText(error, 400));
     }
-    if (have_transform_ && filter_enabled_) processPose(*active_mask_, to_mask_, robot_x, robot_y, robot_yaw);
   }
-  if (!active_mask_ && filter_enabled_)
+  {
+    // A switch that flips while this cycle runs (its host asked enabled() before) is settled here:
+    // whichever of this and onEnabledChanged() comes last leaves its outputs in force.
+    std::lock_guard<std::mutex> lock(outputs_mutex_);
+    if (!active_mask_ || !enabled())
+      processInactive();
+    else if (have_transform_)
+      processPose(*active_mask_, to_mask_, robot_x, robot_y, robot_yaw);
+  }
+  if (!active_mask_ && enabled())
   {
     if (usesFilterInfo() && !active_info_)
       context_->report(Severity::Warn, "waiting",
@@ -356,7 +364,6 @@ void CostmapFilter::updateBounds(double robot_x, double robot_y, double robot_ya
                            (usesFilterInfo() ? " (named by the filter info on " + filter_info_topic_ + ")" : "") +
                            ": the filter does nothing until one arrives");
   }
-  if (!active_mask_ || !filter_enabled_) processInactive();
   changed = changed || redraw_requested_;
   redraw_requested_ = false;
   // A filter that writes no cost (SpeedFilter) asks for no redraw.
@@ -387,7 +394,7 @@ void CostmapFilter::requestMaskExtent(bool changed, const std::shared_ptr<const 
   const std::optional<Transform2D> drawn_with = drawn_with_;
   if (old) add(*old, drawn_with);
   if (changed) drawn_with_.reset();
-  if (!active_mask_ || !filter_enabled_)
+  if (!active_mask_ || !enabled())
   {
     if (changed && active_mask_) add(*active_mask_, drawn_with);  // switched off: its costs go
     drawn_with_.reset();
@@ -420,7 +427,7 @@ void CostmapFilter::requestMaskExtent(bool changed, const std::shared_ptr<const 
 
 void CostmapFilter::updateCosts(Costmap2D& master_grid, int min_i, int min_j, int max_i, int max_j)
 {
-  if (!filter_enabled_ || !active_mask_ || !have_transform_) return;
+  if (!active_mask_ || !have_transform_) return;
   CellWindow window{std::max(min_i, 0), std::max(min_j, 0),
                     std::min(max_i, static_cast<int>(master_grid.getSizeInCellsX())),
                     std::min(max_j, static_cast<int>(master_grid.getSizeInCellsY()))};
@@ -445,7 +452,7 @@ LayerStatus CostmapFilter::status() const
   LayerStatus s;
   const uint64_t now = context_ ? context_->nowNs() : 0;
   std::lock_guard<std::mutex> lock(mask_mutex_);
-  s.add("enabled", filter_enabled_ ? "true" : "false");
+  s.add("enabled", enabled() ? "true" : "false");
   s.add("mask topic", mask_topic_);
   s.add("masks accepted", std::to_string(masks_accepted_));
   s.add("masks rejected", std::to_string(masks_rejected_));
@@ -456,7 +463,7 @@ LayerStatus CostmapFilter::status() const
     s.add("mask size [cells]", std::to_string(mask_->width) + " x " + std::to_string(mask_->height));
     s.add("mask frame", mask_->frame_id);
   }
-  if (!filter_enabled_)
+  if (!enabled())
   {
     s.message = "switched off";
     return s;

@@ -6,35 +6,12 @@
 #include <sstream>
 
 #include "costmap_layers/core/grid/cost_values.hpp"
+#include "costmap_layers/core/grid/polygon.hpp"
 #include "costmap_layers/core/costmap/layered_costmap.hpp"
 #include "costmap_layers/core/config/param_reader.hpp"
 
 namespace costmap_layers
 {
-void CostGridFilter::process(Costmap2D& master_grid, const CellWindow&, const OccupancyGridData& mask,
-                             const GridSampler& mapping, double, double, double)
-{
-  // The mask pointer changes only when a new mask was accepted: recompute its costs then, not per update.
-  const std::shared_ptr<const OccupancyGridData>& current = activeMask();
-  if (costs_for_ != current)
-  {
-    const std::size_t invalid = computeCosts(mask, costs_);
-    costs_for_ = current;
-    // Once per accepted mask (the node's log throttles by key): a later mask with other bad values is
-    // named too, as the other filters do.
-    if (invalid > 0)
-      context_->report(Severity::Warn, "invalid_values",
-                       name_ + ": the mask holds " + std::to_string(invalid) +
-                           " values outside -1..100 (invalid in an OccupancyGrid); they are skipped");
-  }
-  mapping.forEachRow(master_grid, costs_.data(), mask.width, mask.height, uint8_t{0}, scratch_,
-                     [](uint8_t* cells, const uint8_t* costs, std::size_t n)
-                     {
-                       for (std::size_t k = 0; k < n; ++k)
-                         cells[k] = mergeFilterCost(cells[k], costs[k]);
-                     });
-}
-
 KeepoutFilterConfig parseKeepoutFilterConfig(const ParamReader& params)
 {
   KeepoutFilterConfig c;
@@ -50,19 +27,6 @@ double escapeClearance(double inscribed_radius, double costmap_resolution)
 
 namespace
 {
-/// Whether p lies inside the polygon (crossing number; a point on an edge may go either way).
-bool insidePolygon(const std::vector<Eigen::Vector2d>& polygon, double px, double py)
-{
-  bool inside = false;
-  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++)
-  {
-    const Eigen::Vector2d& a = polygon[i];
-    const Eigen::Vector2d& b = polygon[j];
-    if ((a.y() > py) != (b.y() > py) && px < (b.x() - a.x()) * (py - a.y()) / (b.y() - a.y()) + a.x()) inside = !inside;
-  }
-  return inside;
-}
-
 bool lethalKeepout(int8_t v)
 {
   return maskValueCost(v) >= INSCRIBED_INFLATED_OBSTACLE;
@@ -113,7 +77,7 @@ bool robotInLethalKeepout(const OccupancyGridData& mask, const Transform2D& to_m
       const double px = i + 0.5, py = j + 0.5;
       if ((px - c.x()) * (px - c.x()) + (py - c.y()) * (py - c.y()) <= rc * rc) return true;
       if (holds(i, j, c)) return true;
-      if (polygonal && insidePolygon(polygon, px, py)) return true;
+      if (polygonal && pointInPolygon(polygon, px, py, CrossingOrigin::EdgeEnd)) return true;
       for (const Eigen::Vector2d& p : polygon)
         if (holds(i, j, p)) return true;
     }

@@ -18,11 +18,6 @@ GradientConfig parseGradientConfig(const ParamReader& params)
   return cfg;
 }
 
-uint8_t gradientCost(int k, int gradient_factor)
-{
-  return static_cast<uint8_t>((static_cast<int>(LETHAL_OBSTACLE) - k * gradient_factor) % 255);
-}
-
 void GradientLayer::onInitialize()
 {
   config_ = parseGradientConfig(ParamReader(context_->params(), name_));

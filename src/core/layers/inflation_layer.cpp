@@ -145,7 +145,6 @@ void InflationLayer::updateBounds(double, double, double, double* min_x, double*
 
 void InflationLayer::updateCosts(Costmap2D& master_grid, int min_i, int min_j, int max_i, int max_j)
 {
-  if (!enabled_) return;
   if (master_grid.getResolution() != resolution_)
   {
     resolution_ = master_grid.getResolution();

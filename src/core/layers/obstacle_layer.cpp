@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "costmap_layers/core/layers/ray_geometry.hpp"
 #include "costmap_layers/core/grid/cost_values.hpp"
 #include "costmap_layers/core/config/input_error.hpp"
 #include "costmap_layers/core/costmap/layered_costmap.hpp"
@@ -18,8 +19,6 @@ namespace costmap_layers
 {
 namespace
 {
-constexpr double kMax = std::numeric_limits<double>::max();
-
 /// The new name when set, else the old one, else the default. Ranges are lengths: kMaxDistance.
 double rangeParam(const ParamReader& p, const std::string& name, const std::string& old_name, double def)
 {
@@ -246,7 +245,7 @@ LayerStatus ObstacleLayer::status() const
         src.expected_update_rate > 0.0 ? (std::to_string(src.expected_update_rate) + " s").c_str() : "(unchecked)");
     s.add("source " + src.name + " (" + src.topic + ")", text);
     if (c.rejected > 0) s.add("source " + src.name + " last rejection", c.last_rejection);
-    if (!enabled_) continue;
+    if (!enabled()) continue;
     if (!b.isCurrent(now))
     {
       std::snprintf(text, sizeof(text), "%.2f s without a reading (expected every %.2f s)", age,
@@ -258,7 +257,7 @@ LayerStatus ObstacleLayer::status() const
       s.raise(StatusLevel::Warn,
               "source " + src.name + " on " + src.topic + ": every reading rejected (" + c.last_rejection + ")");
   }
-  if (!enabled_)
+  if (!enabled())
     s.message = "disabled";
   else if (s.level == StatusLevel::Ok)
     s.message = buffers_.empty() ? "no observation sources: only clears the footprint"
@@ -459,13 +458,18 @@ bool ObstacleLayer::clipRay2D(double ox, double oy, double wx, double wy, double
   t = 1.0;
   const double d2 = a * a + b * b;
   if (d2 > max_range * max_range) t = max_range / std::sqrt(d2);
-  // Cut at the grid's border (the origin is inside, so each divisor below is non-zero when used).
-  if (ox + t * a < x0) t = (x0 - ox) / a;
-  if (ox + t * a > x1) t = (x1 - ox) / a;
-  if (oy + t * b < y0) t = (y0 - oy) / b;
-  if (oy + t * b > y1) t = (y1 - oy) / b;
-  t = std::max(0.0, std::min(1.0, t));
+  t = clipRayToBox<2>({ox, oy}, {a, b}, {x0, y0}, {x1, y1}, t);
   return true;
+}
+
+bool ObstacleLayer::marksPoint(const Observation& obs, const Point3f& p, unsigned int& mx, unsigned int& my) const
+{
+  if (!config_.marksHeight(p.z)) return false;
+  const double dx = p.x - obs.origin_x, dy = p.y - obs.origin_y, dz = p.z - obs.origin_z;
+  const double d2 = dx * dx + dy * dy + dz * dz;
+  if (d2 > obs.obstacle_max_range * obs.obstacle_max_range || d2 < obs.obstacle_min_range * obs.obstacle_min_range)
+    return false;
+  return costmap_.worldToMap(p.x, p.y, mx, my);
 }
 
 void ObstacleLayer::raytraceFreespace(const Observation& obs, double* min_x, double* min_y, double* max_x,
@@ -489,7 +493,7 @@ void ObstacleLayer::raytraceFreespace(const Observation& obs, double* min_x, dou
   const unsigned int walk_cells = range_cells < 0xFFFFFFFDu ? range_cells + 2 : 0xFFFFFFFFu;
   const unsigned int size_x = costmap_.getSizeInCellsX();
   uint8_t* grid = costmap_.data();
-  unsigned int ex_min = x0, ey_min = y0, ex_max = x0, ey_max = y0;  // cells visited
+  TouchedBox<unsigned int> visited_cells(x0, y0);
   auto ray = [&](const Point3f& p)
   {
     // As costmap_2d: the line runs towards the reading's own cell (cut at the grid's border only) and
@@ -524,53 +528,39 @@ void ObstacleLayer::raytraceFreespace(const Observation& obs, double* min_x, dou
         x0, y0, static_cast<unsigned>(cx), static_cast<unsigned>(cy), walk_cells, 0);
     if (!visited) return;
     // Bresenham stays in the box of its first and last cells: that box is what changed.
-    const unsigned int lx = last % size_x, ly = last / size_x;
-    ex_min = std::min(ex_min, lx);
-    ey_min = std::min(ey_min, ly);
-    ex_max = std::max(ex_max, lx);
-    ey_max = std::max(ey_max, ly);
+    visited_cells.add(last % size_x, last / size_x);
   };
   for (const Point3f& p : obs.points)
     ray(p);
   for (const Point3f& p : obs.clear_only)
     ray(p);
   double wx, wy;
-  costmap_.mapToWorld(ex_min, ey_min, wx, wy);
+  costmap_.mapToWorld(visited_cells.min_x, visited_cells.min_y, wx, wy);
   touch(wx, wy, min_x, min_y, max_x, max_y);
-  costmap_.mapToWorld(ex_max, ey_max, wx, wy);
+  costmap_.mapToWorld(visited_cells.max_x, visited_cells.max_y, wx, wy);
   touch(wx, wy, min_x, min_y, max_x, max_y);
 }
 
 void ObstacleLayer::markObservation(const Observation& obs, double* min_x, double* min_y, double* max_x, double* max_y)
 {
-  const double max2 = obs.obstacle_max_range * obs.obstacle_max_range;
-  const double min2 = obs.obstacle_min_range * obs.obstacle_min_range;
   uint8_t* grid = costmap_.data();
-  double px_min = kMax, py_min = kMax, px_max = -kMax, py_max = -kMax;
+  TouchedBox<double> marked;
   for (const Point3f& p : obs.points)
   {
-    if (!config_.marksHeight(p.z)) continue;
-    const double dx = p.x - obs.origin_x, dy = p.y - obs.origin_y, dz = p.z - obs.origin_z;
-    const double d2 = dx * dx + dy * dy + dz * dz;
-    if (d2 > max2 || d2 < min2) continue;
     unsigned int mx, my;
-    if (!costmap_.worldToMap(p.x, p.y, mx, my)) continue;
+    if (!marksPoint(obs, p, mx, my)) continue;
     grid[costmap_.getIndex(mx, my)] = LETHAL_OBSTACLE;
-    px_min = std::min<double>(px_min, p.x);
-    py_min = std::min<double>(py_min, p.y);
-    px_max = std::max<double>(px_max, p.x);
-    py_max = std::max<double>(py_max, p.y);
+    marked.add(p.x, p.y);
   }
-  if (px_min <= px_max)
+  if (!marked.empty())
   {
-    touch(px_min, py_min, min_x, min_y, max_x, max_y);
-    touch(px_max, py_max, min_x, min_y, max_x, max_y);
+    touch(marked.min_x, marked.min_y, min_x, min_y, max_x, max_y);
+    touch(marked.max_x, marked.max_y, min_x, min_y, max_x, max_y);
   }
 }
 
 void ObstacleLayer::updateCosts(Costmap2D& master_grid, int min_i, int min_j, int max_i, int max_j)
 {
-  if (!enabled_) return;
   if (config_.footprint_clearing_enabled && transformed_footprint_.size() >= 3)
     costmap_.setConvexPolygonCost(transformed_footprint_, FREE_SPACE);
   switch (config_.combination_method)

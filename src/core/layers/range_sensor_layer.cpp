@@ -60,38 +60,6 @@ RangeSensorConfig parseRangeSensorConfig(const ParamReader& p)
   return c;
 }
 
-namespace range_model
-{
-double gamma(double theta, double max_angle)
-{
-  if (std::fabs(theta) > max_angle) return 0.0;
-  const double q = theta / max_angle;
-  return 1.0 - q * q;
-}
-
-double delta(double phi, double phi_v)
-{
-  return 1.0 - (1.0 + std::tanh(2.0 * (phi - phi_v))) / 2.0;
-}
-
-double sensorModel(double r, double phi, double theta, double max_angle, double phi_v, double resolution)
-{
-  const double lambda = delta(phi, phi_v) * gamma(theta, max_angle);
-  const double band = resolution * r;                                   // Nav2: delta = resolution, band = delta * r
-  if (phi >= 0.0 && phi < r - 2.0 * band) return (1.0 - lambda) * 0.5;  // free ahead of the reading
-  if (phi < r - band)
-  {
-    const double q = (phi - (r - 2.0 * band)) / band;
-    return lambda * 0.5 * q * q + (1.0 - lambda) * 0.5;
-  }
-  if (phi < r + band)
-  {
-    const double j = (r - phi) / band;
-    return lambda * ((1.0 - 0.5 * j * j) - 0.5) + 0.5;  // the obstacle band
-  }
-  return 0.5;  // behind the reading: no information
-}
-}  // namespace range_model
 
 void RangeSensorLayer::onInitialize()
 {
@@ -145,7 +113,7 @@ LayerStatus RangeSensorLayer::status() const
         readings_accepted_ > 0 ? describeAge(secondsBetween(last_accepted_ns_, now)) : "never");
   if (readings_rejected_ > 0) s.add("last rejection", last_rejection_);
   s.add("no_readings_timeout [s]", std::to_string(config_.no_readings_timeout));
-  if (!enabled_)
+  if (!enabled())
   {
     s.message = "disabled";
     return s;
@@ -355,11 +323,6 @@ void RangeSensorLayer::updateBounds(double /*robot_x*/, double /*robot_y*/, doub
     touch(touched_max_x_, touched_max_y_, min_x, min_y, max_x, max_y);
     touched_ = false;
   }
-  if (!enabled_)
-  {
-    current_ = true;
-    return;
-  }
   if (got_readings)
   {
     last_reading_ns_ = now;
@@ -379,7 +342,6 @@ void RangeSensorLayer::updateBounds(double /*robot_x*/, double /*robot_y*/, doub
 
 void RangeSensorLayer::updateCosts(Costmap2D& master, int min_i, int min_j, int max_i, int max_j)
 {
-  if (!enabled_) return;
   const uint8_t clear = range_model::toCost(config_.clear_threshold);
   const uint8_t mark = range_model::toCost(config_.mark_threshold);
   min_i = std::max(min_i, 0);

@@ -71,19 +71,6 @@ StaticConfig parseStaticConfig(const ParamReader& params, bool default_track_unk
   return cfg;
 }
 
-uint8_t interpretStaticValue(int8_t value, const StaticConfig& config)
-{
-  // As costmap_2d: the message value and the unknown value both as unsigned bytes.
-  const uint8_t v = static_cast<uint8_t>(value);
-  const uint8_t unknown = static_cast<uint8_t>(config.unknown_cost_value);
-  const int threshold = config.lethal_cost_threshold;
-  if (v == unknown) return config.track_unknown_space ? NO_INFORMATION : FREE_SPACE;
-  if (v >= threshold) return LETHAL_OBSTACLE;
-  if (config.trinary_costmap) return FREE_SPACE;
-  const double scale = static_cast<double>(v) / threshold;  // threshold > v >= 0 here
-  return static_cast<uint8_t>(scale * LETHAL_OBSTACLE);
-}
-
 void StaticLayer::onInitialize()
 {
   config_ = parseStaticConfig(ParamReader(context_->params(), name_), layered_costmap_->isTrackingUnknown());
@@ -308,10 +295,9 @@ void StaticLayer::updateBounds(double robot_x, double robot_y, double robot_yaw,
   {
     // costmap_2d waits for the map, saying so; here the costmap runs without it, so say it every
     // throttle period: a costmap with no static map is all free (or all unknown) where walls are.
-    if (enabled_)
-      context_->report(Severity::Warn, "waiting",
-                       name_ + ": waiting for the map on " + config_.map_topic +
-                           " (nothing received yet): the costmap has no walls from the map");
+    context_->report(Severity::Warn, "waiting",
+                     name_ + ": waiting for the map on " + config_.map_topic +
+                         " (nothing received yet): the costmap has no walls from the map");
     return;
   }
   if (config_.footprint_clearing_enabled)
@@ -368,14 +354,14 @@ void StaticLayer::updateBounds(double robot_x, double robot_y, double robot_yaw,
 bool StaticLayer::overwritesWindow(const Costmap2D& master_grid, int min_i, int min_j, int max_i, int max_j) const
 {
   (void)min_i, (void)min_j, (void)max_i, (void)max_j;  // the copy covers the whole master
-  return map_received_ && enabled_ && !layered_costmap_->isRolling() && !config_.use_maximum &&
+  return map_received_ && enabled() && !layered_costmap_->isRolling() && !config_.use_maximum &&
          costmap_.getSizeInCellsX() == master_grid.getSizeInCellsX() &&
          costmap_.getSizeInCellsY() == master_grid.getSizeInCellsY();
 }
 
 void StaticLayer::updateCosts(Costmap2D& master_grid, int min_i, int min_j, int max_i, int max_j)
 {
-  if (!map_received_ || !enabled_) return;
+  if (!map_received_) return;
   if (!layered_costmap_->isRolling())
   {
     // The own grid lies on the master (the map's yaw is ignored here, as costmap_2d does).
@@ -501,7 +487,7 @@ LayerStatus StaticLayer::status() const
   else
     s.message = "map " + std::to_string(latest_width_) + " x " + std::to_string(latest_height_) + " cells from " +
                 config_.map_topic + " in force";
-  if (!enabled_) s.message = "disabled; " + s.message;
+  if (!enabled()) s.message = "disabled; " + s.message;
   return s;
 }
 }  // namespace costmap_layers

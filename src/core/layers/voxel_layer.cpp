@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "costmap_layers/core/layers/ray_geometry.hpp"
 #include "costmap_layers/core/grid/cost_values.hpp"
 #include "costmap_layers/core/rules/limits.hpp"
 #include "costmap_layers/core/config/param_reader.hpp"
@@ -85,63 +86,53 @@ void VoxelLayer::raytraceFreespace(const Observation& obs, double* min_x, double
   // Voxel units of the grid; the top and far edges are pulled in by a hair so that floor() stays inside.
   const double lim_x = voxels_.sizeX() * (1.0 - 1e-9), lim_y = voxels_.sizeY() * (1.0 - 1e-9),
                lim_z = voxels_.sizeZ() * (1.0 - 1e-9);
-  double ex_min = ox, ey_min = oy, ex_max = ox, ey_max = oy;
+  TouchedBox<double> ends(ox, oy);
   auto ray = [&](const Point3f& p)
   {
     const double a = p.x - ox, b = p.y - oy, c = p.z - oz;
     const double d = std::sqrt(a * a + b * b + c * c);
     if (!(d > 0.0)) return;
     double t = std::min(1.0, obs.raytrace_max_range / d);
-    if (ox + t * a < gx0) t = (gx0 - ox) / a;
-    if (ox + t * a > gx1) t = (gx1 - ox) / a;
-    if (oy + t * b < gy0) t = (gy0 - oy) / b;
-    if (oy + t * b > gy1) t = (gy1 - oy) / b;
-    if (oz + t * c < gz0) t = (gz0 - oz) / c;
-    if (oz + t * c > gz1) t = (gz1 - oz) / c;
-    t = std::max(0.0, std::min(1.0, t));
+    t = clipRayToBox<3>({ox, oy, oz}, {a, b, c}, {gx0, gy0, gz0}, {gx1, gy1, gz1}, t);
     const double t0 = obs.raytrace_min_range / d;
     if (t0 >= t) return;
     auto vx = [&](double s) { return std::min(lim_x, std::max(0.0, (ox + s * a - gx0) / res)); };
     auto vy = [&](double s) { return std::min(lim_y, std::max(0.0, (oy + s * b - gy0) / res)); };
     auto vz = [&](double s) { return std::min(lim_z, std::max(0.0, (oz + s * c - gz0) / zres)); };
     voxels_.walkLine(clear, vx(t0), vy(t0), vz(t0), vx(t), vy(t), vz(t));
-    const double ex = ox + t * a, ey = oy + t * b;
-    ex_min = std::min(ex_min, ex);
-    ey_min = std::min(ey_min, ey);
-    ex_max = std::max(ex_max, ex);
-    ey_max = std::max(ey_max, ey);
+    ends.add(ox + t * a, oy + t * b);
   };
   for (const Point3f& p : obs.points)
     ray(p);
   for (const Point3f& p : obs.clear_only)
     ray(p);
-  touch(ex_min, ey_min, min_x, min_y, max_x, max_y);
-  touch(ex_max, ey_max, min_x, min_y, max_x, max_y);
+  touch(ends.min_x, ends.min_y, min_x, min_y, max_x, max_y);
+  touch(ends.max_x, ends.max_y, min_x, min_y, max_x, max_y);
 }
 
 void VoxelLayer::markObservation(const Observation& obs, double* min_x, double* min_y, double* max_x, double* max_y)
 {
-  const double max2 = obs.obstacle_max_range * obs.obstacle_max_range;
-  const double min2 = obs.obstacle_min_range * obs.obstacle_min_range;
   const double gz0 = voxel_config_.origin_z, zres = voxel_config_.z_resolution;
   const double levels = voxel_config_.z_voxels;
   const unsigned int mark_t = static_cast<unsigned int>(voxel_config_.mark_threshold);
   uint8_t* grid = costmap_.data();
+  TouchedBox<double> marked;
   for (const Point3f& p : obs.points)
   {
-    if (!config_.marksHeight(p.z)) continue;
-    const double dx = p.x - obs.origin_x, dy = p.y - obs.origin_y, dz = p.z - obs.origin_z;
-    const double d2 = dx * dx + dy * dy + dz * dz;
-    if (d2 > max2 || d2 < min2) continue;
     unsigned int mx, my;
-    if (!costmap_.worldToMap(p.x, p.y, mx, my)) continue;
+    if (!marksPoint(obs, p, mx, my)) continue;
     const double fz = (p.z - gz0) / zres;
     if (!(fz >= 0.0 && fz < levels)) continue;
     if (voxels_.markVoxel(mx, my, static_cast<unsigned int>(fz), mark_t))
     {
       grid[costmap_.getIndex(mx, my)] = LETHAL_OBSTACLE;
-      touch(p.x, p.y, min_x, min_y, max_x, max_y);
+      marked.add(p.x, p.y);
     }
+  }
+  if (!marked.empty())
+  {
+    touch(marked.min_x, marked.min_y, min_x, min_y, max_x, max_y);
+    touch(marked.max_x, marked.max_y, min_x, min_y, max_x, max_y);
   }
 }
 }  // namespace costmap_layers

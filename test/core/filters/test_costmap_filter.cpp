@@ -196,7 +196,7 @@ TEST(CostmapFilterBase, InitializeSubscribesAndAdvertisesToggle)
   EXPECT_EQ(r.filter->maskTopic(), "/map_filter");
   EXPECT_EQ(r.filter->init_topic, "/map_filter");  // read before onInitializeFilter
   EXPECT_TRUE(static_cast<bool>(r.ctx->toggle));
-  EXPECT_TRUE(r.filter->filterEnabled());
+  EXPECT_TRUE(r.filter->enabled());
   EXPECT_EQ(r.filter->getMask(), nullptr);
   EXPECT_FALSE(r.filter->isClearable());
 
@@ -205,8 +205,7 @@ TEST(CostmapFilterBase, InitializeSubscribesAndAdvertisesToggle)
   p.set("enabled", ParamValue::makeBool(false));
   Rig r2(p);
   EXPECT_EQ(r2.ctx->grid_subs[0].topic, "/keepout_mask");
-  EXPECT_FALSE(r2.filter->filterEnabled());  // starts switched off ...
-  EXPECT_TRUE(r2.filter->enabled());         // ... but still takes part in updates
+  EXPECT_FALSE(r2.filter->enabled());  // starts switched off: the host leaves it out of updates
 }
 
 // ---------------------------------------------------------------- mask validation
@@ -398,7 +397,7 @@ TEST(CostmapFilterBase, ToggleClearsAndRestoresTheEffect)
   EXPECT_EQ(r.filter->process_calls, 1);
 
   r.ctx->toggle(false);  // the ~toggle service
-  EXPECT_FALSE(r.filter->filterEnabled());
+  EXPECT_FALSE(r.filter->enabled());
   r.lc.updateMap(0, 0, 0);
   EXPECT_FALSE(r.lc.getUpdatedBounds().empty());  // the mask's extent was redrawn
   expectMaskDrawn(r.lc.getCostmap(), mask, false);
@@ -406,11 +405,11 @@ TEST(CostmapFilterBase, ToggleClearsAndRestoresTheEffect)
   r.lc.updateMap(0, 0, 0);
   EXPECT_TRUE(r.lc.getUpdatedBounds().empty());
 
-  r.filter->setFilterEnabled(false);  // no change: no redraw
+  r.filter->setEnabled(false);  // no change: no redraw
   r.lc.updateMap(0, 0, 0);
   EXPECT_TRUE(r.lc.getUpdatedBounds().empty());
 
-  r.filter->setFilterEnabled(true);
+  r.filter->setEnabled(true);
   r.lc.updateMap(0, 0, 0);
   expectMaskDrawn(r.lc.getCostmap(), mask, true);
   EXPECT_EQ(r.filter->process_calls, 2);
@@ -427,7 +426,7 @@ TEST(CostmapFilterBase, ToggleOffThenNewMaskClearsTheOldMasksArea)
   expectMaskDrawn(r.lc.getCostmap(), mask, true);
   // Switched off, and before the next update a new mask elsewhere arrives: the old mask's effect
   // must still disappear.
-  r.filter->setFilterEnabled(false);
+  r.filter->setEnabled(false);
   r.filter->setMask(share(makeMask(2, 2, 1.0, 8.0, 8.0)));
   r.lc.updateMap(0, 0, 0);
   const Costmap2D& g = r.lc.getCostmap();
@@ -476,14 +475,16 @@ TEST(CostmapFilterBase, NoMaskOrDisabledWritesNothing)
   r.bounds();
   r.filter->updateCosts(master, 0, 0, 6, 6);
   EXPECT_EQ(r.filter->process_calls, 0);
-  r.filter->setMask(share(makeMask(6, 6, 1.0, 0.0, 0.0)));
-  r.filter->setFilterEnabled(false);
-  r.bounds();
-  EXPECT_EQ(r.filter->pose_calls, 0);
-  r.filter->updateCosts(master, 0, 0, 6, 6);
-  EXPECT_EQ(r.filter->process_calls, 0);
   for (unsigned int i = 0; i < master.cellCount(); ++i)
     EXPECT_EQ(master.getCost(i), kSentinel);
+  // Switched off, the host (LayeredCostmap) calls it no more: no pose, no costs.
+  r.lc.resizeMap(6, 6, 1.0, 0.0, 0.0);
+  r.lc.addFilter(r.filter);
+  r.filter->setMask(share(makeMask(6, 6, 1.0, 0.0, 0.0)));
+  r.filter->setEnabled(false);
+  r.lc.updateMap(0, 0, 0);
+  EXPECT_EQ(r.filter->pose_calls, 0);
+  EXPECT_EQ(r.filter->process_calls, 0);
 }
 
 TEST(CostmapFilterBase, TransformedMaskMatchesNaiveAndWindowIsClamped)

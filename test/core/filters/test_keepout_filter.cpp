@@ -294,7 +294,7 @@ TEST(KeepoutFilter, ReconfiguredEnabledIsTheToggle)
   off.set("enabled", ParamValue::makeBool(false));
   on.set("enabled", ParamValue::makeBool(true));
   r.filter->reconfigure(off);
-  EXPECT_FALSE(r.filter->filterEnabled());
+  EXPECT_FALSE(r.filter->enabled());
   r.lc.updateMap(0, 0, 0);
   for (unsigned j = 0; j < 10; ++j)
     for (unsigned i = 0; i < 10; ++i)
@@ -369,7 +369,7 @@ TEST(KeepoutFilter, WaitingForTheMaskIsReported)
   Rig off;
   off.lc.resizeMap(10, 10, 1.0, 0.0, 0.0);
   off.lc.addFilter(off.filter);
-  off.filter->setFilterEnabled(false);
+  off.filter->setEnabled(false);
   off.lc.updateMap(0, 0, 0);
   EXPECT_EQ(off.ctx->countReports("no mask yet"), 0);
 }

@@ -15,6 +15,7 @@
 
 #include "costmap_layers/core/grid/cost_values.hpp"
 #include "costmap_layers/core/filters/lanes_filter.hpp"
+#include "costmap_layers/core/rules/cost_rules.hpp"
 #include "costmap_layers/core/config/param_reader.hpp"
 #include "costmap_layers/core/kernels/simd_targets.hpp"
 #include "fake_context.hpp"

@@ -33,20 +33,22 @@ ParamValue withParam(const std::string& key, ParamValue v)
   return p;
 }
 
-/// The tutorial's formula, computed here: int arithmetic, then stored in an unsigned char.
-uint8_t expectedCost(int k, int factor)
-{
-  const int v = (254 - k * factor) % 255;
-  return static_cast<uint8_t>(v);
-}
+/// One period of the tutorial's ramp, (254 - k * factor) % 255 stored in an unsigned char for
+/// k = 0 .. size + 1, worked out by hand for the sizes and factors the tests use.
+const std::vector<int> kRampSize20Factor10 = {254, 244, 234, 224, 214, 204, 194, 184, 174, 164, 154,
+                                              144, 134, 124, 114, 104, 94,  84,  74,  64,  54,  44};
+/// From k = 13, 254 - 20 k is negative: -6 % 255 = -6, stored as 250; then 230, 210, 190.
+const std::vector<int> kRampSize15Factor20 = {254, 234, 214, 194, 174, 154, 134, 114, 94,
+                                              74,  54,  34,  14,  250, 230, 210, 190};
+const std::vector<int> kRampSize0Factor10 = {254, 244};
 
-/// Checks that every row of [x0, xn) x [y0, yn) holds the ramp restarting at x0, and that every other
-/// cell still holds `untouched`.
-void expectRamp(const Costmap2D& g, int x0, int y0, int xn, int yn, int size, int factor, uint8_t untouched)
+/// Checks that every row of [x0, xn) x [y0, yn) holds `ramp` (one period) restarting at x0, and that
+/// every other cell still holds `untouched`.
+void expectRamp(const Costmap2D& g, int x0, int y0, int xn, int yn, const std::vector<int>& ramp, uint8_t untouched)
 {
   for (int y = 0; y < static_cast<int>(g.getSizeInCellsY()); ++y)
   {
-    int k = 0;
+    std::size_t k = 0;
     for (int x = 0; x < static_cast<int>(g.getSizeInCellsX()); ++x)
     {
       const bool inside = x >= x0 && x < xn && y >= y0 && y < yn;
@@ -55,9 +57,8 @@ void expectRamp(const Costmap2D& g, int x0, int y0, int xn, int yn, int size, in
         EXPECT_EQ(g.getCost(x, y), untouched) << x << "," << y;
         continue;
       }
-      EXPECT_EQ(static_cast<int>(g.getCost(x, y)), static_cast<int>(expectedCost(k, factor)))
-          << "cell " << x << "," << y << " k " << k;
-      k = (k == size + 1) ? 0 : k + 1;  // k runs 0, 1, ..., size + 1, then restarts at 0
+      EXPECT_EQ(static_cast<int>(g.getCost(x, y)), ramp[k]) << "cell " << x << "," << y << " k " << k;
+      k = (k + 1 == ramp.size()) ? 0 : k + 1;  // k runs 0, 1, ..., size + 1, then restarts at 0
     }
   }
 }
@@ -214,7 +215,7 @@ TEST(GradientLayerCosts, WholeMapDefaultRamp)
   auto layer = makeGradient(lc);
   Costmap2D g(60, 4, 0.05, 0, 0, 1);
   layer->updateCosts(g, 0, 0, 60, 4);
-  expectRamp(g, 0, 0, 60, 4, 20, 10, 1);
+  expectRamp(g, 0, 0, 60, 4, kRampSize20Factor10, 1);
   // Values written out: 254, 244, ..., the 22nd cell (k = 21) is 44, then back to 254.
   EXPECT_EQ(g.getCost(0, 0), 254);
   EXPECT_EQ(g.getCost(1, 0), 244);
@@ -229,7 +230,7 @@ TEST(GradientLayerCosts, PartialWindowStartsAtItsFirstColumn)
   auto layer = makeGradient(lc);
   Costmap2D g(50, 6, 1.0, 0, 0, 77);
   layer->updateCosts(g, 7, 1, 40, 4);
-  expectRamp(g, 7, 1, 40, 4, 20, 10, 77);
+  expectRamp(g, 7, 1, 40, 4, kRampSize20Factor10, 77);
   EXPECT_EQ(g.getCost(7, 1), 254);
   EXPECT_EQ(g.getCost(6, 1), 77);
   EXPECT_EQ(g.getCost(7, 0), 77);
@@ -242,7 +243,7 @@ TEST(GradientLayerCosts, WindowIsClampedToTheGrid)
   auto layer = makeGradient(lc);
   Costmap2D g(30, 5, 1.0, 0, 0, 77);
   layer->updateCosts(g, -10, -3, 100, 2);  // clamped to [0, 30) x [0, 2)
-  expectRamp(g, 0, 0, 30, 2, 20, 10, 77);
+  expectRamp(g, 0, 0, 30, 2, kRampSize20Factor10, 77);
   Costmap2D h(10, 10, 1.0, 0, 0, 77);
   layer->updateCosts(h, 5, 5, 5, 9);     // empty
   layer->updateCosts(h, 20, 0, 30, 10);  // outside
@@ -259,7 +260,7 @@ TEST(GradientLayerCosts, CustomSizeAndFactorIncludingWrap)
   auto layer = makeGradient(lc, p);
   Costmap2D g(45, 3, 1.0, 0, 0, 0);
   layer->updateCosts(g, 2, 0, 43, 3);
-  expectRamp(g, 2, 0, 43, 3, 15, 20, 0);
+  expectRamp(g, 2, 0, 43, 3, kRampSize15Factor20, 0);
   EXPECT_EQ(g.getCost(2 + 12, 0), 14);        // 254 - 240
   EXPECT_EQ(g.getCost(2 + 13, 0), 256 - 6);   // -6 stored in an unsigned char
   EXPECT_EQ(g.getCost(2 + 16, 0), 256 - 66);  // k = 16 = size + 1 is the last of the ramp
@@ -268,7 +269,7 @@ TEST(GradientLayerCosts, CustomSizeAndFactorIncludingWrap)
   auto zero = makeGradient(lc, withParam("gradient_size", ParamValue::makeInt(0)));
   Costmap2D z(6, 1, 1.0, 0, 0, 0);
   zero->updateCosts(z, 0, 0, 6, 1);
-  expectRamp(z, 0, 0, 6, 1, 0, 10, 0);
+  expectRamp(z, 0, 0, 6, 1, kRampSize0Factor10, 0);
   EXPECT_EQ(z.getCost(0, 0), 254);
   EXPECT_EQ(z.getCost(1, 0), 244);
   EXPECT_EQ(z.getCost(2, 0), 254);
@@ -276,9 +277,18 @@ TEST(GradientLayerCosts, CustomSizeAndFactorIncludingWrap)
 
 TEST(GradientLayerCosts, GradientCostMatchesFormula)
 {
-  for (int f : {0, 1, 10, 20, 127, 254})
-    for (int k = 0; k < 40; ++k)
-      EXPECT_EQ(gradientCost(k, f), expectedCost(k, f)) << k << " " << f;
+  // (254 - k * f) % 255 in int arithmetic (the remainder keeps the sign), stored in an unsigned char.
+  EXPECT_EQ(gradientCost(39, 0), 254);
+  EXPECT_EQ(gradientCost(39, 1), 215);
+  EXPECT_EQ(gradientCost(25, 10), 4);
+  EXPECT_EQ(gradientCost(30, 10), 210);   // -46 -> 210
+  EXPECT_EQ(gradientCost(13, 20), 250);   // -6 -> 250
+  EXPECT_EQ(gradientCost(2, 127), 0);
+  EXPECT_EQ(gradientCost(3, 127), 129);   // -127 -> 129
+  EXPECT_EQ(gradientCost(1, 254), 0);
+  EXPECT_EQ(gradientCost(2, 254), 2);     // -254 -> 2
+  EXPECT_EQ(gradientCost(3, 254), 3);     // -508 % 255 = -253 -> 3
+  EXPECT_EQ(gradientCost(300, 1), 210);   // -46 -> 210
 }
 
 TEST(GradientLayerCosts, ThroughLayeredCostmap)
@@ -293,14 +303,14 @@ TEST(GradientLayerCosts, ThroughLayeredCostmap)
   EXPECT_EQ(w.y0, 0);
   EXPECT_EQ(w.xn, 50);
   EXPECT_EQ(w.yn, 3);
-  expectRamp(lc.getCostmap(), 0, 0, 50, 3, 20, 10, 0);
+  expectRamp(lc.getCostmap(), 0, 0, 50, 3, kRampSize20Factor10, 0);
   // Alone in the costmap, later cycles repeat "nothing": the map stays as it is.
   lc.updateMap(0, 0, 0);
   EXPECT_TRUE(lc.getUpdatedBounds().empty());
-  expectRamp(lc.getCostmap(), 0, 0, 50, 3, 20, 10, 0);
+  expectRamp(lc.getCostmap(), 0, 0, 50, 3, kRampSize20Factor10, 0);
   // A footprint change redraws everything.
   lc.getCostmap().fillWindow(0, 0, 50, 3, 9);
   lc.setFootprint(makeFootprintFromRadius(0.3));
   lc.updateMap(0, 0, 0);
-  expectRamp(lc.getCostmap(), 0, 0, 50, 3, 20, 10, 0);
+  expectRamp(lc.getCostmap(), 0, 0, 50, 3, kRampSize20Factor10, 0);
 }

@@ -171,9 +171,13 @@ TEST(InflationCost, Formula)
 {
   EXPECT_EQ(inflationCost(0.0, 1.0, 2.1, 10.0), LETHAL_OBSTACLE);
   EXPECT_EQ(inflationCost(2.0, 1.0, 2.1, 10.0), INSCRIBED_INFLATED_OBSTACLE);
-  EXPECT_EQ(inflationCost(3.0, 1.0, 2.1, 1.0), static_cast<uint8_t>(252 * std::exp(-1.0 * (3.0 - 2.1))));
+  // 3 cells of 1 m: 252 e^(-1 (3 - 2.1)) = 252 * 0.40657 = 102.46, truncated as costmap_2d does.
+  EXPECT_EQ(inflationCost(3.0, 1.0, 2.1, 1.0), 102);
   EXPECT_EQ(inflationCost(4.0, 0.05, 0.22, 10.0), INSCRIBED_INFLATED_OBSTACLE);  // 0.2 m <= 0.22 m
-  EXPECT_EQ(inflationCost(10.0, 0.05, 0.22, 10.0), static_cast<uint8_t>(252 * std::exp(-10.0 * (0.5 - 0.22))));
+  // 10 cells of 0.05 m = 0.5 m: 252 e^(-10 (0.5 - 0.22)) = 252 * 0.060810 = 15.32 -> 15.
+  EXPECT_EQ(inflationCost(10.0, 0.05, 0.22, 10.0), 15);
+  // Just outside the inscribed radius the cost falls below 253: 252 e^(-10 * 0.03) = 186.69 -> 186.
+  EXPECT_EQ(inflationCost(5.0, 0.05, 0.22, 10.0), 186);
 }
 
 TEST(InflationConfig, DefaultsAndValidation)

@@ -3,6 +3,7 @@
 // grid inside the accumulated window (updateCosts). Layers are loaded by pluginlib against this class.
 #pragma once
 
+#include <atomic>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -91,10 +92,17 @@ public:
   /// update lock), so update-thread state may be read; state shared with input threads needs its lock.
   /// The default says enabled / current (isCurrent()) and lists the inputs; layers with inputs say more.
   virtual LayerStatus status() const;
-  /// Whether the layer takes part in updates (a filter always does: its switch is its own).
+  /// The layer's one on/off switch: whether it takes part in updates. Hosts (LayeredCostmap, the
+  /// move_base bridge) never call updateBounds / updateCosts of a disabled layer, so layers need no
+  /// guard of their own. Any thread.
   bool enabled() const { return enabled_; }
-  /// The layer's one on/off switch: what `enabled` and (for filters) the ~toggle service set.
-  virtual void setEnabled(bool enabled) { enabled_ = enabled; }
+  /// What `enabled` (at start and at run time) and, for filters, the ~toggle service set. Any thread.
+  /// A change calls onEnabledChanged() (on the caller's thread) and is noted for the host, which
+  /// redraws the whole grid at its next cycle (takeEnabledFlip()), so that a switched-off layer's
+  /// cells go and a switched-on layer's appear at once.
+  void setEnabled(bool on);
+  /// Whether the switch changed since the last call (the host's question, once per cycle).
+  bool takeEnabledFlip() { return enabled_flipped_.exchange(false); }
   bool isInitialized() const { return initialized_; }
   const std::string& getName() const { return name_; }
   /// The padded footprint of the parent costmap, in the robot frame [m].
@@ -103,6 +111,9 @@ public:
 protected:
   /// Reads parameters and declares inputs and outputs. Throws std::invalid_argument on a bad configuration.
   virtual void onInitialize() {}
+  /// The switch changed (setEnabled(), on its caller's thread; not at initialisation). A filter turns
+  /// its outputs to "no effect" here. The default does nothing.
+  virtual void onEnabledChanged(bool on) { (void)on; }
   /// Validates and applies a new configuration (everything but `enabled`); throws std::invalid_argument
   /// before changing anything. The default accepts nothing else.
   virtual void onReconfigure(const ParamValue& params) { (void)params; }
@@ -126,9 +137,10 @@ protected:
   std::shared_ptr<LayerContext> context_;
   std::string name_;
   bool current_ = true;
-  bool enabled_ = true;
 
 private:
+  std::atomic<bool> enabled_{true};
+  std::atomic<bool> enabled_flipped_{false};
   bool initialized_ = false;
   std::vector<InputPort> inputs_;
   std::vector<OutputPort> outputs_;

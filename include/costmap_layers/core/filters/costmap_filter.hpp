@@ -62,10 +62,6 @@ public:
   /// Calls process(); skips (writing nothing) when disabled, without a mask, or without a transform.
   void updateCosts(Costmap2D& master_grid, int min_i, int min_j, int max_i, int max_j) final;
   bool isClearable() override { return false; }
-  /// The filter's one switch, set by `enabled` (at start and at run time) and by the ~<name>/toggle
-  /// service alike: it is setFilterEnabled(). The filter keeps taking part in updates (enabled() stays
-  /// true), so that switching it off clears its cells at the next update.
-  void setEnabled(bool on) final;
 
   /// Replaces the mask, unless it is invalid or stamped before the mask in force (isOutOfOrder()): then
   /// the previous mask stays, and the reason is reported (an Error keyed by the field) and returned.
@@ -87,10 +83,6 @@ public:
   std::string setFilterInfo(std::shared_ptr<const FilterInfoData> info);
   /// The filter info in force (nullptr before the first accepted one, and always in the mask_topic form).
   std::shared_ptr<const FilterInfoData> getFilterInfo() const;
-  /// Turns the filter on or off at run time (the ~<name>/toggle service); the next update covers the
-  /// mask's extent so that the filter's effect appears or disappears at once. Thread-safe.
-  void setFilterEnabled(bool on);
-  bool filterEnabled() const { return filter_enabled_; }
   /// OK when switched off or when a mask is in force; WARN while no mask has arrived (naming the topic
   /// and the last rejection), when the latest mask was rejected, or when the mask cannot be placed (no
   /// transform into its frame).
@@ -101,6 +93,10 @@ protected:
   /// declares the inputs: the mask (with an empty topic in the filter_info_topic form, until an info
   /// names it) and, in that form, the filter info.
   void onInitialize() final;
+  /// The switch (Layer::setEnabled: `enabled`, the ~<name>/toggle service): the mask's extent is
+  /// redrawn at the next update, and switched off the outputs say "no effect" at once
+  /// (processInactive()).
+  void onEnabledChanged(bool on) final;
   /// Which infos this filter takes (checkFilterInfoFor()).
   virtual FilterFamily filterFamily() const { return FilterFamily::Keepout; }
   /// Called once an info was accepted (any thread), for the subclass's own warnings.
@@ -117,8 +113,8 @@ protected:
   {
     (void)mask, (void)to_mask, (void)robot_x, (void)robot_y, (void)robot_yaw;
   }
-  /// Called every cycle instead of processPose() while the filter is switched off or has no mask yet
-  /// (not when only the transform is missing): SpeedFilter restores its default there.
+  /// Called instead of processPose() when the filter has no mask yet (every cycle; not when only the
+  /// transform is missing), and once when it is switched off: SpeedFilter restores its default there.
   virtual void processInactive() {}
   /// Whether the filter writes costs into the master grid. A filter that does not (SpeedFilter) asks for
   /// no redraw when its mask changes or it is switched: the next update's bounds stay what the other
@@ -158,7 +154,9 @@ private:
 
   std::string filter_info_topic_;  ///< set once in onInitialize()
   std::size_t mask_port_ = 0;      ///< index of the mask input
-  std::atomic<bool> filter_enabled_{true};
+  /// Serialises processPose() / processInactive() between the update thread and a switch-off
+  /// (onEnabledChanged() on the toggle service's thread).
+  std::mutex outputs_mutex_;
   std::mutex info_mutex_;  ///< one setFilterInfo() at a time, so that port replacements stay in order
   mutable std::mutex mask_mutex_;
   std::string mask_topic_;                                ///< guarded by mask_mutex_
@@ -184,17 +182,4 @@ private:
   Transform2D to_mask_;
   GridSampler mapping_;
 };
-
-/// A filter that acts through its outputs only (the robot's cell of the mask, in processPose()) and
-/// writes no costs: a new mask, a switch or a rolling window asks for no redraw of the costmap.
-class OutputFilter : public CostmapFilter
-{
-protected:
-  bool drawsCosts() const final { return false; }
-  void process(Costmap2D&, const CellWindow&, const OccupancyGridData&, const GridSampler&, double, double,
-               double) final
-  {
-  }
-};
-
 }  // namespace costmap_layers

@@ -1,6 +1,5 @@
-// Filters that turn their mask into a grid of costs once per mask, then merge it into the master
-// grid row by row (KeepoutFilter, LanesFilter), and KeepoutFilter itself: a mask value costs
-// maskValueCost(v) (cost_rules.hpp), merged by mergeFilterCost.
+// KeepoutFilter: a mask value costs maskValueCost(v) (rules/cost_rules.hpp), computed once per mask
+// and merged into the master grid by mergeFilterCost (CostGridFilter, filters/cost_grid_filter.hpp).
 //
 // KeepoutFilter's escape mode (Nav2's override_lethal_cost / lethal_override_cost, done for the whole
 // footprint): when the robot is found inside a lethal keepout zone (a localisation jump, a push), the
@@ -32,31 +31,12 @@
 #include <vector>
 
 #include "costmap_layers/core/rules/cost_rules.hpp"
-#include "costmap_layers/core/filters/costmap_filter.hpp"
+#include "costmap_layers/core/filters/cost_grid_filter.hpp"
 #include "costmap_layers/core/kernels/distance_transform.hpp"
 #include "costmap_layers/core/grid/footprint.hpp"
 
 namespace costmap_layers
 {
-
-/// A filter whose mask means a cost per mask cell (0 = no effect), computed once per mask.
-class CostGridFilter : public CostmapFilter
-{
-protected:
-  /// Fills costs (one per mask cell, row-major) for a new mask.
-  /// @return the number of mask cells with values outside -1..100 (invalid in an OccupancyGrid).
-  virtual std::size_t computeCosts(const OccupancyGridData& mask, std::vector<uint8_t>& costs) = 0;
-
-  void process(Costmap2D& master_grid, const CellWindow& window, const OccupancyGridData& mask,
-               const GridSampler& mapping, double robot_x, double robot_y, double robot_yaw) final;
-  /// Recompute the costs at the next update (after a parameter change). Update thread only.
-  void invalidateCosts() { costs_for_.reset(); }
-
-private:
-  std::shared_ptr<const OccupancyGridData> costs_for_;  ///< the mask the costs were computed from
-  std::vector<uint8_t> costs_;
-  std::vector<uint8_t> scratch_;
-};
 
 struct KeepoutFilterConfig
 {

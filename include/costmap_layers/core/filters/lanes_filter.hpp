@@ -36,36 +36,15 @@
 #include <vector>
 
 #include "costmap_layers/core/kernels/distance_transform.hpp"
-#include "costmap_layers/core/filters/keepout_filter.hpp"
+#include "costmap_layers/core/filters/cost_grid_filter.hpp"
+#include "costmap_layers/core/rules/lane_rules.hpp"
 
 namespace costmap_layers
 {
 class ParamReader;
 
-enum class LaneCostProfile
-{
-  Linear,
-  Exponential
-};
-
-struct LanesFilterConfig
-{
-  double lane_border_width = 0.5;  ///< [m]
-  int border_cost = 1;
-  LaneCostProfile cost_profile = LaneCostProfile::Linear;
-  double decay = 10.0;  ///< [1/m]
-};
-
 /// Reads the parameters above; throws std::invalid_argument on a bad value.
 LanesFilterConfig parseLanesFilterConfig(const ParamReader& params);
-
-/// The cost of a forbidden cell whose nearest lane cell is d [m] away, on a mask of the given
-/// resolution [m] (formula in the file comment). d = +infinity (no lane at all) gives 254.
-uint8_t lanesForbiddenCost(const LanesFilterConfig& config, double d, double resolution);
-
-/// The smallest squared distance [cells^2] at which a forbidden cell is lethal on a mask of the given
-/// resolution: the least integer q with sqrt(q) * resolution >= lane_border_width.
-uint64_t lanesLethalSquaredDistance(const LanesFilterConfig& config, double resolution);
 
 /// LanesFilter's last step over n mask cells, exposed for tests: a forbidden cell (100) takes
 /// 254 - c[k] (c: 254 minus its distance cost, 0 beyond the band), any other value its soft cost

@@ -44,7 +44,7 @@
 #include <string>
 #include <vector>
 
-#include "costmap_layers/core/filters/costmap_filter.hpp"
+#include "costmap_layers/core/filters/output_filter.hpp"
 
 namespace costmap_layers
 {

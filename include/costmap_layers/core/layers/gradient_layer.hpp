@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "costmap_layers/core/costmap/layer.hpp"
+#include "costmap_layers/core/rules/gradient_rule.hpp"
 
 namespace costmap_layers
 {
@@ -18,10 +19,6 @@ struct GradientConfig
 };
 
 GradientConfig parseGradientConfig(const ParamReader& params);
-
-/// Cost of the k-th cell of a ramp: (LETHAL_OBSTACLE - k * factor) % 255, as the tutorial computes it
-/// in int and stores it in an unsigned char.
-uint8_t gradientCost(int k, int gradient_factor);
 
 class GradientLayer : public Layer
 {

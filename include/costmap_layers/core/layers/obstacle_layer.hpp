@@ -124,6 +124,9 @@ protected:
   /// Where a ray from the origin to (wx, wy) ends once cut at max_range and at the grid's border:
   /// the fraction t in [0, 1] of the way. False when the origin is outside the grid.
   bool clipRay2D(double ox, double oy, double wx, double wy, double max_range, double& t) const;
+  /// Whether a hit marks: within max_obstacle_height (and the layer's minimum), within the
+  /// observation's obstacle ranges from its origin, and inside the grid, whose cell it returns.
+  bool marksPoint(const Observation& observation, const Point3f& p, unsigned int& mx, unsigned int& my) const;
   /// The source index used in report keys and messages.
   std::string sourceLabel(std::size_t source) const;
   /// Reports what the buffers dropped by themselves since the last call: a clock jump back (once for

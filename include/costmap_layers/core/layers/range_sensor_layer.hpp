@@ -15,6 +15,7 @@
 
 #include "costmap_layers/core/grid/cost_values.hpp"
 #include "costmap_layers/core/costmap/costmap_layer.hpp"
+#include "costmap_layers/core/rules/range_model.hpp"
 #include "costmap_layers/core/layers/sensor_parsing.hpp"
 #include "costmap_layers/core/rules/stamp_order.hpp"
 
@@ -39,28 +40,6 @@ struct RangeSensorConfig
 /// [0, 1], no_readings_timeout >= 0).
 RangeSensorConfig parseRangeSensorConfig(const ParamReader& params);
 
-/// The sensor model pieces, exposed for tests (Nav2's formulas).
-namespace range_model
-{
-/// Angular weight: 1 - (theta / max_angle)^2 inside the cone, 0 outside.
-double gamma(double theta, double max_angle);
-/// Distance weight: 1 - (1 + tanh(2 (phi - phi_v))) / 2.
-double delta(double phi, double phi_v);
-/// Probability of occupancy of a cell at distance phi and angle theta for a reading r [m], with the
-/// cell size `resolution` [m] setting the width of the obstacle band (resolution * r).
-double sensorModel(double r, double phi, double theta, double max_angle, double phi_v, double resolution);
-/// Cost <-> probability: p = cost / 254, cost = (uint8) (p * 254). NO_INFORMATION (a cleared cell:
-/// costmap_2d's clearArea leaves it) is unknown, p = 0.5, as a cell never seen (as 255 / 254 > 1 it
-/// made the next reading, free or not, an obstacle).
-inline double toProbability(uint8_t cost)
-{
-  return cost == NO_INFORMATION ? 0.5 : static_cast<double>(cost) / 254.0;
-}
-inline uint8_t toCost(double p)
-{
-  return static_cast<uint8_t>(p * 254.0);
-}
-}  // namespace range_model
 
 class RangeSensorLayer : public CostmapLayer
 {

@@ -15,6 +15,7 @@
 #include "costmap_layers/core/costmap/costmap_layer.hpp"
 #include "costmap_layers/core/data/grid_data.hpp"
 #include "costmap_layers/core/grid/grid_sampler.hpp"
+#include "costmap_layers/core/rules/map_value_rule.hpp"
 
 namespace costmap_layers
 {
@@ -41,10 +42,12 @@ struct StaticConfig
 /// Throws std::invalid_argument naming the parameter.
 StaticConfig parseStaticConfig(const ParamReader& params, bool default_track_unknown);
 
-/// costmap_2d's interpretValue: the cost of one occupancy value, both read as bytes (so -1 is 255).
-/// unknown (with tracking) -> NO_INFORMATION, unknown (without) -> FREE_SPACE, >= threshold ->
-/// LETHAL_OBSTACLE, trinary -> FREE_SPACE, otherwise value / threshold * LETHAL_OBSTACLE truncated.
-uint8_t interpretStaticValue(int8_t value, const StaticConfig& config);
+/// mapValueCost() (rules/map_value_rule.hpp) with this layer's parameters.
+inline uint8_t interpretStaticValue(int8_t value, const StaticConfig& config)
+{
+  return mapValueCost(value, MapValueRule{config.unknown_cost_value, config.lethal_cost_threshold,
+                                          config.trinary_costmap, config.track_unknown_space});
+}
 
 class StaticLayer : public CostmapLayer
 {

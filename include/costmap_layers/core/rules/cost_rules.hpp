@@ -1,6 +1,9 @@
-// Every rule that turns something into a cost, in one place: what a distance from an obstacle costs,
-// what a mask value costs, and how a filter's cost merges into a master cell. Layers, filters, tests
-// and benchmarks call these; none writes its own copy.
+// The cost rules shared by several layers and filters: what a distance from an obstacle costs, what a
+// mask value costs, and how a filter's cost merges into a master cell. Every rule of the package lives
+// in this folder (rules/), one file per subject: map_value_rule (a map's occupancy), lane_rules,
+// gradient_rule, range_model, speed_rules, cost_translation (costs to OccupancyGrid values), limits
+// (the ranges of every number) and stamp_order (time). Layers, filters, tests and benchmarks call
+// these; none writes its own copy.
 #pragma once
 
 #include <cmath>
