@@ -191,7 +191,8 @@ void LayerBridgeOn<Base>::updateBounds(double robot_x, double robot_y, double ro
   const auto own = lockOwnGrid();
   viewMaster();  // a rolling master has moved its origin since the last cycle
   const bool on = core_->enabled();
-  const bool switched = core_->takeEnabledFlip();  // the core layer's switch flipped since the last cycle
+  // The core layer's switch flipped since the last cycle (and its cells are to appear or go).
+  const bool switched = core_->takeEnabledFlip() && core_->writesCosts();
   if (on) core_->updateBounds(robot_x, robot_y, robot_yaw, min_x, min_y, max_x, max_y);
   if (full_update_.exchange(false) || host_->takeFullUpdateRequest() || switched)
     expandToWholeMap(min_x, min_y, max_x, max_y);

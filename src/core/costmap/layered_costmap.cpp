@@ -100,7 +100,7 @@ void LayeredCostmap::updateMap(double robot_x, double robot_y, double robot_yaw)
     for (const auto& layer : *list)
     {
       // A layer switched on or off since the last cycle: its cells appear or go everywhere at once.
-      if (layer->takeEnabledFlip()) full_update_ = true;
+      if (layer->takeEnabledFlip() && layer->writesCosts()) full_update_ = true;
       if (!layer->enabled()) continue;
       // A layer may only grow the bounds; one that shrinks them is ignored for this cycle.
       const double px0 = min_x, py0 = min_y, px1 = max_x, py1 = max_y;

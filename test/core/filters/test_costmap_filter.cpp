@@ -399,7 +399,12 @@ TEST(CostmapFilterBase, ToggleClearsAndRestoresTheEffect)
   r.ctx->toggle(false);  // the ~toggle service
   EXPECT_FALSE(r.filter->enabled());
   r.lc.updateMap(0, 0, 0);
-  EXPECT_FALSE(r.lc.getUpdatedBounds().empty());  // the mask's extent was redrawn
+  // The host redraws the whole grid once when a switch flips.
+  const CellWindow all = r.lc.getUpdatedBounds();
+  EXPECT_EQ(all.x0, 0);
+  EXPECT_EQ(all.y0, 0);
+  EXPECT_EQ(all.xn, 12);
+  EXPECT_EQ(all.yn, 12);
   expectMaskDrawn(r.lc.getCostmap(), mask, false);
   EXPECT_EQ(r.filter->process_calls, 1);
   r.lc.updateMap(0, 0, 0);

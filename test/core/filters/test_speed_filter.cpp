@@ -584,6 +584,29 @@ TEST(SpeedFilter, SwitchedOffRestoresTheDefaultAndOnAgainTheZone)
   EXPECT_DOUBLE_EQ(r.last(), limitOf(5));
 }
 
+// The filter writes no cost: its switch asks the host for no redraw (a keepout filter's does, the
+// whole grid once: test_costmap_filter), while its output changes at once.
+TEST(SpeedFilter, ASwitchAsksTheHostForNoRedraw)
+{
+  Rig r;
+  r.lc.resizeMap(10, 10, 1.0, 0.0, 0.0);
+  r.lc.addFilter(r.filter);
+  r.ctx->publishGrid(GridKind::Mask, makeMask());
+  r.ctx->publishSpeedLimits(allLimits());
+  r.lc.updateMap(centreOf(5).first, centreOf(5).second, 0.0);
+  r.lc.updateMap(centreOf(5).first, centreOf(5).second, 0.0);
+  EXPECT_TRUE(r.lc.getUpdatedBounds().empty());
+  EXPECT_DOUBLE_EQ(r.last(), limitOf(5));
+  r.ctx->toggle(false);
+  EXPECT_DOUBLE_EQ(r.last(), kDefault);
+  r.lc.updateMap(centreOf(5).first, centreOf(5).second, 0.0);
+  EXPECT_TRUE(r.lc.getUpdatedBounds().empty());
+  r.ctx->toggle(true);
+  r.lc.updateMap(centreOf(5).first, centreOf(5).second, 0.0);
+  EXPECT_TRUE(r.lc.getUpdatedBounds().empty());
+  EXPECT_DOUBLE_EQ(r.last(), limitOf(5));
+}
+
 TEST(SpeedFilter, FeaturesFromAnotherThread)
 {
   Rig r;

@@ -103,6 +103,9 @@ public:
   void setEnabled(bool on);
   /// Whether the switch changed since the last call (the host's question, once per cycle).
   bool takeEnabledFlip() { return enabled_flipped_.exchange(false); }
+  /// Whether the layer writes into the grid: a switch of one that does not (a filter acting through
+  /// its outputs only) asks for no redraw.
+  virtual bool writesCosts() const { return true; }
   bool isInitialized() const { return initialized_; }
   const std::string& getName() const { return name_; }
   /// The padded footprint of the parent costmap, in the robot frame [m].

@@ -53,7 +53,7 @@ class CostmapFilter : public Layer
 {
 public:
   /// Whether the filter writes costs into the master grid (drawsCosts()).
-  bool writesCosts() const { return drawsCosts(); }
+  bool writesCosts() const override { return drawsCosts(); }
   /// Takes the newest mask, looks up the transform (global -> mask frame) once for the cycle and calls
   /// processPose(); grows the bounds by the old and new mask extents when the mask changed (and the
   /// filter drawsCosts()).
