@@ -2,7 +2,9 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -400,6 +402,127 @@ ParamValue loadOwnFormatYamlFile(const std::string& path, uint64_t max_bytes)
   ParamValue tree = loadParamsYamlFile(path, max_bytes, false, &repeated);
   refuseRepeatedKeys(repeated);
   return tree;
+}
+
+namespace
+{
+/// The shortest text that reads back to v (std::to_chars' round-trip guarantee), with the decimal point
+/// and signed exponent PyYAML needs to read it as a float: "3" -> "3.0", "1e-300" -> "1.0e-300",
+/// "1e+22" stays signed. Infinities and NaN in YAML's spelling.
+std::string doubleText(double v)
+{
+  if (std::isnan(v)) return ".nan";
+  if (std::isinf(v)) return v > 0 ? ".inf" : "-.inf";
+  char buf[64];
+  const std::to_chars_result res = std::to_chars(buf, buf + sizeof(buf), v);
+  const std::string shortest(buf, res.ptr);
+  const std::size_t e = shortest.find('e');
+  std::string mantissa = shortest.substr(0, e);
+  if (mantissa.find('.') == std::string::npos) mantissa += ".0";
+  if (e == std::string::npos) return mantissa;
+  std::string exponent = shortest.substr(e + 1);
+  if (exponent.front() != '+' && exponent.front() != '-') exponent.insert(0, "+");
+  return mantissa + "e" + exponent;
+}
+
+void emitKey(YAML::Emitter& out, const std::string& key)
+{
+  // A plain "<<" would read back as a merge key; the reader takes a quoted one as a name.
+  if (key == "<<") out << YAML::DoubleQuoted;
+  out << YAML::Key << key << YAML::Value;
+}
+
+void emitScalar(YAML::Emitter& out, const ParamValue& v)
+{
+  switch (v.type())
+  {
+    case ParamValue::Type::Null:
+      out << YAML::Null;
+      break;
+    case ParamValue::Type::Bool:
+      out << v.asBool();
+      break;
+    case ParamValue::Type::Int:
+      out << v.asInt();
+      break;
+    case ParamValue::Type::Double:
+      // Written as text: yaml-cpp's own double output drops the ".0" of whole numbers (read back as Int).
+      // The text is a valid plain scalar, so the emitter leaves it unquoted.
+      out << doubleText(v.asDouble());
+      break;
+    case ParamValue::Type::String:
+      out << YAML::DoubleQuoted << v.asString();
+      break;
+    default:
+      break;
+  }
+}
+
+/// v and everything in it inline ([...], {...}).
+void emitInline(YAML::Emitter& out, const ParamValue& v)
+{
+  if (v.isList())
+  {
+    out << YAML::Flow << YAML::BeginSeq;
+    for (const ParamValue& item : v.asList())
+      emitInline(out, item);
+    out << YAML::EndSeq;
+  }
+  else if (v.isMap())
+  {
+    out << YAML::Flow << YAML::BeginMap;
+    for (const auto& [key, value] : v.entries())
+    {
+      emitKey(out, key);
+      emitInline(out, value);
+    }
+    out << YAML::EndMap;
+  }
+  else
+  {
+    emitScalar(out, v);
+  }
+}
+
+/// A non-empty map in block style (see paramToYaml for which values stay inline).
+void emitBlockMap(YAML::Emitter& out, const ParamValue& map)
+{
+  out << YAML::Block << YAML::BeginMap;
+  for (const auto& [key, value] : map.entries())
+  {
+    emitKey(out, key);
+    const bool holds_map = value.isList() && std::any_of(value.asList().begin(), value.asList().end(),
+                                                         [](const ParamValue& item) { return item.isMap(); });
+    if (value.isMap() && !value.entries().empty())
+    {
+      emitBlockMap(out, value);
+    }
+    else if (holds_map)
+    {
+      out << YAML::Block << YAML::BeginSeq;
+      for (const ParamValue& item : value.asList())
+        emitInline(out, item);
+      out << YAML::EndSeq;
+    }
+    else
+    {
+      emitInline(out, value);
+    }
+  }
+  out << YAML::EndMap;
+}
+}  // namespace
+
+std::string paramToYaml(const ParamValue& value)
+{
+  YAML::Emitter out;
+  out.SetNullFormat(YAML::LowerNull);  // "null", as rosparam dump writes it (yaml-cpp's default is "~")
+  if (value.isMap() && !value.entries().empty())
+    emitBlockMap(out, value);
+  else
+    emitInline(out, value);
+  if (!out.good()) throw std::runtime_error("paramToYaml: " + out.GetLastError());
+  return std::string(out.c_str(), out.size()) + "\n";
 }
 }  // namespace io
 }  // namespace costmap_layers

@@ -15,6 +15,7 @@
 #include "costmap_layers/core/costmap/costmap_clearing.hpp"
 #include "costmap_layers/core/costmap/layer.hpp"
 #include "costmap_layers/core/costmap/layer_status.hpp"
+#include "costmap_layers/io/param_yaml.hpp"
 #include "costmap_layers/ros/conversions.hpp"
 
 namespace costmap_layers_ros
@@ -100,7 +101,7 @@ void CostmapNode::setUp()
     ROS_INFO(
         "costmap %s: the same costmap as a plugin list (costmap_2d's form, read unchanged here); put it in "
         "the costmap's namespace in place of the pre-Hydro keys:\n%s",
-        ns.c_str(), params_->plugin_list_yaml.c_str());
+        ns.c_str(), costmap_layers::io::paramToYaml(params_->plugin_list).c_str());
   const ParamValue& params = params_->params;
 
   // Every parameter look-up from here until the layers are initialised is noted, so that the keys

@@ -272,7 +272,8 @@ int run(const ToolArgs& a, std::ostream& out, std::ostream& err)
   for (const auto& n : compat.notes)
     err << "costmap_tool: info: " << n << "\n";
   if (compat.converted_pre_hydro)
-    err << "costmap_tool: info: the same costmap as a plugin list (costmap_2d's form):\n" << compat.plugin_list_yaml;
+    err << "costmap_tool: info: the same costmap as a plugin list (costmap_2d's form):\n"
+        << io::paramToYaml(compat.plugin_list);
   const ParamValue* ns = &compat.params;
   // Every parameter look-up until the layers are set up is noted, so that unused keys can be named.
   ParamReadLog read_log;

@@ -1,4 +1,5 @@
-// Tests of costmap_layers::io params YAML reading: structure, rosparam-like scalar typing, errors.
+// Tests of costmap_layers::io params YAML reading (structure, rosparam-like scalar typing, errors) and
+// writing (paramToYaml: the layout, and a tree read back equal).
 #include "costmap_layers/io/param_yaml.hpp"
 
 #include <gtest/gtest.h>
@@ -13,11 +14,13 @@
 #include <string>
 #include <vector>
 
+#include "costmap_layers/core/config/costmap2d_rules.hpp"
 #include "costmap_layers/io/features_file.hpp"
 
 using costmap_layers::ParamValue;
 using costmap_layers::io::featuresFileProblems;
 using costmap_layers::io::loadParamsYamlFile;
+using costmap_layers::io::paramToYaml;
 using costmap_layers::io::parseParamsYaml;
 using costmap_layers::io::speedLimitsFromParams;
 using costmap_layers::io::typePlainScalar;
@@ -371,4 +374,227 @@ TEST(FeaturesFile, ProblemsEverySpeedFilterWouldReportAreListed)
   EXPECT_TRUE(has("error: limits[5] (area_id 101", "1..100"));
   const ParamValue good = parseParamsYaml("limits: [{area_id: 1, max_speed: 0.5}, {area_id: 2, max_speed: 0}]", "f");
   EXPECT_TRUE(featuresFileProblems(speedLimitsFromParams(good, "f")).empty());
+}
+
+namespace
+{
+/// Equal trees: the same types, keys in the same order, and bit-for-bit the same doubles (a zero's sign
+/// included; NaN equals NaN), so that a write and a read lose nothing.
+::testing::AssertionResult sameTree(const ParamValue& a, const ParamValue& b, const std::string& at = "/")
+{
+  if (a.type() != b.type())
+    return ::testing::AssertionFailure() << at << ": " << ParamValue::typeName(a.type()) << " vs "
+                                         << ParamValue::typeName(b.type());
+  switch (a.type())
+  {
+    case Type::Null:
+      return ::testing::AssertionSuccess();
+    case Type::Bool:
+      if (a.asBool() == b.asBool()) return ::testing::AssertionSuccess();
+      break;
+    case Type::Int:
+      if (a.asInt() == b.asInt()) return ::testing::AssertionSuccess();
+      break;
+    case Type::Double:
+    {
+      const double x = a.asDouble(), y = b.asDouble();
+      if ((std::isnan(x) && std::isnan(y)) || (x == y && std::signbit(x) == std::signbit(y)))
+        return ::testing::AssertionSuccess();
+      break;
+    }
+    case Type::String:
+      if (a.asString() == b.asString()) return ::testing::AssertionSuccess();
+      break;
+    case Type::List:
+    {
+      if (a.asList().size() != b.asList().size()) break;
+      for (std::size_t k = 0; k < a.asList().size(); ++k)
+      {
+        auto r = sameTree(a.asList()[k], b.asList()[k], at + std::to_string(k) + "/");
+        if (!r) return r;
+      }
+      return ::testing::AssertionSuccess();
+    }
+    case Type::Map:
+    {
+      if (a.entries().size() != b.entries().size()) break;
+      for (std::size_t k = 0; k < a.entries().size(); ++k)
+      {
+        if (a.entries()[k].first != b.entries()[k].first)
+          return ::testing::AssertionFailure()
+                 << at << ": key '" << a.entries()[k].first << "' vs '" << b.entries()[k].first << "'";
+        auto r = sameTree(a.entries()[k].second, b.entries()[k].second, at + a.entries()[k].first + "/");
+        if (!r) return r;
+      }
+      return ::testing::AssertionSuccess();
+    }
+  }
+  return ::testing::AssertionFailure() << at << ": " << a.toString() << " vs " << b.toString();
+}
+
+ParamValue str(const std::string& s)
+{
+  return ParamValue::makeString(s);
+}
+
+ParamValue dbl(double d)
+{
+  return ParamValue::makeDouble(d);
+}
+}  // namespace
+
+// The layout people write costmap files in (and the hand-written emitter this replaced wrote): block
+// maps, inline lists, quoted strings, doubles with a point.
+TEST(Yaml, RendersBlockMapsAndInlineLists)
+{
+  ParamValue ns = ParamValue::makeMap();
+  ParamValue layer = ParamValue::makeMap();
+  layer.set("observation_sources", str("scan"));
+  ParamValue scan = ParamValue::makeMap();
+  scan.set("marking", ParamValue::makeBool(true));
+  scan.set("range", ParamValue::makeInt(3));
+  layer.set("scan", scan);
+  ns.set("obstacle_layer", layer);
+  ns.set("footprint", ParamValue::makeList({ParamValue::makeList({dbl(1), dbl(2.5)})}));
+  EXPECT_EQ(paramToYaml(ns),
+            "obstacle_layer:\n  observation_sources: \"scan\"\n  scan:\n    marking: true\n    range: 3\n"
+            "footprint: [[1.0, 2.5]]\n");
+}
+
+// costmap_node and costmap_tool print the plugin list a pre-Hydro namespace converts to in the form
+// costmap_2d's files use: a block list of inline {name, type} maps, then each layer's namespace.
+TEST(ParamToYaml, PreHydroPluginListInCostmap2dsForm)
+{
+  ParamValue ns = ParamValue::makeMap();
+  ns.set("static_map", ParamValue::makeBool(true));
+  ns.set("inflation_radius", dbl(1.0));
+  ns.set("cost_scaling_factor", dbl(3.0));
+  ns.set("observation_sources", str("scan"));
+  ParamValue scan = ParamValue::makeMap();
+  scan.set("topic", str("scan"));
+  ns.set("scan", scan);
+  const costmap_layers::CompatResult r = costmap_layers::applyCostmap2dRules(ns);
+  ASSERT_TRUE(r.converted_pre_hydro);
+  const std::string text = paramToYaml(r.plugin_list);
+  EXPECT_EQ(text.rfind("plugins:\n  - {name: \"static_layer\", type: \"costmap_2d::StaticLayer\"}\n"
+                       "  - {name: \"obstacle_layer\", type: \"costmap_2d::ObstacleLayer\"}\n"
+                       "  - {name: \"inflation_layer\", type: \"costmap_2d::InflationLayer\"}\n",
+                       0),
+            0u)
+      << text;
+  EXPECT_NE(text.find("inflation_layer:\n  cost_scaling_factor: 3.0\n  inflation_radius: 1.0\n"), std::string::npos)
+      << text;
+  EXPECT_TRUE(sameTree(parseParamsYaml(text, "plugin list", true), r.plugin_list));
+}
+
+TEST(ParamToYaml, DoublesHaveAPointInTheShortestFormThatReadsBack)
+{
+  auto written = [](double d)
+  {
+    ParamValue m = ParamValue::makeMap();
+    m.set("v", dbl(d));
+    return paramToYaml(m);
+  };
+  EXPECT_EQ(written(3.0), "v: 3.0\n");
+  EXPECT_EQ(written(0.1), "v: 0.1\n");
+  EXPECT_EQ(written(-2.5), "v: -2.5\n");
+  EXPECT_EQ(written(-0.0), "v: -0.0\n");
+  // PyYAML (rosparam) reads "1e-300" as a string: a point and a signed exponent make it a float.
+  EXPECT_EQ(written(1e-300), "v: 1.0e-300\n");
+  EXPECT_EQ(written(1e300), "v: 1.0e+300\n");
+  EXPECT_EQ(written(std::numeric_limits<double>::infinity()), "v: .inf\n");
+  EXPECT_EQ(written(-std::numeric_limits<double>::infinity()), "v: -.inf\n");
+  EXPECT_EQ(written(std::numeric_limits<double>::quiet_NaN()), "v: .nan\n");
+  EXPECT_EQ(paramToYaml(ParamValue()), "null\n");
+  EXPECT_EQ(paramToYaml(ParamValue::makeMap()), "{}\n");
+  EXPECT_EQ(paramToYaml(ParamValue::makeList({dbl(1), ParamValue::makeInt(1)})), "[1.0, 1]\n");
+}
+
+TEST(ParamToYaml, ReadsBackToAnEqualTree)
+{
+  ParamValue tree = ParamValue::makeMap();
+  const std::vector<std::string> awkward = {"say \"hi\"",
+                                            "back\\slash",
+                                            "a: b",
+                                            "key: value # not a comment",
+                                            "line one\nline two",
+                                            "  leading spaces",
+                                            "trailing spaces  ",
+                                            "true",
+                                            "no",
+                                            "null",
+                                            "~",
+                                            "1e3",
+                                            "0x10",
+                                            "010",
+                                            "1:30",
+                                            ".inf",
+                                            "- dash",
+                                            "[not a list]",
+                                            "{not: a map}",
+                                            "&anchor",
+                                            "*alias",
+                                            "!tag",
+                                            "%directive",
+                                            "@at",
+                                            "`tick",
+                                            "tab\there",
+                                            "\x01\x7f",
+                                            "é ü 中",
+                                            "",
+                                            "'single'",
+                                            "<<"};
+  ParamValue strings = ParamValue::makeList();
+  for (const auto& s : awkward)
+    strings.push(str(s));
+  tree.set("strings", strings);
+  // The same texts as keys (always strings when read), in a block map and in an inline one.
+  ParamValue keyed = ParamValue::makeMap();
+  for (const auto& s : awkward)
+    keyed.set(s, str(s));
+  tree.set("keyed", keyed);
+  tree.set("keyed_inline", ParamValue::makeList({keyed}));
+  const std::vector<double> doubles = {0.1,
+                                       1e-300,
+                                       1e300,
+                                       3.0,
+                                       -0.0,
+                                       1.0 / 3.0,
+                                       123456789012345678.0,
+                                       std::numeric_limits<double>::min(),
+                                       std::numeric_limits<double>::denorm_min(),
+                                       std::numeric_limits<double>::max(),
+                                       std::numeric_limits<double>::lowest(),
+                                       std::numeric_limits<double>::epsilon(),
+                                       std::numeric_limits<double>::infinity(),
+                                       -std::numeric_limits<double>::infinity(),
+                                       std::numeric_limits<double>::quiet_NaN()};
+  ParamValue numbers = ParamValue::makeList();
+  for (const double d : doubles)
+    numbers.push(dbl(d));
+  for (const int64_t i :
+       {int64_t{0}, int64_t{-7}, std::numeric_limits<int64_t>::max(), std::numeric_limits<int64_t>::min()})
+    numbers.push(ParamValue::makeInt(i));
+  tree.set("numbers", numbers);
+  ParamValue mixed = ParamValue::makeMap();
+  mixed.set("null", ParamValue());
+  mixed.set("bools", ParamValue::makeList({ParamValue::makeBool(true), ParamValue::makeBool(false)}));
+  mixed.set("empty_list", ParamValue::makeList());
+  mixed.set("empty_map", ParamValue::makeMap());
+  mixed.set("list_of_maps_and_more",
+            ParamValue::makeList({keyed, str("x"), ParamValue::makeList({dbl(0.5)}), ParamValue()}));
+  ParamValue deep = ParamValue::makeMap();
+  deep.set("inner", mixed);
+  mixed.set("deep", deep);
+  tree.set("mixed", mixed);
+
+  const std::string text = paramToYaml(tree);
+  for (const bool rosparam_floats : {false, true})
+  {
+    const ParamValue back = parseParamsYaml(text, "written", rosparam_floats);
+    EXPECT_TRUE(sameTree(back, tree)) << "rosparam_floats " << rosparam_floats << "\n" << text;
+  }
+  // Not only a map at the top.
+  EXPECT_TRUE(sameTree(parseParamsYaml(paramToYaml(strings), "list"), strings));
+  EXPECT_TRUE(sameTree(parseParamsYaml(paramToYaml(str("a: b")), "scalar"), str("a: b")));
 }

@@ -1,5 +1,5 @@
 // Reading a parameters YAML file (what `rosparam load` would put on the parameter server) into a
-// costmap_layers::ParamValue tree, without ROS. Uses yaml-cpp.
+// costmap_layers::ParamValue tree, and writing a tree back as such a file, without ROS. Uses yaml-cpp.
 //
 // Structure: maps become Map (keys in document order; a repeated key keeps its first position and
 // the last value, as rosparam does, and is described in repeated_keys when that is given),
@@ -72,5 +72,16 @@ void refuseRepeatedKeys(const std::vector<std::string>& repeated_keys);
 /// The typing rule for one plain (unquoted, untagged) scalar, exposed for tests and for tools that
 /// take "key:=value" arguments on a command line.
 ParamValue typePlainScalar(const std::string& text, bool rosparam_floats = false);
+
+/// A tree as YAML text for a user to paste into a params file (e.g. CompatResult::plugin_list), in the
+/// layout costmap files are written in: maps in block style; a list that holds a map as a block
+/// sequence of inline items (`plugins:\n  - {name: "a", type: "b"}`); every other list, and anything
+/// inside a list, inline (`footprint: [[1.0, 2.5]]`). Strings are double-quoted (so "true", "1e3" or
+/// "a: b" stay strings), Null is `null`, and a double has a decimal point in the shortest form that
+/// reads back to the same double (3.0, 0.1, 1.0e-300, .inf, .nan): PyYAML (rosparam) takes a number
+/// without a dot or with an unsigned exponent for a string. parseParamsYaml(), with or without
+/// rosparam_floats, reads the text back to an equal tree. The text ends with a newline.
+/// Throws std::runtime_error when yaml-cpp refuses to write the tree.
+std::string paramToYaml(const ParamValue& value);
 }  // namespace io
 }  // namespace costmap_layers
