@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "costmap_layers/io/zone_file.hpp"
+#include "zone_shape_helpers.hpp"
 #include "temp_dir_test.hpp"
 
 using namespace costmap_layers;
@@ -136,28 +137,6 @@ TEST_F(ZoneFile, SaveRefusesAnInvalidLayoutAndAnUnwritablePath)
 
 namespace
 {
-ZoneShape polygonShape(const std::string& name, std::vector<ZonePoint> points, int value, bool fill)
-{
-  ZoneShape s;
-  s.name = name;
-  s.type = ZoneShapeType::Polygon;
-  s.points = std::move(points);
-  s.value = value;
-  s.fill = fill;
-  return s;
-}
-
-ZoneShape circleShape(const std::string& name, ZonePoint center, double radius, int value)
-{
-  ZoneShape s;
-  s.name = name;
-  s.type = ZoneShapeType::Circle;
-  s.center = center;
-  s.radius = radius;
-  s.value = value;
-  return s;
-}
-
 /// The text read back as parseZoneLayout() reads a file (through the io library's YAML reader).
 ZoneLayout reread(const std::string& text, const std::string& path)
 {
@@ -172,7 +151,7 @@ TEST(ZoneLayoutParse, YamlTextReadsBackToAnEqualLayout)
   // zoneLayoutToYaml is read back in the tests below; here, the text itself: 17 significant digits,
   // names quoted.
   ZoneLayout l;
-  l.shapes = {polygonShape("dock", {{0.1, 0.2}, {1.0 / 3.0, 0.2}, {0.3, 0.7}}, 100, false)};
+  l.shapes = {polygon("dock", {{0.1, 0.2}, {1.0 / 3.0, 0.2}, {0.3, 0.7}}, 100, false)};
   const std::string y = io::zoneLayoutToYaml(l);
   EXPECT_NE(y.find("0.33333333333333331"), std::string::npos) << y;
   EXPECT_NE(y.find("name: \"dock\""), std::string::npos) << y;
@@ -187,9 +166,9 @@ TEST_F(ZoneFile, WrittenTextReadsBackBitForBit)
   l.default_value = -1;
   l.overlay = ZoneOverlay::Min;
   // Names YAML would read as other types unquoted; integral and awkward doubles; a circle and an outline.
-  l.shapes = {polygonShape("1", {{-2.0, 1e-7}, {4.0, 0.0}, {1.0 / 7.0, 3.0}}, 0, true),
-              polygonShape("yes", {{10.0, 10.0}, {12.5, 10.0}, {12.5, 11.0 + 1e-12}}, -1, false),
-              circleShape("null", {5.0, -3.0 / 11.0}, 2.0 / 3.0, 55)};
+  l.shapes = {polygon("1", {{-2.0, 1e-7}, {4.0, 0.0}, {1.0 / 7.0, 3.0}}, 0, true),
+              polygon("yes", {{10.0, 10.0}, {12.5, 10.0}, {12.5, 11.0 + 1e-12}}, -1, false),
+              circle("null", 5.0, -3.0 / 11.0, 2.0 / 3.0, 55)};
   const ZoneLayout back = reread(io::zoneLayoutToYaml(l), tmp("w.yaml"));
   EXPECT_EQ(back.frame_id, l.frame_id);
   EXPECT_EQ(back.resolution, l.resolution);

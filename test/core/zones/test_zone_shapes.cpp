@@ -13,34 +13,12 @@
 
 #include "costmap_layers/core/rules/limits.hpp"
 #include "costmap_layers/core/zones/zone_shapes.hpp"
+#include "zone_shape_helpers.hpp"
 
 using namespace costmap_layers;
 
 namespace
 {
-ZoneShape polygon(const std::string& name, std::vector<ZonePoint> points, int value = 100, bool fill = true)
-{
-  ZoneShape s;
-  s.name = name;
-  s.type = ZoneShapeType::Polygon;
-  s.points = std::move(points);
-  s.value = value;
-  s.fill = fill;
-  return s;
-}
-
-ZoneShape circle(const std::string& name, double cx, double cy, double r, int value = 100, bool fill = true)
-{
-  ZoneShape s;
-  s.name = name;
-  s.type = ZoneShapeType::Circle;
-  s.center = {cx, cy};
-  s.radius = r;
-  s.value = value;
-  s.fill = fill;
-  return s;
-}
-
 ZoneLayout layout(std::vector<ZoneShape> shapes, double resolution = 0.1, ZoneOverlay overlay = ZoneOverlay::Last)
 {
   ZoneLayout l;
