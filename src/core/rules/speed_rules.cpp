@@ -88,7 +88,9 @@ SpeedPublication speedFromNav2Limit(const SpeedRule& rule, double speed_limit)
   else if (!p.percentage)
     p.max_speed = speed_limit;
   else if (rule.default_max_speed > 0.0)
-    p.max_speed = rule.default_max_speed * speed_limit / 100.0;
+    // The fraction first: speed_limit is at most 100 here, so the product is at most
+    // default_max_speed and stays finite (the product first overflowed for 1e307 m/s).
+    p.max_speed = rule.default_max_speed * (speed_limit / 100.0);
   return p;  // a percentage without default_max_speed has no m/s value
 }
 
