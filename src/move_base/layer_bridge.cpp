@@ -1,9 +1,9 @@
 #include "costmap_layers/move_base/layer_bridge.hpp"
 
 #include <costmap_2d/layered_costmap.h>
-#include <costmap_2d/static_layer.h>
 #include <ros/ros.h>
 
+#include <algorithm>
 #include <limits>
 #include <type_traits>
 #include <vector>
@@ -94,6 +94,7 @@ void LayerBridgeOn<Base>::setUp()
       [this](unsigned int size_x, unsigned int size_y, double resolution, double origin_x, double origin_y,
              bool size_locked)
       { this->layered_costmap_->resizeMap(size_x, size_y, resolution, origin_x, origin_y, size_locked); });
+  readCostmap2dStaticLayers(nh);
   viewMaster();
   host_->addPlugin(core_);
   {
@@ -242,10 +243,11 @@ void LayerBridgeOn<Base>::checkPluginOrder()
     if (other != nullptr && other->enabled() && other->overwritesWindow(master, 0, 0, sx, sy))
       problem =
           plugin->getName() + " (a static layer) comes after it in the plugin list and overwrites the cells it draws";
-    else if (dynamic_cast<const costmap_2d::StaticLayer*>(plugin.get()) != nullptr)
+    else if (std::find(costmap2d_static_layers_.begin(), costmap2d_static_layers_.end(), plugin->getName()) !=
+             costmap2d_static_layers_.end())
       problem = plugin->getName() +
-                " (costmap_2d's static layer) comes after it in the plugin list and overwrites the cells it draws "
-                "(unless its use_maximum is true)";
+                " (costmap_2d's static layer, use_maximum false) comes after it in the plugin list and overwrites "
+                "the cells it draws";
     if (!problem.empty()) break;
   }
   if (problem != order_problem_ && !problem.empty())
@@ -254,6 +256,34 @@ void LayerBridgeOn<Base>::checkPluginOrder()
                          ": list the filter after it (before the inflation layer to inflate "
                          "its zones, or last to keep them sharp)");
   order_problem_ = problem;
+}
+
+template <class Base>
+void LayerBridgeOn<Base>::readCostmap2dStaticLayers(const ros::NodeHandle& nh)
+{
+  // Costmap2DROS loads its plugins from <costmap ns>/plugins, a list of {name, type} (it writes one
+  // there for pre-Hydro parameters too), and names each plugin <costmap>/<name>; costmap_2d's
+  // StaticLayer reads use_maximum once, at its start-up, from its own namespace. So the list and that
+  // key say, for the rest of the run, which later plugins overwrite what a filter draws.
+  costmap2d_static_layers_.clear();
+  const std::string costmap_ns = ros::names::parentNamespace(nh.getNamespace());
+  const std::string prefix = this->name_.substr(0, this->name_.rfind('/') + 1);  // "" for a name without '/'
+  XmlRpc::XmlRpcValue list;
+  if (!ros::param::get(costmap_ns + "/plugins", list) || list.getType() != XmlRpc::XmlRpcValue::TypeArray) return;
+  for (int i = 0; i < list.size(); ++i)
+  {
+    XmlRpc::XmlRpcValue& entry = list[i];
+    // A malformed entry is Costmap2DROS's to refuse; it names nothing here.
+    if (entry.getType() != XmlRpc::XmlRpcValue::TypeStruct || !entry.hasMember("name") || !entry.hasMember("type") ||
+        entry["name"].getType() != XmlRpc::XmlRpcValue::TypeString ||
+        entry["type"].getType() != XmlRpc::XmlRpcValue::TypeString)
+      continue;
+    const std::string name = static_cast<std::string>(entry["name"]);
+    if (static_cast<std::string>(entry["type"]) != "costmap_2d::StaticLayer") continue;
+    bool use_maximum = false;
+    ros::param::param(costmap_ns + "/" + name + "/use_maximum", use_maximum, false);
+    if (!use_maximum) costmap2d_static_layers_.push_back(prefix + name);
+  }
 }
 
 template <class Base>

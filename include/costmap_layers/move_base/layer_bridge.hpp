@@ -83,6 +83,8 @@ private:
   /// Sets order_problem_ and warns when this is a filter that draws costs and a later plugin overwrites
   /// the master (a static layer not using its maximum): the filter's cells would be lost.
   void checkPluginOrder();
+  /// Fills costmap2d_static_layers_ from the costmap's `plugins` list on the parameter server.
+  void readCostmap2dStaticLayers(const ros::NodeHandle& nh);
 
   std::shared_ptr<costmap_layers::Layer> core_;
   std::string class_name_;
@@ -94,6 +96,12 @@ private:
   std::atomic<bool> full_update_{true};     ///< redraw the whole map next cycle (start, reconfigure, reset)
   std::vector<std::string> consumed_keys_;  ///< layer keys costmap_2d's rules used up (not "unknown")
   std::string order_problem_;               ///< see orderProblem()
+  /// The names (as costmap_2d names its plugins, <costmap>/<entry>) of the costmap's plugins that are
+  /// costmap_2d's own StaticLayer without use_maximum: they overwrite the master every cycle. Known by
+  /// the type in the costmap's plugin list, not by a cast, so that this library does not link
+  /// costmap_2d's plugin library (liblayers): one the dynamic linker has mapped already, class_loader
+  /// never registers the factories of, and move_base could then load none of costmap_2d's own layers.
+  std::vector<std::string> costmap2d_static_layers_;
 };
 
 extern template class LayerBridgeOn<costmap_2d::Layer>;

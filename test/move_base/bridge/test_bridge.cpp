@@ -9,6 +9,7 @@
 #include <costmap_2d/footprint.h>
 #include <costmap_2d/layered_costmap.h>
 #include <nav_msgs/OccupancyGrid.h>
+#include <xmlrpcpp/XmlRpcValue.h>
 #include <atomic>
 #include <cmath>
 #include <limits>
@@ -26,7 +27,6 @@
 #include <clear_costmap_recovery/clear_costmap_recovery.h>
 #include <costmap_2d/costmap_2d_ros.h>
 #include <geometry_msgs/TransformStamped.h>
-#include <xmlrpcpp/XmlRpcValue.h>
 #endif
 
 using costmap_layers::move_base::LayerBridge;
@@ -319,6 +319,51 @@ TEST(Bridge, AFilterBeforeTheStaticLayerIsWarnedAbout)
     lc.updateMap(1.0, 1.0, 0.0);
     ASSERT_NE(keepout, nullptr);
     EXPECT_EQ(keepout->orderProblem(), "");
+  }
+}
+
+namespace
+{
+/// Stands in for costmap_2d's StaticLayer in the plugin list: the bridge knows costmap_2d's layers by the
+/// type in the costmap's `plugins` parameter only (it must not link their library, see layer_bridge.hpp).
+class StandIn : public costmap_2d::Layer
+{
+protected:
+  void onInitialize() override { enabled_ = true; }
+};
+}  // namespace
+
+// costmap_2d's own StaticLayer after a filter overwrites it as the bridged one does, unless its
+// use_maximum is true: told from the costmap's plugin list and that key, as Costmap2DROS loaded them.
+TEST(Bridge, AFilterBeforeCostmap2dsStaticLayerIsWarnedAboutUnlessItUsesTheMaximum)
+{
+  ros::NodeHandle pn("~");
+  tf2_ros::Buffer tf;
+  for (const bool use_maximum : {false, true})
+  {
+    const std::string costmap = use_maximum ? "c2d_max" : "c2d_overwrite";
+    XmlRpc::XmlRpcValue plugins;
+    plugins[0]["name"] = "keepout";
+    plugins[0]["type"] = "costmap_layers::move_base::KeepoutFilter";
+    plugins[1]["name"] = "static_map";
+    plugins[1]["type"] = "costmap_2d::StaticLayer";
+    pn.setParam(costmap + "/plugins", plugins);
+    pn.setParam(costmap + "/static_map/use_maximum", use_maximum);
+    pn.setParam(costmap + "/keepout/mask_topic", "/bridge_order_mask");
+    costmap_2d::LayeredCostmap lc("map", false, false);
+    lc.resizeMap(20, 20, 0.1, 0.0, 0.0);
+    addBridged<costmap_layers::KeepoutFilter>(lc, tf, costmap + "/keepout", "KeepoutFilter");
+    auto* keepout = dynamic_cast<LayerBridge*>(lc.getPlugins()->back().get());
+    boost::shared_ptr<costmap_2d::Layer> static_map(new StandIn);
+    lc.addPlugin(static_map);
+    static_map->initialize(&lc, costmap + "/static_map", &tf);
+    lc.updateMap(1.0, 1.0, 0.0);
+    ASSERT_NE(keepout, nullptr);
+    if (use_maximum)
+      EXPECT_EQ(keepout->orderProblem(), "");
+    else
+      EXPECT_NE(keepout->orderProblem().find(costmap + "/static_map (costmap_2d's static layer"), std::string::npos)
+          << keepout->orderProblem();
   }
 }
 
