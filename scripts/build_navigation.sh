@@ -6,8 +6,12 @@
 #
 #   scripts/build_navigation.sh SOURCE_TARBALL_OR_DIR [UNDERLAY_DIR]
 #
-# SOURCE: a .tar.gz of the navigation sources (e.g. navigation-noetic-<commit>.tar.gz) or a folder
-# holding the packages. UNDERLAY_DIR defaults to $NAV_UNDERLAY, else
+# SOURCE: the navigation stack's sources, as a folder or a .tar.gz: a clone of ros-planning/navigation
+# (git clone -b noetic-devel https://github.com/ros-planning/navigation.git), its release tarball, or
+# a trimmed copy holding only the packages below. Only what move_base and this package's plugins and
+# tests need is built (NEEDED and their dependencies); the others of a whole checkout (amcl,
+# map_server, fake_localization, ...) are skipped, and said, since nothing here uses them and they
+# need Debian packages of their own. UNDERLAY_DIR defaults to $NAV_UNDERLAY, else
 # ${XDG_CACHE_HOME:-~/.cache}/costmap_layers/navigation-underlay, which scripts/test.sh and
 # scripts/demo.sh also look in. A second run with the same sources does nothing. The sources are only
 # read: nothing is copied into this repository.
@@ -65,7 +69,9 @@ if [ -f "$src" ]; then
 else
   cp -a "$src/." "$dest/src/"
 fi
-for p in costmap_2d move_base navfn dwa_local_planner; do
+# What the bridge, its tests and a move_base with navfn / DWA / global_planner and the recoveries need.
+NEEDED=(move_base navfn global_planner dwa_local_planner clear_costmap_recovery rotate_recovery)
+for p in costmap_2d "${NEEDED[@]}"; do
   if [ -z "$(find "$dest/src" -name package.xml -path "*/$p/package.xml" -print -quit)" ]; then
     echo "build_navigation: $src has no $p package" >&2
     exit 1
@@ -75,9 +81,15 @@ start=$(date +%s)
 (
   cd "$dest"
   colcon --log-base "$dest/log" build --base-paths "$dest/src" --build-base "$dest/build" \
-    --install-base "$dest/install" --event-handlers console_cohesion- \
+    --install-base "$dest/install" --event-handlers console_cohesion- --packages-up-to "${NEEDED[@]}" \
     --cmake-args -DCMAKE_BUILD_TYPE=Release -DCATKIN_ENABLE_TESTING=OFF
 )
 echo "$stamp" > "$dest/source.sha256"
+# Say what a whole checkout held that was not built (colcon took NEEDED and their dependencies).
+pkg_names() { find "$1" -name package.xml -exec sed -n 's:.*<name>\(.*\)</name>.*:\1:p' {} + | sort -u; }
+skipped="$(comm -23 <(pkg_names "$dest/src") <(pkg_names "$dest/install") | tr '\n' ' ')"
+if [ -n "${skipped// /}" ]; then
+  echo "build_navigation: skipped (not needed by move_base or this package's plugins and tests): $skipped"
+fi
 echo "build_navigation: built $(find "$dest/install" -name package.xml -path '*/share/*' | wc -l)" \
   "packages into $dest in $(($(date +%s) - start)) s"

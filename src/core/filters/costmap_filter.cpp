@@ -352,7 +352,9 @@ void CostmapFilter::updateBounds(double robot_x, double robot_y, double robot_ya
     else if (have_transform_)
       processPose(*active_mask_, to_mask_, robot_x, robot_y, robot_yaw);
   }
-  if (!active_mask_ && enabled())
+  // Said every cycle (the host's log throttles) once the start-up grace is over: a latched mask or
+  // info comes moments after start.
+  if (!active_mask_ && enabled() && startup_grace_.over(context_->nowNs()))
   {
     if (usesFilterInfo() && !active_info_)
       context_->report(Severity::Warn, "waiting",

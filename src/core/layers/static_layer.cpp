@@ -294,10 +294,12 @@ void StaticLayer::updateBounds(double robot_x, double robot_y, double robot_yaw,
   if (!map_received_)
   {
     // costmap_2d waits for the map, saying so; here the costmap runs without it, so say it every
-    // throttle period: a costmap with no static map is all free (or all unknown) where walls are.
-    context_->report(Severity::Warn, "waiting",
-                     name_ + ": waiting for the map on " + config_.map_topic +
-                         " (nothing received yet): the costmap has no walls from the map");
+    // throttle period once the start-up grace is over (a latched map comes moments after start): a
+    // costmap with no static map is all free (or all unknown) where walls are.
+    if (startup_grace_.over(context_->nowNs()))
+      context_->report(Severity::Warn, "waiting",
+                       name_ + ": waiting for the map on " + config_.map_topic +
+                           " (nothing received yet): the costmap has no walls from the map");
     return;
   }
   if (config_.footprint_clearing_enabled)

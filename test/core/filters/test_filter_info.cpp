@@ -237,6 +237,9 @@ TEST(FilterInfoKeepout, WaitsForTheInfoThenReadsTheMaskItNames)
   EXPECT_EQ(r.maskSubscription(), "");  // not connected yet
 
   r.cycle();
+  EXPECT_EQ(r.ctx->countKey("waiting"), 0);  // the start-up grace
+  r.ctx->now_ns += kStartupGraceNs;
+  r.cycle();
   ASSERT_EQ(r.ctx->countKey("waiting"), 1);
   EXPECT_EQ(r.ctx->countReports("waiting for filter info on /costmap_filter_info"), 1);
 
@@ -348,6 +351,8 @@ TEST(FilterInfoSpeed, PercentAsNav2Publishes)
   Rig<SpeedFilter> r(speedParams(0.5), "speed_filter");
   EXPECT_EQ(r.ctx->speed_limit_topic, "/speed_limit");
   r.cycle();  // no info yet: no limit
+  r.ctx->now_ns += kStartupGraceNs;
+  r.cycle();
   EXPECT_EQ(r.ctx->countReports("waiting for filter info on /costmap_filter_info"), 1);
   ASSERT_EQ(r.ctx->published_limits.size(), 1u);
   EXPECT_EQ(r.ctx->published_limits.back().second, 0.0);

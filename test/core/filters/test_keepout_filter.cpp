@@ -359,6 +359,11 @@ TEST(KeepoutFilter, WaitingForTheMaskIsReported)
   r.lc.resizeMap(10, 10, 1.0, 0.0, 0.0);
   r.lc.addFilter(r.filter);
   r.lc.updateMap(0, 0, 0);
+  r.ctx->now_ns += 1'999'999'999;
+  r.lc.updateMap(0, 0, 0);
+  EXPECT_EQ(r.ctx->countReports("no mask yet"), 0);  // the start-up grace: 2 s from the first update
+  r.ctx->now_ns += 1;
+  r.lc.updateMap(0, 0, 0);
   ASSERT_EQ(r.ctx->countReports("keepout: no mask yet on /map_filter"), 1);
   EXPECT_EQ(r.ctx->reports.back().key, "waiting");
   r.ctx->publishGrid(GridKind::Mask, makeMask(3, 3, 1.0, 3.0, 3.0, 100));

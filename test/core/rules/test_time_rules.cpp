@@ -65,3 +65,20 @@ TEST(TimeRules, OutOfOrderAfterAClockJumpAndWithStampsAhead)
   EXPECT_FALSE(isOutOfOrder(0, 10 * kSec, 20 * kSec));
   EXPECT_FALSE(isOutOfOrder(5 * kSec, 0, 20 * kSec));
 }
+
+// The start-up grace before "waiting for ..." warnings: 2 s from the first time noted, and again from a
+// clock that jumped back (rosbag play --loop restarts the time a map may take to come).
+TEST(TimeRules, StartupGraceIsTwoSecondsAndRestartsAfterAJumpBack)
+{
+  StartupGrace g;
+  EXPECT_FALSE(g.over(100'000'000'000));
+  EXPECT_FALSE(g.over(101'999'999'999));
+  EXPECT_TRUE(g.over(102'000'000'000));
+  EXPECT_TRUE(g.over(500'000'000'000));
+  EXPECT_FALSE(g.over(3'000'000'000));  // back in time: a new grace from here
+  EXPECT_FALSE(g.over(4'999'999'999));
+  EXPECT_TRUE(g.over(5'000'000'000));
+  StartupGrace at_zero;  // a simulated clock that starts at 0
+  EXPECT_FALSE(at_zero.over(0));
+  EXPECT_TRUE(at_zero.over(2'000'000'000));
+}

@@ -32,6 +32,7 @@
 #include "costmap_layers/core/costmap/layer.hpp"
 #include "costmap_layers/core/costmap/layered_costmap.hpp"
 #include "costmap_layers/core/rules/limits.hpp"
+#include "costmap_layers/core/rules/stamp_order.hpp"
 
 namespace costmap_layers
 {
@@ -157,6 +158,7 @@ private:
   /// Serialises processPose() / processInactive() between the update thread and a switch-off
   /// (onEnabledChanged() on the toggle service's thread).
   std::mutex outputs_mutex_;
+  StartupGrace startup_grace_;  ///< before the first mask: when "no mask yet" is said (update thread)
   std::mutex info_mutex_;  ///< one setFilterInfo() at a time, so that port replacements stay in order
   mutable std::mutex mask_mutex_;
   std::string mask_topic_;                                ///< guarded by mask_mutex_

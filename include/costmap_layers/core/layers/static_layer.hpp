@@ -16,6 +16,7 @@
 #include "costmap_layers/core/data/grid_data.hpp"
 #include "costmap_layers/core/grid/grid_sampler.hpp"
 #include "costmap_layers/core/rules/map_value_rule.hpp"
+#include "costmap_layers/core/rules/stamp_order.hpp"
 
 namespace costmap_layers
 {
@@ -132,6 +133,7 @@ private:
   // For status(): what arrived, and when (context clock).
   uint64_t maps_accepted_ = 0, maps_rejected_ = 0, updates_accepted_ = 0, updates_rejected_ = 0;
   uint64_t map_received_ns_ = 0;
+  StartupGrace startup_grace_;  ///< before the first map: when "waiting for the map" is said (update thread)
   std::string last_rejection_;    ///< why the latest rejected map was refused
   bool latest_rejected_ = false;  ///< the newest map that arrived was rejected
 

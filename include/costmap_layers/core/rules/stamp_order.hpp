@@ -72,4 +72,30 @@ public:
 private:
   uint64_t latest_ns_ = 0;
 };
+
+/// [ns] A latched input (a map, a mask, a filter info) reaches a layer moments after start-up: a layer
+/// says it is waiting for one only once this much time has passed without it (then every cycle, as the
+/// host's log throttles), so that a start-up that works prints no warning.
+constexpr uint64_t kStartupGraceNs = 2'000'000'000;
+
+/// When a start-up grace ends: started at the first time noted, again after the clock jumped back
+/// (rosbag play --loop). Not thread-safe: the update thread owns it.
+class StartupGrace
+{
+public:
+  /// Notes now_ns; true once kStartupGraceNs have passed since the grace started.
+  bool over(uint64_t now_ns)
+  {
+    if (!started_ || now_ns < start_ns_)
+    {
+      started_ = true;
+      start_ns_ = now_ns;
+    }
+    return now_ns - start_ns_ >= kStartupGraceNs;
+  }
+
+private:
+  bool started_ = false;
+  uint64_t start_ns_ = 0;
+};
 }  // namespace costmap_layers
