@@ -9,7 +9,7 @@
 # SOURCE: the navigation stack's sources, as a folder or a .tar.gz: a clone of ros-planning/navigation
 # (git clone -b noetic-devel https://github.com/ros-planning/navigation.git), its release tarball, or
 # a trimmed copy holding only the packages below. Only what move_base and this package's plugins and
-# tests need is built (NEEDED and their dependencies); the others of a whole checkout (amcl,
+# tests need is built (NEEDED); the others of a whole checkout (amcl,
 # map_server, fake_localization, ...) are skipped, and said, since nothing here uses them and they
 # need Debian packages of their own. UNDERLAY_DIR defaults to $NAV_UNDERLAY, else
 # ${XDG_CACHE_HOME:-~/.cache}/costmap_layers/navigation-underlay, which scripts/test.sh and
@@ -69,27 +69,39 @@ if [ -f "$src" ]; then
 else
   cp -a "$src/." "$dest/src/"
 fi
-# What the bridge, its tests and a move_base with navfn / DWA / global_planner and the recoveries need.
-NEEDED=(move_base navfn global_planner dwa_local_planner clear_costmap_recovery rotate_recovery)
-for p in costmap_2d "${NEEDED[@]}"; do
+# What the bridge, its tests and a move_base with navfn / DWA / global_planner and the recoveries need:
+# these packages exactly (their other dependencies are Debian packages). Selected by name, since a
+# selection "up to move_base" also takes the test dependencies (costmap_2d's on map_server, which needs
+# Bullet, and amcl's chain).
+NEEDED=(costmap_2d voxel_grid nav_core navfn global_planner base_local_planner dwa_local_planner
+  clear_costmap_recovery rotate_recovery move_base)
+for p in "${NEEDED[@]}"; do
   if [ -z "$(find "$dest/src" -name package.xml -path "*/$p/package.xml" -print -quit)" ]; then
     echo "build_navigation: $src has no $p package" >&2
     exit 1
   fi
 done
+# The other packages of a whole checkout are hidden from colcon in this copy of the sources (a
+# selection by name is not enough: colcon still wants costmap_2d's test dependency map_server built).
+skipped=()
+while IFS= read -r xml; do
+  name="$(sed -n 's:.*<name>\(.*\)</name>.*:\1:p' "$xml" | head -n 1)"
+  case " ${NEEDED[*]} " in
+    *" $name "*) ;;
+    *) touch "$(dirname "$xml")/COLCON_IGNORE"; skipped+=("$name") ;;
+  esac
+done < <(find "$dest/src" -name package.xml | sort)
+if [ ${#skipped[@]} -gt 0 ]; then
+  echo "build_navigation: skipped ${skipped[*]} (not needed by move_base or this package's plugins and" \
+    "tests; map_server would need Bullet)"
+fi
 start=$(date +%s)
 (
   cd "$dest"
   colcon --log-base "$dest/log" build --base-paths "$dest/src" --build-base "$dest/build" \
-    --install-base "$dest/install" --event-handlers console_cohesion- --packages-up-to "${NEEDED[@]}" \
+    --install-base "$dest/install" --event-handlers console_cohesion- \
     --cmake-args -DCMAKE_BUILD_TYPE=Release -DCATKIN_ENABLE_TESTING=OFF
 )
 echo "$stamp" > "$dest/source.sha256"
-# Say what a whole checkout held that was not built (colcon took NEEDED and their dependencies).
-pkg_names() { find "$1" -name package.xml -exec sed -n 's:.*<name>\(.*\)</name>.*:\1:p' {} + | sort -u; }
-skipped="$(comm -23 <(pkg_names "$dest/src") <(pkg_names "$dest/install") | tr '\n' ' ')"
-if [ -n "${skipped// /}" ]; then
-  echo "build_navigation: skipped (not needed by move_base or this package's plugins and tests): $skipped"
-fi
 echo "build_navigation: built $(find "$dest/install" -name package.xml -path '*/share/*' | wc -l)" \
   "packages into $dest in $(($(date +%s) - start)) s"

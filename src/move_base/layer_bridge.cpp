@@ -10,6 +10,7 @@
 
 #include "costmap_layers/core/config/config_compat.hpp"
 #include "costmap_layers/core/costmap/costmap_clearing.hpp"
+#include "costmap_layers/core/rules/stamp_order.hpp"
 #include "costmap_layers/core/filters/costmap_filter.hpp"
 #include "costmap_layers/core/costmap/costmap_layer.hpp"
 #include "costmap_layers/core/grid/footprint.hpp"
@@ -156,12 +157,15 @@ void LayerBridgeOn<Base>::waitForMap(const costmap_layers::StaticLayer& layer, c
   ROS_INFO("%s: waiting for the map on %s (as costmap_2d's static layer, move_base starts once it has come)",
            nh.getNamespace().c_str(), topic.c_str());
   ros::WallRate rate(20.0);  // wall time: under /use_sim_time the map may come before /clock
+  const ros::WallTime started = ros::WallTime::now();
   while (ros::ok() && !layer.mapAccepted())
   {
     ros::spinOnce();
     rate.sleep();
-    ROS_WARN_THROTTLE(5.0, "%s: still waiting for the map on %s (is map_server running, and is map_topic right?)",
-                      nh.getNamespace().c_str(), topic.c_str());
+    // A latched map comes moments after start: warn once the start-up grace is over, then every 5 s.
+    if ((ros::WallTime::now() - started).toNSec() >= static_cast<int64_t>(costmap_layers::kStartupGraceNs))
+      ROS_WARN_THROTTLE(5.0, "%s: still waiting for the map on %s (is map_server running, and is map_topic right?)",
+                        nh.getNamespace().c_str(), topic.c_str());
   }
 }
 

@@ -73,7 +73,9 @@ class MixedOrderTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         rospy.init_node("test_mixed_order")
-        cls.bridged_local = bool(rospy.get_param("~bridged_local_obstacles"))
+        cls.bridged_local = bool(rospy.get_param("~bridged_local_obstacles", False))
+        # The scans whose marks the local costmap must show (default: the scenario's, below).
+        cls.scan_topics = rospy.get_param("~scan_topics", None)
         cls.global_grid = GridWatcher("/move_base/global_costmap")
         cls.local_grid = GridWatcher("/move_base/local_costmap")
         # make_plan is advertised once both costmaps and their plugins are up: move_base alive.
@@ -125,7 +127,7 @@ class MixedOrderTest(unittest.TestCase):
         self.assertGreater(max(ys), BAND[3], "the plan does not pass above the band")
 
     def test_obstacle_layers_mark_their_scans_in_the_local_costmap(self):
-        topics = ["/scan", "/scan_voxel"] + (["/scan_bridged"] if self.bridged_local else [])
+        topics = self.scan_topics or (["/scan", "/scan_voxel"] + (["/scan_bridged"] if self.bridged_local else []))
         # Nothing there before the scans: what is marked below is the scans'.
         self.assertTrue(self.local_grid.wait_until(
             lambda g: all(value_at(g, *hit(t)) not in (None, LETHAL) for t in topics), timeout=30.0),
