@@ -52,20 +52,20 @@ if costmap_2d_at="$(ros_package_prefix costmap_2d)"; then
   if ros_package_prefix move_base > /dev/null; then
     n=$(python3 - "$ROOT/build/costmap_layers/test_results" <<'PY'
 import glob, sys, xml.etree.ElementTree as ET
-n = 0
-for f in glob.glob(sys.argv[1] + "/**/rosunit-move_base_integration.xml", recursive=True):
-    n += sum(1 for _ in ET.parse(f).getroot().iter("testcase"))
-b = 0  # LayerBridge in costmap_2d's own LayeredCostmap (test/move_base/bridge)
-for f in glob.glob(sys.argv[1] + "/**/rosunit-bridge.xml", recursive=True):
-    b += sum(1 for _ in ET.parse(f).getroot().iter("testcase"))
-print(n, b)
+def cases(pattern):
+    return sum(sum(1 for _ in ET.parse(f).getroot().iter("testcase"))
+               for f in glob.glob(sys.argv[1] + "/**/" + pattern, recursive=True))
+n = cases("rosunit-move_base_integration.xml")
+# move_base beside costmap_2d's own plugins in every order, and launch/move_base.launch
+m = cases("rosunit-move_base_mixed_*.xml") + cases("rosunit-move_base_launch_file.xml")
+b = cases("rosunit-bridge.xml")  # LayerBridge in costmap_2d's own LayeredCostmap (test/move_base/bridge)
+print(n, m, b)
 PY
 )
-    b=${n#* }
-    n=${n% *}
-    if [ "$n" -gt 0 ] && [ "$b" -gt 0 ]; then
-      echo "move_base integration: $n test cases run, and $b of LayerBridge in costmap_2d's LayeredCostmap" \
-        "(costmap_2d from $costmap_2d_at)"
+    read -r n m b <<< "$n"
+    if [ "$n" -gt 0 ] && [ "$m" -gt 0 ] && [ "$b" -gt 0 ]; then
+      echo "move_base integration: $n test cases run, $m in the mixed-order and launch-file scenarios, and $b of" \
+        "LayerBridge in costmap_2d's LayeredCostmap (costmap_2d from $costmap_2d_at)"
     else
       echo "move_base integration: FAILED to run: costmap_2d and move_base are there but no move_base test result" >&2
       move_base_rc=1
