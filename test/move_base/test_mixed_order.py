@@ -16,12 +16,12 @@ import unittest
 
 import rospy
 import rostest
-from geometry_msgs.msg import PoseStamped
 from nav_msgs.srv import GetPlan
 from sensor_msgs.msg import LaserScan
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "rostest"))
 from grid_watch import GridWatcher  # noqa: E402
+from grid_watch import map_pose as pose  # noqa: E402
 
 START = (1.0, 1.0)  # fake_robot's pose in mixed.launch
 GOAL = (5.0, 1.0)
@@ -32,14 +32,6 @@ RANGE = 0.6  # [m] of every beam published below
 # topic: the beam direction in base_link [rad] (the robot faces +x), so each obstacle layer's hits land
 # in a cell of their own, 0.6 m from the robot.
 SCANS = {"/scan": math.pi / 2, "/scan_voxel": math.pi, "/scan_bridged": -math.pi / 2}
-
-
-def pose(x, y):
-    p = PoseStamped()
-    p.header.frame_id = "map"
-    p.pose.position.x, p.pose.position.y = x, y
-    p.pose.orientation.w = 1.0
-    return p
 
 
 def hit(topic):

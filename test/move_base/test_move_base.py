@@ -20,7 +20,7 @@ import rospkg
 import rospy
 import rostest
 from costmap_layers.msg import MaxSpeed
-from geometry_msgs.msg import Point32, Polygon, PoseStamped
+from geometry_msgs.msg import Point32, Polygon
 from nav_msgs.msg import OccupancyGrid
 from nav_msgs.srv import GetPlan
 from std_srvs.srv import Empty, SetBool
@@ -28,20 +28,13 @@ from std_srvs.srv import Empty, SetBool
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "rostest"))
 from grid_watch import ErrorLog, GridWatcher, translate  # noqa: E402
 from grid_watch import occupancy_grid as grid  # noqa: E402
+from grid_watch import map_pose as pose  # noqa: E402
 
 START = (1.0, 1.0)
 GOAL = (5.0, 1.0)
 # The keepout band of keepout.pgm (make_maps.py): x in [2.8, 3.2) m, y in [0, 3.0) m.
 BAND = (2.8, 3.2, 0.0, 3.0)
 LETHAL = 100  # cost 254 as published
-
-
-def pose(x, y):
-    p = PoseStamped()
-    p.header.frame_id = "map"
-    p.pose.position.x, p.pose.position.y = x, y
-    p.pose.orientation.w = 1.0
-    return p
 
 
 def in_band(x, y, margin=0.0):

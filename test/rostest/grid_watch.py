@@ -3,6 +3,7 @@ translates costs the way costmap_2d publishes them."""
 import threading
 
 import rospy
+from geometry_msgs.msg import PoseStamped
 from map_msgs.msg import OccupancyGridUpdate
 from nav_msgs.msg import OccupancyGrid
 
@@ -176,3 +177,12 @@ def publish_row_mask(topic, values):
     pub = rospy.Publisher(topic, OccupancyGrid, queue_size=1, latch=True)
     pub.publish(occupancy_grid(len(values), 1, 1.0, values, stamp=rospy.Time()))
     return pub
+
+
+def map_pose(x, y):
+    """A pose at (x, y) in the map frame, facing +x (a make_plan start or goal)."""
+    p = PoseStamped()
+    p.header.frame_id = "map"
+    p.pose.position.x, p.pose.position.y = x, y
+    p.pose.orientation.w = 1.0
+    return p
