@@ -110,9 +110,15 @@ class ZoneServerTest(unittest.TestCase):
         self.assertTrue(self.mask.wait(matches(initial), 30.0), "the initial mask is not the expected one")
         self.assertGreater(initial[4].count(100), 150)  # 19 x 10 cells
         # Drag dock's vertex 2 from (2.97, 2.04) to (3.46, 2.57), as RViz would; dock is put back as the
-        # file has it at the end, so that no other case sees this one's drag.
-        self.addCleanup(self.set_shape, ZoneShape(name="dock", type="polygon", value=100, fill=True,
-                                                  points=[Point(x, y, 0.0) for x, y in DOCK]))
+        # file has it at the end, and the case ends only once the mask shows it back: the next case then
+        # starts on a settled mask (test_handles_are_capped compares its end with its start, and saw the
+        # put-back arrive in between).
+        def put_dock_back():
+            self.set_shape(ZoneShape(name="dock", type="polygon", value=100, fill=True,
+                                     points=[Point(x, y, 0.0) for x, y in DOCK]))
+            self.assertTrue(self.mask.wait(matches(initial), 20.0), "dock was not put back")
+
+        self.addCleanup(put_dock_back)
         moved = [DOCK[0], DOCK[1], (3.46, 2.57), DOCK[3]]
         expected = expected_mask([(moved, 100)], [(SLOW, 40)])
         self.assertNotEqual(expected[4], initial[4])
