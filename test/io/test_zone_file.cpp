@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "costmap_layers/io/zone_file.hpp"
-#include "zone_shape_helpers.hpp"
 #include "temp_dir_test.hpp"
+#include "zone_shape_helpers.hpp"
 
 using namespace costmap_layers;
 

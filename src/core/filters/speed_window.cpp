@@ -5,7 +5,8 @@ namespace costmap_layers
 void OdometrySpeedWindow::add(uint64_t received_ns, uint64_t stamp_ns, double linear_x)
 {
   samples_.push_back({received_ns, stamp_ns, linear_x});
-  while (samples_.size() > 1 && (samples_.size() > kMaxSamples || samples_.front().received_ns + kWindowNs < received_ns))
+  while (samples_.size() > 1 &&
+         (samples_.size() > kMaxSamples || samples_.front().received_ns + kWindowNs < received_ns))
     samples_.pop_front();
 }
 

@@ -40,7 +40,8 @@ void checkKeys(const ParamValue& map, const std::vector<std::string>& known, con
         list += (list.empty() ? "" : ", ") + k;
       throw std::invalid_argument(what + ": unknown field '" + key + "' (known: " + list + ")");
     }
-}}  // namespace
+}
+}  // namespace
 
 ZoneShape parseZoneShape(const ParamValue& v, const std::string& what)
 {

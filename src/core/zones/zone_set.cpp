@@ -73,8 +73,9 @@ InputError ZoneSet::moveHandle(const std::string& name, std::size_t index, doubl
   ZoneShape s = *found;
   const std::size_t handles = zoneHandles(s).size();
   if (index >= handles)
-    return InputError::of(zoneShapePath(s) + "/handle", zoneShapePath(s) + " has handles 0.." + std::to_string(handles - 1) + " (got " +
-                                                    std::to_string(index) + ")");
+    return InputError::of(
+        zoneShapePath(s) + "/handle",
+        zoneShapePath(s) + " has handles 0.." + std::to_string(handles - 1) + " (got " + std::to_string(index) + ")");
   if (s.type == ZoneShapeType::Polygon)
     s.points[index] = {x, y};
   else if (index == 0)

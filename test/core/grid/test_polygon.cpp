@@ -127,10 +127,12 @@ TEST(Polygon, EachCallerKeepsItsFormerAnswersOnEdgesAndVertices)
       const Pt& a = zone[k];
       const Pt& b = zone[(k + 1) % zone.size()];
       const double s = along(random);
-      for (const Pt& q : {a, Pt{a.x + s * (b.x - a.x), a.y + s * (b.y - a.y)}, Pt{coordinate(random), coordinate(random)}})
+      for (const Pt& q :
+           {a, Pt{a.x + s * (b.x - a.x), a.y + s * (b.y - a.y)}, Pt{coordinate(random), coordinate(random)}})
       {
         ASSERT_EQ(pointInPolygon(zone, q.x, q.y, CrossingOrigin::EdgeStart), formerZoneInside(zone, q.x, q.y));
-        ASSERT_EQ(pointInPolygon(footprint, q.x, q.y, CrossingOrigin::EdgeEnd), formerKeepoutInside(footprint, q.x, q.y));
+        ASSERT_EQ(pointInPolygon(footprint, q.x, q.y, CrossingOrigin::EdgeEnd),
+                  formerKeepoutInside(footprint, q.x, q.y));
         origins_differ += formerZoneInside(zone, q.x, q.y) != formerKeepoutInside(footprint, q.x, q.y) ? 1 : 0;
       }
     }

@@ -25,11 +25,17 @@ namespace
 {
 /// The navigation stack's plugin libraries (costmap_2d, the planners, the recoveries) and this package's
 /// own, named even when their XMLs are not installed where the scan below looks.
-const std::set<std::string> kKnownPluginLibraries = {
-    "liblayers.so",           "libnavfn.so",           "libglobal_planner.so",     "libcarrot_planner.so",
-    "libtrajectory_planner_ros.so", "libdwa_local_planner.so", "libclear_costmap_recovery.so",
-    "librotate_recovery.so",  "libmove_slow_and_clear.so", "libcostmap_layers_plugins.so",
-    "libcostmap_layers_move_base.so"};
+const std::set<std::string> kKnownPluginLibraries = {"liblayers.so",
+                                                     "libnavfn.so",
+                                                     "libglobal_planner.so",
+                                                     "libcarrot_planner.so",
+                                                     "libtrajectory_planner_ros.so",
+                                                     "libdwa_local_planner.so",
+                                                     "libclear_costmap_recovery.so",
+                                                     "librotate_recovery.so",
+                                                     "libmove_slow_and_clear.so",
+                                                     "libcostmap_layers_plugins.so",
+                                                     "libcostmap_layers_move_base.so"};
 
 /// Plugin libraries a program may link because it calls their classes directly and never has pluginlib
 /// load that library: test_bridge drives clear_costmap_recovery's ClearCostmapRecovery itself.

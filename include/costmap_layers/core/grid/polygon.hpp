@@ -44,8 +44,14 @@ inline bool edgeCrossesRay(double ax, double ay, double bx, double by, double x,
 namespace polygon_detail
 {
 // The vertex types the callers use: Eigen vectors (x()) and plain structs with x / y members.
-inline double xOf(const Eigen::Vector2d& p) { return p.x(); }
-inline double yOf(const Eigen::Vector2d& p) { return p.y(); }
+inline double xOf(const Eigen::Vector2d& p)
+{
+  return p.x();
+}
+inline double yOf(const Eigen::Vector2d& p)
+{
+  return p.y();
+}
 template <typename Point>
 double xOf(const Point& p)
 {
