@@ -26,4 +26,20 @@ std::string shownText(const std::string& text, std::size_t max = 64);
 /// '~' first, then letters, digits, '_' and '/'), or "" when it is one. The reason quotes the name
 /// (clipped) and the first character at fault.
 std::string rosNameProblem(const std::string& name, bool allow_private = true);
+
+// One rule for each kind of name, used wherever that kind is read: a parameter, a message, a file.
+// Each returns why the name is refused (quoting it, clipped, with the first character at fault) or "".
+
+/// Longest frame id, plugin name or shape name accepted (real ones have a few dozen characters).
+constexpr std::size_t kMaxNameLength = 256;
+/// A tf frame id: 1..kMaxNameLength printable ASCII characters, no space or control character (tf2
+/// would look a "map\nodom" up as it is and never find it; a file would read it back changed).
+std::string frameIdProblem(const std::string& frame_id);
+/// A plugin's name in a costmap's plugin list: a relative ROS name (a letter first, then letters,
+/// digits, '_' and single '/' between parts), as costmap_2d and roscpp need it to make the plugin's
+/// parameter namespace; at most kMaxNameLength characters.
+std::string pluginNameProblem(const std::string& name);
+/// A name shown to people and used as a key (a zone shape's name): 1..kMaxNameLength bytes, no
+/// control character (UTF-8 letters are fine).
+std::string labelProblem(const std::string& name);
 }  // namespace costmap_layers
