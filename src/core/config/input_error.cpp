@@ -17,6 +17,15 @@ std::string shownText(const std::string& text, std::size_t max)
   return text.substr(0, max) + "... (" + std::to_string(text.size()) + " characters)";
 }
 
+std::string namesText(const std::vector<std::string>& names, std::size_t listed)
+{
+  std::string out;
+  for (std::size_t k = 0; k < names.size() && k < listed; ++k)
+    out += (k == 0 ? "" : ", ") + shownText(names[k]);
+  if (names.size() > listed) out += " and " + std::to_string(names.size() - listed) + " more";
+  return out;
+}
+
 std::string rosNameProblem(const std::string& name, bool allow_private)
 {
   if (name.empty()) return "is empty, not a ROS name";

@@ -121,6 +121,15 @@ std::string ParamReader::getTopic(const std::string& name, const std::string& de
   return value;
 }
 
+std::string ParamReader::getFrameId(const std::string& name, const std::string& def, bool allow_empty) const
+{
+  const std::string value = getString(name, def);
+  if (value.empty() && allow_empty) return value;
+  const std::string problem = frameIdProblem(value);
+  if (!problem.empty()) fail(name, "must be a frame id: the frame id " + problem);
+  return value;
+}
+
 std::string ParamReader::getChoice(const std::string& name, const std::string& def,
                                    const std::vector<std::string>& choices) const
 {

@@ -5,8 +5,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "costmap_layers/core/rules/limits.hpp"
+#include "costmap_layers/core/config/input_error.hpp"
 #include "costmap_layers/core/config/param_reader.hpp"
+#include "costmap_layers/core/rules/limits.hpp"
 
 namespace costmap_layers
 {
@@ -43,10 +44,8 @@ CostmapConfig parseCostmapConfig(const ParamValue& ns)
 {
   const ParamReader p(ns, "costmap");
   CostmapConfig c;
-  c.global_frame = p.getString("global_frame", c.global_frame);
-  c.robot_base_frame = p.getString("robot_base_frame", c.robot_base_frame);
-  if (c.global_frame.empty()) p.fail("global_frame", "must not be empty");
-  if (c.robot_base_frame.empty()) p.fail("robot_base_frame", "must not be empty");
+  c.global_frame = p.getFrameId("global_frame", c.global_frame);
+  c.robot_base_frame = p.getFrameId("robot_base_frame", c.robot_base_frame);
   c.transform_tolerance = p.getDouble("transform_tolerance", c.transform_tolerance, 0.0, limits::kMaxDuration);
   // The update loop always runs (the node refuses 0): at least kMinFrequency.
   c.update_frequency =
@@ -80,9 +79,17 @@ std::string typeOfNamed(const ParamValue& ns, const std::string& list_key, const
   const ParamValue* type = sub != nullptr ? sub->find("plugin") : nullptr;
   if (type == nullptr && sub != nullptr) type = sub->find("type");
   if (type == nullptr || type->type() != ParamValue::Type::String)
-    throw std::invalid_argument("costmap: " + list_key + " names '" + name + "' but '" + name +
+    throw std::invalid_argument("costmap: " + list_key + " names '" + shownText(name) + "' but '" + shownText(name) +
                                 "/plugin' (its type) is not set");
   return type->asString();
+}
+
+void checkPluginCount(const std::string& key, std::size_t count)
+{
+  if (count > limits::kMaxPlugins)
+    throw std::invalid_argument("costmap: '" + key + "' lists " + std::to_string(count) + " plugins, more than " +
+                                std::to_string(limits::kMaxPlugins) +
+                                ": a costmap has a handful (a repeated YAML alias or a generated list?)");
 }
 
 std::vector<PluginSpec> parseOneList(const ParamValue& ns, const std::string& key)
@@ -96,7 +103,9 @@ std::vector<PluginSpec> parseOneList(const ParamValue& ns, const std::string& ke
   if (list != nullptr && !list->isNull())
   {
     if (!list->isList())
-      throw std::invalid_argument("costmap: parameter '" + key + "' must be a list (got " + list->toString() + ")");
+      throw std::invalid_argument("costmap: parameter '" + key + "' must be a list (got " +
+                                  shownText(list->toString(), 200) + ")");
+    checkPluginCount(key, list->asList().size());
     for (const auto& item : list->asList())
     {
       if (item.isMap())
@@ -117,7 +126,7 @@ std::vector<PluginSpec> parseOneList(const ParamValue& ns, const std::string& ke
       else
       {
         throw std::invalid_argument("costmap: entries of '" + key + "' must be {name, type} maps or names (got " +
-                                    item.toString() + ")");
+                                    shownText(item.toString(), 200) + ")");
       }
     }
   }
@@ -125,6 +134,7 @@ std::vector<PluginSpec> parseOneList(const ParamValue& ns, const std::string& ke
   {
     if (names == nullptr || types == nullptr || !names->isList() || !types->isList())
       throw std::invalid_argument("costmap: '" + names_key + "' and '" + types_key + "' must both be lists");
+    checkPluginCount(names_key, names->asList().size());
     if (names->asList().size() != types->asList().size())
       throw std::invalid_argument("costmap: '" + names_key + "' has " + std::to_string(names->asList().size()) +
                                   " entries but '" + types_key + "' has " + std::to_string(types->asList().size()));
@@ -139,7 +149,10 @@ std::vector<PluginSpec> parseOneList(const ParamValue& ns, const std::string& ke
   }
   for (const auto& s : specs)
   {
-    if (s.name.empty()) throw std::invalid_argument("costmap: a plugin in '" + key + "' has an empty name");
+    // The rule costmap_node's NodeHandles and costmap_2d apply to a plugin's namespace, here where
+    // costmap_tool reads the same list: a name one of them refuses is refused by both.
+    if (const std::string problem = pluginNameProblem(s.name); !problem.empty())
+      throw std::invalid_argument("costmap: a plugin in '" + key + "' has a bad name: " + problem);
     if (s.type.empty()) throw std::invalid_argument("costmap: plugin '" + s.name + "' has an empty type");
   }
   return specs;
@@ -151,13 +164,14 @@ PluginLists parsePluginLists(const ParamValue& ns)
   PluginLists lists;
   lists.plugins = parseOneList(ns, "plugins");
   lists.filters = parseOneList(ns, "filters");
+  checkPluginCount("plugins' and 'filters", lists.plugins.size() + lists.filters.size());
   std::set<std::string> seen;
   for (const auto* l : {&lists.plugins, &lists.filters})
   {
     for (const auto& s : *l)
     {
       if (!seen.insert(s.name).second)
-        throw std::invalid_argument("costmap: plugin name '" + s.name +
+        throw std::invalid_argument("costmap: plugin name '" + shownText(s.name) +
                                     "' is used twice; each instance needs its "
                                     "own name (and parameter namespace)");
     }

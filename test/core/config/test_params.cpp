@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "costmap_layers/core/costmap/costmap_config.hpp"
-#include "costmap_layers/core/grid/footprint.hpp"
 #include "costmap_layers/core/config/param_reader.hpp"
 #include "costmap_layers/core/config/param_value.hpp"
+#include "costmap_layers/core/costmap/costmap_config.hpp"
+#include "costmap_layers/core/grid/footprint.hpp"
 
 using namespace costmap_layers;
 
@@ -346,6 +346,11 @@ TEST(CostmapConfigTest, InvalidValuesNameTheParameter)
       {"global_frame", str("")},
       {"robot_base_frame", str("")},
       {"global_frame", integer(3)},
+      // Frame ids tf2 would never find (issue 34: "map\nodom" came back as "map odom" from a file).
+      {"global_frame", str("map\nodom")},
+      {"global_frame", str("map odom")},
+      {"robot_base_frame", str("base_link\t")},
+      {"robot_base_frame", str(std::string(257, 'b'))},
       {"rolling_window", str("yes")},
       {"update_frequency", num(-1.0)},
       {"transform_tolerance", num(std::numeric_limits<double>::infinity())},
@@ -451,6 +456,22 @@ TEST(PluginListsTest, MixedFormsPerList)
   EXPECT_EQ(l.filters[0].name, "k");
 }
 
+TEST(PluginListsTest, SixtyFourPluginsAreAccepted)
+{
+  std::vector<ParamValue> layers, filters;
+  for (int k = 0; k < 32; ++k)
+  {
+    layers.push_back(namedType("layer" + std::to_string(k), "x/Y"));
+    filters.push_back(namedType("filter" + std::to_string(k), "x/F"));
+  }
+  ParamValue p = ParamValue::makeMap();
+  p.set("plugins", list(layers));
+  p.set("filters", list(filters));
+  const PluginLists lists = parsePluginLists(p);
+  EXPECT_EQ(lists.plugins.size(), 32u);
+  EXPECT_EQ(lists.filters.size(), 32u);
+}
+
 TEST(PluginListsTest, MalformedListsThrow)
 {
   struct Case
@@ -510,7 +531,17 @@ TEST(PluginListsTest, MalformedListsThrow)
     p.set("filter_names", list({str("f")}));
     cases.push_back({"filter names without types", p, "filter_types"});
   }
-  cases.push_back({"empty name", one("plugins", list({namedType("", "x/Y")})), "empty name"});
+  cases.push_back({"empty name", one("plugins", list({namedType("", "x/Y")})), "is empty, not a plugin name"});
+  // What costmap_node's NodeHandles refuse, refused here too, where costmap_tool reads the list.
+  cases.push_back({"name with a space", one("plugins", list({namedType("static layer", "x/Y")})),
+                   "'static layer' is not a plugin name"});
+  cases.push_back({"absolute name", one("plugins", list({namedType("/obstacles", "x/Y")})), "not a plugin name"});
+  {
+    ParamValue p = ParamValue::makeMap();
+    p.set("plugin_names", list({str("in-flation")}));
+    p.set("plugin_types", list({str("x/Y")}));
+    cases.push_back({"Foxy form, name with a dash", p, "'in-flation' is not a plugin name"});
+  }
   cases.push_back({"empty type", one("plugins", list({namedType("a", "")})), "empty type"});
   cases.push_back(
       {"duplicate plugin", one("plugins", list({namedType("a", "x/Y"), namedType("a", "x/Z")})), "used twice"});
@@ -521,6 +552,28 @@ TEST(PluginListsTest, MalformedListsThrow)
     cases.push_back({"duplicate across plugins and filters", p, "'same' is used twice"});
   }
   cases.push_back({"filters not a list", one("filters", integer(1)), "'filters' must be a list"});
+  {
+    // 65 plugins (the limit is 64), in each form, and 40 + 40 across the two lists.
+    std::vector<ParamValue> many, names, types, half;
+    for (int k = 0; k < 65; ++k)
+    {
+      many.push_back(namedType("l" + std::to_string(k), "x/Y"));
+      names.push_back(str("l" + std::to_string(k)));
+      types.push_back(str("x/Y"));
+    }
+    for (int k = 0; k < 40; ++k)
+      half.push_back(namedType("f" + std::to_string(k), "x/F"));
+    cases.push_back({"65 plugins", one("plugins", list(many)), "lists 65 plugins, more than 64"});
+    ParamValue foxy = ParamValue::makeMap();
+    foxy.set("plugin_names", list(names));
+    foxy.set("plugin_types", list(types));
+    cases.push_back({"65 plugins, Foxy form", foxy, "'plugin_names' lists 65 plugins"});
+    ParamValue both = ParamValue::makeMap();
+    std::vector<ParamValue> first40(many.begin(), many.begin() + 40);
+    both.set("plugins", list(first40));
+    both.set("filters", list(half));
+    cases.push_back({"40 layers and 40 filters", both, "lists 80 plugins"});
+  }
   for (const auto& c : cases)
   {
     const std::string msg = errorOf([&] { parsePluginLists(c.ns); });

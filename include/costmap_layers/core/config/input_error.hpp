@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 namespace costmap_layers
 {
@@ -22,6 +23,9 @@ std::string valueText(double value);
 /// A sender's text (a frame_id, a topic) as a message shows it: at most max characters, then how long
 /// it was, so that a megabyte name does not become a megabyte log line.
 std::string shownText(const std::string& text, std::size_t max = 64);
+/// A list of names as a message shows it: the first `listed` (each clipped to 64 characters), then
+/// "and N more", so that a list of thousands does not become a line of thousands.
+std::string namesText(const std::vector<std::string>& names, std::size_t listed = 8);
 /// Why `name` is not a ROS graph resource name (roscpp's rule: a letter, '/' or, when allow_private,
 /// '~' first, then letters, digits, '_' and '/'), or "" when it is one. The reason quotes the name
 /// (clipped) and the first character at fault.

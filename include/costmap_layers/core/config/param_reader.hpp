@@ -47,6 +47,9 @@ public:
   /// A topic name: fails naming the parameter unless it is a ROS name (rosNameProblem), or empty when
   /// allow_empty (a topic that may be left out).
   std::string getTopic(const std::string& name, const std::string& def, bool allow_empty = false) const;
+  /// A tf frame id: fails naming the parameter unless it is one (frameIdProblem), or empty when
+  /// allow_empty (e.g. "use the message's frame").
+  std::string getFrameId(const std::string& name, const std::string& def, bool allow_empty = false) const;
   /// Accepts one of the given choices only.
   std::string getChoice(const std::string& name, const std::string& def, const std::vector<std::string>& choices) const;
 

@@ -73,5 +73,9 @@ constexpr std::size_t kMaxPathPoses = 200'000;
 /// [m/s] |speed| an odometry message may report: no ground robot is faster; beyond it the braking
 /// distance v^2 / (2 a) loses meaning.
 constexpr double kMaxSpeed = 100.0;
+/// Plugins in one costmap (layers and filters together). Real configurations have 2 to 10; a list of
+/// hundreds is a mistake (a YAML alias repeated, a generated file), and each layer may own a grid the
+/// size of the map: such a list is refused before any plugin is made.
+constexpr std::size_t kMaxPlugins = 64;
 }  // namespace limits
 }  // namespace costmap_layers
