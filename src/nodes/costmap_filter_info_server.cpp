@@ -21,20 +21,11 @@
 #include "costmap_layers/CostmapFilterInfo.h"
 #include "costmap_layers/core/filters/filter_info.hpp"
 #include "costmap_layers/ros/node_params.hpp"
+#include "costmap_layers/ros/program_main.hpp"
 
 namespace
 {
 const char* kNode = "costmap_filter_info_server";
-
-std::string checkTopic(const costmap_layers_ros::NodeParams& params, const std::string& name, const std::string& def)
-{
-  const std::string topic = params.getString(name, def);
-  std::string error;
-  if (topic.empty() || !ros::names::validate(topic, error))
-    throw std::invalid_argument("parameter " + params.where() + name + " is not a valid topic name (got \"" + topic +
-                                "\")" + (error.empty() ? "" : ": " + error));
-  return topic;
-}
 
 float checkFloat32(const costmap_layers_ros::NodeParams& params, const std::string& name, double def)
 {
@@ -85,15 +76,12 @@ void warnAboutMeaning(const costmap_layers::FilterInfoData& info, const std::str
           info.type == fi::kSpeedPercent ? "outside [0, 100] %" : "below 0 m/s", kNode);
   }
 }
-}  // namespace
 
-int main(int argc, char** argv)
+int run()
 {
-  ros::init(argc, argv, kNode);
   ros::NodeHandle nh, pnh("~");
   costmap_layers::FilterInfoData info;
   std::string info_topic;
-  try
   {
     const costmap_layers_ros::NodeParams params(pnh);
     if (params.nested())
@@ -116,16 +104,16 @@ int main(int argc, char** argv)
                                   "percent), 2 (speed limit in m/s), 3 (binary) or 4 (zone parameters) (got " +
                                   std::to_string(type) + ")");
     info.type = static_cast<uint8_t>(type);
-    info_topic = checkTopic(params, "filter_info_topic", "costmap_filter_info");
-    info.filter_mask_topic = checkTopic(params, "mask_topic", "filter_mask");
+    info_topic = params.getTopic("filter_info_topic", "costmap_filter_info");
+    // The filters' own rule for the mask topic they are told (a '~private' name is refused there: it
+    // would be the filter's namespace, not this node's), checked here where the value is set.
+    info.filter_mask_topic = params.getTopic("mask_topic", "filter_mask", false);
     info.base = checkFloat32(params, "base", 0.0);
     info.multiplier = checkFloat32(params, "multiplier", 1.0);
+    if (const costmap_layers::InputError e = costmap_layers::validateFilterInfo(info); !e.ok())
+      throw std::invalid_argument("parameters in " + params.where() +
+                                  " make an info every filter refuses: " + e.message);
     warnAboutMeaning(info, params.where());
-  }
-  catch (const std::exception& e)
-  {
-    ROS_FATAL("%s: %s [%s/parameters]", kNode, e.what(), kNode);
-    return 1;
   }
   costmap_layers::CostmapFilterInfo msg;
   msg.header.stamp = ros::Time::now();
@@ -140,4 +128,10 @@ int main(int argc, char** argv)
            info.filter_mask_topic.c_str(), info.base, info.multiplier, kNode);
   ros::spin();
   return 0;
+}
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  return costmap_layers_ros::runProgram(argc, argv, kNode, [] { return run(); });
 }

@@ -7,32 +7,34 @@
 
 #include <cstdint>
 #include <mutex>
+#include <stdexcept>
 #include <utility>
 
 #include "costmap_layers/core/filters/costmap_filter.hpp"
 #include "costmap_layers/core/rules/limits.hpp"
 #include "costmap_layers/io/png_writer.hpp"
 #include "costmap_layers/ros/conversions.hpp"
+#include "costmap_layers/ros/node_params.hpp"
+#include "costmap_layers/ros/program_main.hpp"
 
-int main(int argc, char** argv)
+namespace
 {
-  ros::init(argc, argv, "costmap_snapshot");
+int run()
+{
   ros::NodeHandle nh, pnh("~");
-  const std::string topic = pnh.param<std::string>("topic", "/costmap_node/costmap");
-  const std::string output = pnh.param<std::string>("output", "costmap.png");
-  // Both in wall time: under /use_sim_time a stopped or absent /clock must not hang the tool.
-  const double wait = pnh.param("wait", 0.0);         // [s] to keep applying updates after the first grid
-  const double timeout = pnh.param("timeout", 30.0);  // [s] to wait for the first grid (not after it)
-  // NaN would make both waits endless (every comparison with it is false).
-  for (const auto& [name, value] : {std::pair<const char*, double>{"wait", wait}, {"timeout", timeout}})
-  {
-    if (!(value >= 0.0 && value <= costmap_layers::limits::kMaxDuration))
-    {
-      ROS_FATAL("costmap_snapshot: parameter ~%s must be in [0, %g] s (got %g)", name,
-                costmap_layers::limits::kMaxDuration, value);
-      return 1;
-    }
-  }
+  const costmap_layers_ros::NodeParams params(pnh);
+  for (const auto& key : params.unknownKeys({"topic", "output", "wait", "timeout"}))
+    ROS_WARN("costmap_snapshot: parameter %s%s is not one of topic, output, wait, timeout: ignored",
+             params.where().c_str(), key.c_str());
+  const std::string topic = params.getTopic("topic", "/costmap_node/costmap");
+  const std::string output = params.getString("output", "costmap.png");
+  if (output.empty()) throw std::invalid_argument("parameter " + params.where() + "output is empty (a PNG file name)");
+  // Both in wall time: under /use_sim_time a stopped or absent /clock must not hang the tool. NaN and
+  // infinities are refused (either would make a wait endless).
+  const double wait = params.getDoubleIn("wait", 0.0, 0.0,
+                                         costmap_layers::limits::kMaxDuration);  // [s] of updates after the first grid
+  const double timeout =
+      params.getDoubleIn("timeout", 30.0, 0.0, costmap_layers::limits::kMaxDuration);  // [s] for the first grid
 
   std::mutex mutex;
   nav_msgs::OccupancyGrid grid;
@@ -117,4 +119,10 @@ int main(int argc, char** argv)
     rate.sleep();
   }
   return 1;
+}
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  return costmap_layers_ros::runProgram(argc, argv, "costmap_snapshot", [] { return run(); });
 }

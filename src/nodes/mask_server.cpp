@@ -22,18 +22,19 @@
 #include "costmap_layers/io/map_file.hpp"
 #include "costmap_layers/io/mask_summary.hpp"
 #include "costmap_layers/ros/node_params.hpp"
+#include "costmap_layers/ros/program_main.hpp"
 
 namespace io = costmap_layers::io;
 
-int main(int argc, char** argv)
+namespace
 {
-  ros::init(argc, argv, "mask_server");
+int run()
+{
   ros::NodeHandle nh, pnh("~");
   const std::string node = ros::this_node::getName();
   nav_msgs::OccupancyGrid msg;
   std::string yaml, topic, frame, rule;
   io::MapMode mode = io::MapMode::Trinary;
-  try
   {
     const costmap_layers_ros::NodeParams params(pnh);
     const std::string& at = params.where();
@@ -46,22 +47,29 @@ int main(int argc, char** argv)
           "%s: parameter %s%s is not one of yaml_filename, topic (or Nav2's topic_name), frame_id, mode, "
           "pixel_rule: ignored [mask_server/unknown]",
           node.c_str(), at.c_str(), key.c_str());
-    yaml = params.getString("yaml_filename", "");
-    if (yaml.empty()) throw std::invalid_argument("parameter " + at + "yaml_filename is not set");
+    yaml = params.getFile("yaml_filename");
     const bool nav2_form = params.has("topic_name");
     if (nav2_form && params.has("topic"))
       throw std::invalid_argument("parameters " + at + "topic (\"" + params.getString("topic", "") + "\") and " + at +
                                   "topic_name (\"" + params.getString("topic_name", "") +
                                   "\", Nav2's name) are both set: set one");
     // Nav2's map_server defaults to "map"; this node, serving masks, to /map_filter.
-    topic = nav2_form ? params.getString("topic_name", "map") : params.getString("topic", "/map_filter");
-    frame = params.getString("frame_id", "map");
+    topic = nav2_form ? params.getTopic("topic_name", "map") : params.getTopic("topic", "/map_filter");
+    frame = params.getFrameId("frame_id", "map");
     rule = params.getString("pixel_rule", nav2_form ? "nav2" : "ros1");
     if (rule != "ros1" && rule != "nav2")
       throw std::invalid_argument("parameter " + at + "pixel_rule must be \"ros1\" or \"nav2\" (got \"" + rule + "\")");
     const std::string mode_name = params.getString("mode", "");  // overrides the file's mode when set
 
-    io::MapFileInfo info = io::loadMapFileInfo(yaml);
+    io::MapFileInfo info;
+    try
+    {
+      info = io::loadMapFileInfo(yaml);
+    }
+    catch (const std::exception& e)
+    {
+      throw std::runtime_error("parameter " + at + "yaml_filename: " + e.what());
+    }
     mode = mode_name.empty() ? info.mode : io::parseMapMode(mode_name);
     if (rule == "nav2" && mode == io::MapMode::Scale) mode = io::MapMode::Nav2Scale;
     if (rule == "ros1" && mode == io::MapMode::Nav2Scale && params.has("pixel_rule"))
@@ -101,14 +109,15 @@ int main(int argc, char** argv)
     const std::string warning = io::pixelRuleWarning(counts, mode);
     if (!warning.empty()) ROS_WARN("%s: %s: %s [mask_server/pixel_rule]", node.c_str(), yaml.c_str(), warning.c_str());
   }
-  catch (const std::exception& e)
-  {
-    ROS_FATAL("%s: %s [mask_server/parameters]", node.c_str(), e.what());
-    return 1;
-  }
   ros::Publisher pub = nh.advertise<nav_msgs::OccupancyGrid>(topic, 1, true);
   pub.publish(msg);
   ROS_INFO("%s: publishing %s on %s [mask_server/published]", node.c_str(), yaml.c_str(), pub.getTopic().c_str());
   ros::spin();
   return 0;
+}
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  return costmap_layers_ros::runProgram(argc, argv, "mask_server", [] { return run(); });
 }

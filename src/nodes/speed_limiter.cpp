@@ -7,10 +7,13 @@
 #include <ros/ros.h>
 
 #include <mutex>
+#include <stdexcept>
 
 #include "costmap_layers/MaxSpeed.h"
-#include "costmap_layers/core/rules/limits.hpp"
 #include "costmap_layers/core/filters/speed_limiter.hpp"
+#include "costmap_layers/core/rules/limits.hpp"
+#include "costmap_layers/ros/node_params.hpp"
+#include "costmap_layers/ros/program_main.hpp"
 
 namespace
 {
@@ -26,22 +29,25 @@ geometry_msgs::Twist toMsg(const costmap_layers::Twist& t)
   m.angular.x = t.ax, m.angular.y = t.ay, m.angular.z = t.az;
   return m;
 }
-}  // namespace
 
-int main(int argc, char** argv)
+int run()
 {
-  ros::init(argc, argv, "speed_limiter");
   ros::NodeHandle nh, pnh("~");
+  const costmap_layers_ros::NodeParams params(pnh);
+  for (const auto& key : params.unknownKeys({"command_timeout", "publish_zero_when_stale", "max_speed_topic"}))
+    ROS_WARN(
+        "speed_limiter: parameter %s%s is not one of command_timeout, publish_zero_when_stale, max_speed_topic: "
+        "ignored",
+        params.where().c_str(), key.c_str());
   costmap_layers::SpeedLimiterConfig cfg;
-  cfg.command_timeout = pnh.param("command_timeout", cfg.command_timeout);
-  cfg.publish_zero_when_stale = pnh.param("publish_zero_when_stale", cfg.publish_zero_when_stale);
-  const std::string max_speed_topic = pnh.param<std::string>("max_speed_topic", "/max_speed");
-  if (!(cfg.command_timeout > 0.0 && cfg.command_timeout <= costmap_layers::limits::kMaxDuration))
-  {
-    ROS_FATAL("speed_limiter: parameter ~command_timeout must be in (0, %g] s (got %g)",
-              costmap_layers::limits::kMaxDuration, cfg.command_timeout);
-    return 1;
-  }
+  // A string ('fast', 'no') is an error, not the default: a limiter running on a value nobody chose is
+  // the silent kind of wrong.
+  cfg.command_timeout =
+      params.getDoubleIn("command_timeout", cfg.command_timeout, 0.0, costmap_layers::limits::kMaxDuration);
+  if (!(cfg.command_timeout > 0.0))
+    throw std::invalid_argument("parameter " + params.where() + "command_timeout must be more than 0 s (got 0)");
+  cfg.publish_zero_when_stale = params.getBool("publish_zero_when_stale", cfg.publish_zero_when_stale);
+  const std::string max_speed_topic = params.getTopic("max_speed_topic", "/max_speed");
 
   std::mutex mutex;
   double limit = 0.0;  // no limit until one is known
@@ -99,4 +105,10 @@ int main(int argc, char** argv)
       });
   ros::spin();
   return 0;
+}
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  return costmap_layers_ros::runProgram(argc, argv, "speed_limiter", [] { return run(); });
 }

@@ -1,4 +1,5 @@
 #include "costmap_layers/ros/costmap_node.hpp"
+#include "costmap_layers/ros/program_main.hpp"
 
 #include <geometry_msgs/PolygonStamped.h>
 #include <map_msgs/OccupancyGridUpdate.h>
@@ -80,7 +81,7 @@ CostmapNode::CostmapNode(ros::NodeHandle nh, ros::NodeHandle private_nh, std::st
   {
     // Logged here, while every member is alive: once the plugin loader is destroyed during unwinding,
     // rosconsole output from this process is no longer reliable.
-    ROS_FATAL("costmap_node: %s", e.what());
+    reportFatal(e.what());  // waits for rosout, so that the line reaches it too
     throw StartupError(e.what());
   }
 }

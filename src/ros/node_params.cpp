@@ -4,6 +4,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "costmap_layers/core/config/input_error.hpp"
+
 namespace costmap_layers_ros
 {
 namespace
@@ -81,8 +83,14 @@ std::string NodeParams::show(const XmlRpc::XmlRpcValue& v)
       out << static_cast<double>(value);
       break;
     case XmlRpc::XmlRpcValue::TypeString:
-      out << '"' << static_cast<std::string>(value) << '"';
+    {
+      // Clipped, and on one line: a value is quoted in an error, which must stay one readable line.
+      std::string shown;
+      for (const char c : costmap_layers::shownText(static_cast<std::string>(value), 200))
+        shown += c >= ' ' && c != 127 ? c : '?';
+      out << '"' << shown << '"';
       break;
+    }
     case XmlRpc::XmlRpcValue::TypeArray:
       out << "a list of " << value.size();
       break;
@@ -139,6 +147,48 @@ bool NodeParams::getBool(const std::string& name, bool def) const
   if (!v) return def;
   if (v->getType() != XmlRpc::XmlRpcValue::TypeBoolean) fail(name, "must be true or false");
   return static_cast<bool>(const_cast<XmlRpc::XmlRpcValue&>(*v));
+}
+
+void NodeParams::refuse(const std::string& name, const std::string& why) const
+{
+  throw std::invalid_argument("parameter " + where_ + name + ": " + why);
+}
+
+std::string NodeParams::getTopic(const std::string& name, const std::string& def, bool allow_private) const
+{
+  const std::string topic = getString(name, def);
+  if (const std::string why = costmap_layers::rosNameProblem(topic, allow_private); !why.empty())
+    refuse(name, "the topic " + (topic.empty() ? std::string("is empty") : why) +
+                     (allow_private || topic.empty() || topic[0] != '~'
+                          ? ""
+                          : " (a private name would be this node's own namespace, not the one it names)"));
+  return topic;
+}
+
+std::string NodeParams::getFrameId(const std::string& name, const std::string& def) const
+{
+  const std::string frame = getString(name, def);
+  if (const std::string why = costmap_layers::frameIdProblem(frame); !why.empty()) refuse(name, "the frame id " + why);
+  return frame;
+}
+
+std::string NodeParams::getFile(const std::string& name) const
+{
+  const std::string file = getString(name, "");
+  if (file.empty()) refuse(name, "is not set (a file name is needed)");
+  return file;
+}
+
+double NodeParams::getDoubleIn(const std::string& name, double def, double min, double max) const
+{
+  const double v = getDouble(name, def);
+  if (v < min || v > max)
+  {
+    std::ostringstream range;
+    range << "must be in [" << min << ", " << max << "]";
+    fail(name, range.str());
+  }
+  return v;
 }
 
 std::vector<std::string> NodeParams::unknownKeys(const std::vector<std::string>& known) const

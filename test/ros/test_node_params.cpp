@@ -157,3 +157,65 @@ TEST(NodeParams, ShowWritesAValueAsTheUserWroteIt)
   EXPECT_EQ(NodeParams::show(dict), "a dictionary");
   EXPECT_EQ(NodeParams::show(XmlRpc::XmlRpcValue()), "an unsupported value");
 }
+
+// The named kinds of value every program reads the same way (issue 34): a topic, a frame id, a file, a
+// number in a range. Each error names the parameter and shows the value as it was written.
+TEST(NodeParams, TopicsFollowRosNamingRules)
+{
+  XmlRpc::XmlRpcValue v;
+  v["good"] = std::string("/map_filter");
+  v["relative"] = std::string("zone/mask");
+  v["private"] = std::string("~private_mask");
+  v["space"] = std::string("9 lives");
+  v["accent"] = std::string("kart\xc3\xa9");
+  v["empty"] = std::string("");
+  v["number"] = 7;
+  const NodeParams p(v, "/zone_server");
+  EXPECT_EQ(p.getTopic("good", "/x"), "/map_filter");
+  EXPECT_EQ(p.getTopic("relative", "/x"), "zone/mask");
+  EXPECT_EQ(p.getTopic("missing", "/default"), "/default");
+  EXPECT_EQ(p.getTopic("private", "/x"), "~private_mask");
+  const std::string priv = errorOf([&] { p.getTopic("private", "/x", false); });
+  EXPECT_EQ(priv.find("parameter ~private: the topic"), 0u) << priv;
+  EXPECT_NE(priv.find("~private_mask"), std::string::npos) << priv;
+  const std::string space = errorOf([&] { p.getTopic("space", "/x"); });
+  EXPECT_EQ(space.find("parameter ~space: the topic"), 0u) << space;
+  EXPECT_NE(space.find("9 lives"), std::string::npos) << space;
+  EXPECT_EQ(errorOf([&] { p.getTopic("accent", "/x"); }).find("parameter ~accent: the topic"), 0u);
+  EXPECT_EQ(errorOf([&] { p.getTopic("empty", "/x"); }), "parameter ~empty: the topic is empty");
+  EXPECT_EQ(errorOf([&] { p.getTopic("number", "/x"); }), "parameter ~number must be a string (got 7)");
+  // The default is checked by the same rule: a program's own default may not slip by.
+  EXPECT_EQ(errorOf([&] { p.getTopic("missing", "a b"); }).find("parameter ~missing: the topic"), 0u);
+}
+
+TEST(NodeParams, FrameIdsFilesAndRanges)
+{
+  XmlRpc::XmlRpcValue v;
+  v["frame"] = std::string("base_link");
+  v["newline"] = std::string("map\nodom");
+  v["space"] = std::string("ma p");
+  v["long"] = std::string(257, 'f');
+  v["file"] = std::string("zones.yaml");
+  v["no_file"] = std::string("");
+  v["rate"] = 5;
+  v["low"] = -1.0;
+  v["word"] = std::string("fast");
+  const NodeParams p(v, "/mask_server");
+  EXPECT_EQ(p.getFrameId("frame", "map"), "base_link");
+  EXPECT_EQ(p.getFrameId("missing", "map"), "map");
+  for (const char* bad : {"newline", "space", "long"})
+  {
+    const std::string e = errorOf([&] { p.getFrameId(bad, "map"); });
+    EXPECT_EQ(e.find(std::string("parameter ~") + bad + ": the frame id"), 0u) << e;
+  }
+  // A control character is never printed as itself: one error is one line.
+  EXPECT_EQ(errorOf([&] { p.getFrameId("newline", "map"); }).find('\n'), std::string::npos);
+  EXPECT_EQ(p.getFile("file"), "zones.yaml");
+  EXPECT_EQ(errorOf([&] { p.getFile("no_file"); }), "parameter ~no_file: is not set (a file name is needed)");
+  EXPECT_EQ(errorOf([&] { p.getFile("missing"); }), "parameter ~missing: is not set (a file name is needed)");
+  EXPECT_EQ(p.getDoubleIn("rate", 1.0, 0.0, 5.0), 5.0);  // the edges are inside
+  EXPECT_EQ(p.getDoubleIn("missing", 2.5, 0.0, 5.0), 2.5);
+  EXPECT_EQ(errorOf([&] { p.getDoubleIn("rate", 1.0, 0.0, 4.5); }), "parameter ~rate must be in [0, 4.5] (got 5)");
+  EXPECT_EQ(errorOf([&] { p.getDoubleIn("low", 1.0, 0.0, 10.0); }), "parameter ~low must be in [0, 10] (got -1)");
+  EXPECT_EQ(errorOf([&] { p.getDoubleIn("word", 1.0, 0.0, 10.0); }), "parameter ~word must be a number (got \"fast\")");
+}

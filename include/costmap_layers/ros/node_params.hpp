@@ -40,6 +40,15 @@ public:
   /// An int or a double; NaN and infinities are refused.
   double getDouble(const std::string& name, double def) const;
   bool getBool(const std::string& name, bool def) const;
+  /// A topic name by ROS's rule (rosNameProblem); a private '~name' only when allow_private. A space,
+  /// a non-ASCII letter or an empty name is an error naming the parameter, never roscpp's abort later.
+  std::string getTopic(const std::string& name, const std::string& def, bool allow_private = true) const;
+  /// A tf frame id (frameIdProblem: printable ASCII, no spaces).
+  std::string getFrameId(const std::string& name, const std::string& def) const;
+  /// A file name: a non-empty string (whether it loads is the loader's to say, with the path).
+  std::string getFile(const std::string& name) const;
+  /// A number in [min, max]; the error names the range.
+  double getDoubleIn(const std::string& name, double def, double min, double max) const;
 
   /// The scalar keys not in `known` (sub-dictionaries are other nodes' sections of the same file, or
   /// not ours: left alone), and `use_sim_time`, which is reported separately.
@@ -55,6 +64,8 @@ public:
 private:
   const XmlRpc::XmlRpcValue* find(const std::string& name) const;
   [[noreturn]] void fail(const std::string& name, const std::string& what) const;
+  /// fail() with the value shown by `why` (the rule's reason quotes it, clipped).
+  [[noreturn]] void refuse(const std::string& name, const std::string& why) const;
 
   XmlRpc::XmlRpcValue values_;
   std::string where_ = "~";
