@@ -186,8 +186,8 @@ std::optional<double> parseFloat(const std::string& s, bool rosparam_floats)
 class Converter
 {
 public:
-  Converter(const std::string& what, bool rosparam_floats, std::vector<std::string>* repeated_keys)
-      : what_(what), rosparam_floats_(rosparam_floats), repeated_keys_(repeated_keys)
+  Converter(const std::string& what, bool rosparam_floats, std::vector<std::string>* repeated_keys, uint64_t max_nodes)
+      : what_(what), rosparam_floats_(rosparam_floats), repeated_keys_(repeated_keys), max_nodes_(max_nodes)
   {
   }
 
@@ -195,8 +195,8 @@ public:
   {
     if (depth > kMaxDepth) fail(node, "nesting deeper than " + std::to_string(kMaxDepth) + " levels");
     // Every value converted counts, however it was reached: an alias is expanded into a copy here.
-    if (++nodes_ > kMaxYamlNodes)
-      fail(node, "the document expands to more than " + std::to_string(kMaxYamlNodes) +
+    if (++nodes_ > max_nodes_)
+      fail(node, "the document expands to more than " + std::to_string(max_nodes_) +
                      " values (aliases (*name) are copied each time they are used: is it an alias bomb?)");
     switch (node.Type())
     {
@@ -337,6 +337,7 @@ private:
   bool rosparam_floats_;  ///< type plain floats as PyYAML does (see parseParamsYaml)
   std::vector<std::string>* repeated_keys_;
   uint64_t repeats_ = 0;
+  uint64_t max_nodes_;
   uint64_t nodes_ = 0;
 };
 }  // namespace
@@ -356,7 +357,7 @@ ParamValue typePlainScalar(const std::string& text, bool rosparam_floats)
 }
 
 ParamValue parseParamsYaml(const std::string& text, const std::string& what, bool rosparam_floats,
-                           std::vector<std::string>* repeated_keys)
+                           std::vector<std::string>* repeated_keys, uint64_t max_nodes)
 {
   YAML::Node root;
   try
@@ -370,7 +371,7 @@ ParamValue parseParamsYaml(const std::string& text, const std::string& what, boo
   }
   try
   {
-    Converter converter(what, rosparam_floats, repeated_keys);
+    Converter converter(what, rosparam_floats, repeated_keys, max_nodes);
     ParamValue tree = converter.convert(root, 0);
     converter.finishRepeats();
     return tree;
@@ -382,10 +383,11 @@ ParamValue parseParamsYaml(const std::string& text, const std::string& what, boo
 }
 
 ParamValue loadParamsYamlFile(const std::string& path, uint64_t max_bytes, bool rosparam_floats,
-                              std::vector<std::string>* repeated_keys)
+                              std::vector<std::string>* repeated_keys, uint64_t max_nodes)
 {
   const std::vector<uint8_t> bytes = readRegularFile(path, "params file", max_bytes);
-  return parseParamsYaml(std::string(bytes.begin(), bytes.end()), "'" + path + "'", rosparam_floats, repeated_keys);
+  return parseParamsYaml(std::string(bytes.begin(), bytes.end()), "'" + path + "'", rosparam_floats, repeated_keys,
+                         max_nodes);
 }
 
 void refuseRepeatedKeys(const std::vector<std::string>& repeated_keys)
@@ -396,10 +398,10 @@ void refuseRepeatedKeys(const std::vector<std::string>& repeated_keys)
       (repeated_keys.size() > 1 ? " (" + std::to_string(repeated_keys.size() - 1) + " more repeated keys)" : ""));
 }
 
-ParamValue loadOwnFormatYamlFile(const std::string& path, uint64_t max_bytes)
+ParamValue loadOwnFormatYamlFile(const std::string& path, uint64_t max_bytes, uint64_t max_nodes)
 {
   std::vector<std::string> repeated;
-  ParamValue tree = loadParamsYamlFile(path, max_bytes, false, &repeated);
+  ParamValue tree = loadParamsYamlFile(path, max_bytes, false, &repeated, max_nodes);
   refuseRepeatedKeys(repeated);
   return tree;
 }

@@ -1,6 +1,5 @@
 #include "costmap_layers/ros/zone_editor.hpp"
 
-#include <climits>
 #include <exception>
 #include <stdexcept>
 #include <utility>
@@ -56,22 +55,9 @@ bool parseHandleName(const std::string& marker, std::string* shape, std::size_t*
   return true;
 }
 
-std::string badZoneFilename(const std::string& name)
-{
-  if (name.empty()) return "";
-  if (name.size() > static_cast<std::size_t>(PATH_MAX))
-    return "filename '" + name.substr(0, 64) + "...' has " + std::to_string(name.size()) + " characters, more than " +
-           std::to_string(PATH_MAX) + " (PATH_MAX)";
-  auto ends_with = [&](const std::string& tail)
-  { return name.size() > tail.size() && name.compare(name.size() - tail.size(), tail.size(), tail) == 0; };
-  if (!ends_with(".yaml") && !ends_with(".yml"))
-    return "filename '" + name.substr(0, 64) + (name.size() > 64 ? "..." : "") +
-           "' does not end in .yaml or .yml: zone files are YAML, and no other file is read or written";
-  return "";
-}
-
-ZoneEditor::ZoneEditor(costmap_layers::ZoneSet zones, std::string yaml_filename)
-    : zones_(std::move(zones)), yaml_filename_(std::move(yaml_filename))
+ZoneEditor::ZoneEditor(costmap_layers::ZoneSet zones, const std::string& yaml_filename,
+                       const std::string& save_directory)
+    : zones_(std::move(zones)), folder_(yaml_filename, save_directory)
 {
 }
 
@@ -103,35 +89,41 @@ ZoneEdit ZoneEditor::remove(const std::string& name)
 ZoneEdit ZoneEditor::save(const std::string& filename) const
 {
   ZoneEdit r;
-  const std::string path = filename.empty() ? yaml_filename_ : filename;
-  if (const std::string why = badZoneFilename(filename); !why.empty())
-  {
-    r.message = why;
-    r.error = InputError::of("save/filename", why);
-    return r;
-  }
+  std::string path;
   try
   {
-    costmap_layers::io::saveZoneFile(path, zones_.layout());
-    r.success = true;
-    r.message = path;
+    path = folder_.fileToSave(filename);
   }
   catch (const std::exception& e)
   {
-    r.message = e.what();
-    r.error = InputError::of("save", e.what());
+    r.error = InputError::of("save/filename", e.what());
   }
+  if (r.error.ok()) try
+    {
+      costmap_layers::io::saveZoneFile(path, zones_.layout());
+      r.success = true;
+    }
+    catch (const std::exception& e)
+    {
+      r.error = InputError::of("save", e.what());
+    }
+  r.message = r.success ? path : r.error.message;
   return r;
 }
 
 ZoneEdit ZoneEditor::load(const std::string& filename)
 {
   ZoneEdit r;
-  const std::string path = filename.empty() ? yaml_filename_ : filename;
-  if (const std::string why = badZoneFilename(filename); !why.empty())
-    r.error = InputError::of("load/filename", why);
-  else
-    try
+  std::string path;
+  try
+  {
+    path = folder_.fileToLoad(filename);
+  }
+  catch (const std::exception& e)
+  {
+    r.error = InputError::of("load/filename", e.what());
+  }
+  if (r.error.ok()) try
     {
       r.error = zones_.replace(costmap_layers::io::loadZoneFile(path));
     }
@@ -140,7 +132,7 @@ ZoneEdit ZoneEditor::load(const std::string& filename)
       r.error = InputError::of("load", e.what());
     }
   r.success = r.error.ok();
-  r.message = r.error.ok() ? "loaded " + path : r.error.message;
+  r.message = r.success ? "loaded " + path : r.error.message;
   return r;
 }
 
@@ -154,10 +146,12 @@ ZoneDrag ZoneEditor::drag(const std::string& marker, const std::string& frame_id
   d.applies = true;
   const std::vector<costmap_layers::ZonePoint> old_handles = costmap_layers::zoneHandles(*before);
   d.frame = zones_.layout().frame_id;
-  if (frame_id != d.frame)
+  if (const std::string why = costmap_layers::frameIdProblem(frame_id); !why.empty())
+    d.error = InputError::of("feedback/header.frame_id", "marker feedback for " + marker + ": header.frame_id " + why);
+  else if (frame_id != d.frame)
     d.error = InputError::of("feedback/header.frame_id", "marker feedback for " + marker + " is in frame '" +
-                                                             frame_id.substr(0, 64) + "', the zones are in '" +
-                                                             d.frame + "'");
+                                                             costmap_layers::shownText(frame_id) +
+                                                             "', the zones are in '" + d.frame + "'");
   else
     d.error = zones_.moveHandle(shape, d.index, x, y);
   if (!d.error.ok())

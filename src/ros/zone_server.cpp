@@ -4,7 +4,10 @@
 #include <visualization_msgs/InteractiveMarkerControl.h>
 #include <visualization_msgs/Marker.h>
 
+#include <sys/stat.h>
+
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <stdexcept>
 
@@ -21,6 +24,19 @@ using costmap_layers::ZoneShapeType;
 
 namespace
 {
+/// The zone file named at start-up; an error names the parameter that named it.
+costmap_layers::ZoneLayout loadStartFile(const ZoneServer::Options& o)
+{
+  try
+  {
+    return costmap_layers::io::loadZoneFile(o.yaml_filename);
+  }
+  catch (const std::exception& e)
+  {
+    throw std::runtime_error("parameter " + o.file_parameter + ": " + e.what());
+  }
+}
+
 constexpr double kHandleSize = 0.25;  ///< [m] diameter of a handle's sphere in RViz
 constexpr int kCircleSegments = 72;   ///< of a circle's drawn outline
 
@@ -66,12 +82,13 @@ visualization_msgs::InteractiveMarker handleMarker(const std::string& frame, con
   return im;
 }
 
-/// A shape's outline, drawn only (named like the shape: no handle has that name).
+/// A shape's outline, drawn only, named "<shape>/outline": a handle's name ends in a number, "center" or
+/// "radius", so no two markers share a name whatever the shape names hold ('/' included).
 visualization_msgs::InteractiveMarker outlineMarker(const std::string& frame, const costmap_layers::ZoneShape& s)
 {
   visualization_msgs::InteractiveMarker im;
   im.header.frame_id = frame;
-  im.name = s.name;
+  im.name = s.name + "/outline";
   im.description = s.name + " (" + std::to_string(s.value) + ")";
   im.pose.orientation.w = 1.0;
   visualization_msgs::InteractiveMarkerControl control;
@@ -125,15 +142,24 @@ ZoneServer::Options ZoneServer::readOptions(const ros::NodeHandle& pnh)
 {
   const NodeParams params(pnh);
   const std::string node = ros::this_node::getName();
-  for (const auto& key : params.unknownKeys({"yaml_filename", "topic", "markers"}))
-    ROS_WARN("%s: parameter %s%s is not one of yaml_filename, topic, markers: ignored [%s/unknown]", node.c_str(),
-             params.where().c_str(), key.c_str(), node.c_str());
+  for (const auto& key : params.unknownKeys({"yaml_filename", "topic", "markers", "save_directory", "publish_rate"}))
+    ROS_WARN(
+        "%s: parameter %s%s is not one of yaml_filename, topic, markers, save_directory, publish_rate: ignored "
+        "[%s/unknown]",
+        node.c_str(), params.where().c_str(), key.c_str(), node.c_str());
   Options o;
-  o.yaml_filename = params.getString("yaml_filename", "");
-  if (o.yaml_filename.empty()) throw std::invalid_argument("parameter " + params.where() + "yaml_filename is not set");
-  o.topic = params.getString("topic", o.topic);
-  if (o.topic.empty()) throw std::invalid_argument("parameter " + params.where() + "topic is empty");
+  o.yaml_filename = params.getFile("yaml_filename");
+  o.file_parameter = params.where() + "yaml_filename";
+  o.topic = params.getTopic("topic", o.topic);
   o.markers = params.getBool("markers", o.markers);
+  o.save_directory = params.getString("save_directory", o.save_directory);
+  for (std::size_t k = 0; k < o.save_directory.size(); ++k)
+    if (static_cast<unsigned char>(o.save_directory[k]) < ' ' || o.save_directory[k] == 127)
+      throw std::invalid_argument("parameter " + params.where() + "save_directory has character code " +
+                                  std::to_string(static_cast<unsigned char>(o.save_directory[k])) + " at position " +
+                                  std::to_string(k) + ": a folder name holds no control characters");
+  o.publish_rate = params.getDoubleIn("publish_rate", o.publish_rate, costmap_layers::limits::kMinFrequency,
+                                      costmap_layers::limits::kMaxFrequency);
   return o;
 }
 
@@ -143,8 +169,18 @@ ZoneServer::ZoneServer(ros::NodeHandle nh, ros::NodeHandle pnh, Options options)
       options_(std::move(options)),
       node_(ros::this_node::getName()),
       log_(std::make_shared<ThrottledLog>()),
-      editor_(costmap_layers::ZoneSet(costmap_layers::io::loadZoneFile(options_.yaml_filename)), options_.yaml_filename)
+      info_log_(1.0),
+      editor_(costmap_layers::ZoneSet(loadStartFile(options_)), options_.yaml_filename, options_.save_directory)
 {
+  // Not fatal: the folder may be made later (it is resolved at each request), but say so now.
+  struct stat st
+  {
+  };
+  if (::stat(editor_.folder().directory().c_str(), &st) != 0 || !S_ISDIR(st.st_mode))
+    ROS_WARN(
+        "%s: the save directory '%s' (~save_directory) is not a folder now: save and load will refuse every "
+        "named file until it is [%s/save_directory]",
+        node_.c_str(), costmap_layers::shownText(editor_.folder().directory(), 200).c_str(), node_.c_str());
   mask_pub_ = nh_.advertise<nav_msgs::OccupancyGrid>(options_.topic, 1, true);
   if (options_.markers) markers_ = std::make_unique<interactive_markers::InteractiveMarkerServer>(node_);
   set_srv_ = pnh_.advertiseService("set_shape", &ZoneServer::onSet, this);
@@ -158,6 +194,21 @@ ZoneServer::ZoneServer(ros::NodeHandle nh, ros::NodeHandle pnh, Options options)
     drawn = editor_.zones().layout();
   }
   rebuildMarkers(drawn);
+  publish_timer_ =
+      nh_.createSteadyTimer(ros::WallDuration(1.0 / options_.publish_rate), &ZoneServer::onPublishTimer, this);
+}
+
+void ZoneServer::changed()
+{
+  dirty_ = true;
+}
+
+void ZoneServer::onPublishTimer(const ros::SteadyTimerEvent&)
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (!dirty_) return;
+  dirty_ = false;
+  publish();
 }
 
 void ZoneServer::publish()
@@ -168,12 +219,14 @@ void ZoneServer::publish()
   std::size_t claimed = 0;
   for (const int8_t v : grid.data)
     claimed += v != zones.layout().default_value;
-  ROS_INFO(
-      "%s: publishing %zu shape(s) on %s: %ux%u cells at %g m/cell, origin (%g, %g), frame %s, %zu cell(s) "
-      "not at default_value %d [%s/published]",
-      node_.c_str(), zones.layout().shapes.size(), mask_pub_.getTopic().c_str(), grid.width, grid.height,
-      grid.resolution, grid.origin_x, grid.origin_y, grid.frame_id.c_str(), claimed, zones.layout().default_value,
-      node_.c_str());
+  char line[1024];
+  std::snprintf(line, sizeof(line),
+                "%s: publishing %zu shape(s) on %s: %ux%u cells at %g m/cell, origin (%g, %g), frame %s, %zu "
+                "cell(s) not at default_value %d",
+                node_.c_str(), zones.layout().shapes.size(), mask_pub_.getTopic().c_str(), grid.width, grid.height,
+                grid.resolution, grid.origin_x, grid.origin_y, grid.frame_id.c_str(), claimed,
+                zones.layout().default_value);
+  info_log_.log(costmap_layers::Severity::Info, node_ + "/published", line);
 }
 
 void ZoneServer::rebuildMarkers(const ZoneLayout& l)
@@ -237,7 +290,7 @@ void ZoneServer::onFeedback(const visualization_msgs::InteractiveMarkerFeedbackC
                  std::to_string(f->pose.position.y) + ")",
              drag.error);
     else
-      publish();
+      changed();
   }
   const std::optional<ZonePoint>& put_back = drag.put_back;
   const std::optional<costmap_layers::ZoneShape>& moved = drag.moved;
@@ -278,7 +331,7 @@ bool ZoneServer::onSet(costmap_layers::SetZoneShape::Request& req, costmap_layer
     refuse("set_shape", edit.error);
     return true;
   }
-  publish();
+  changed();
   return redraw(lock);
 }
 
@@ -293,7 +346,7 @@ bool ZoneServer::onRemove(costmap_layers::RemoveZoneShape::Request& req, costmap
     refuse("remove_shape", edit.error);
     return true;
   }
-  publish();
+  changed();
   return redraw(lock);
 }
 
@@ -324,7 +377,7 @@ bool ZoneServer::onLoad(costmap_layers::LoadZones::Request& req, costmap_layers:
     refuse("load", edit.error);
     return true;
   }
-  publish();
+  changed();
   return redraw(lock);
 }
 }  // namespace costmap_layers_ros

@@ -2,10 +2,13 @@
 // marker drag do to the shapes in force and what they answer; no node, no marker server.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
 #include <unistd.h>
+
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include "costmap_layers/ros/zone_editor.hpp"
@@ -49,6 +52,12 @@ costmap_layers::ZoneShapeDescription circle(const std::string& name, double x, d
   d.center.y = y;
   d.radius = r;
   return d;
+}
+
+std::string contents(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
 /// A fresh directory, removed with its files at the end of the test.
@@ -200,15 +209,17 @@ TEST(ZoneEditor, HandleNames)
 
 TEST(ZoneEditor, OnlyYamlFileNamesOfAPathsLength)
 {
-  EXPECT_EQ(costmap_layers_ros::badZoneFilename(""), "");
-  EXPECT_EQ(costmap_layers_ros::badZoneFilename("/tmp/a.yaml"), "");
-  EXPECT_EQ(costmap_layers_ros::badZoneFilename("/tmp/a.yml"), "");
-  EXPECT_EQ(costmap_layers_ros::badZoneFilename("/etc/passwd"),
+  using costmap_layers::io::zoneFilenameProblem;
+  EXPECT_EQ(zoneFilenameProblem(""), "");
+  EXPECT_EQ(zoneFilenameProblem("/tmp/a.yaml"), "");
+  EXPECT_EQ(zoneFilenameProblem("/tmp/a.yml"), "");
+  EXPECT_EQ(zoneFilenameProblem("/etc/passwd"),
             "filename '/etc/passwd' does not end in .yaml or .yml: zone files are YAML, and no other file is read "
             "or written");
-  EXPECT_NE(costmap_layers_ros::badZoneFilename(".yaml"), "");  // nothing before the extension
+  EXPECT_NE(zoneFilenameProblem(".yaml"), "");  // nothing before the extension
+  EXPECT_NE(zoneFilenameProblem("dir/.yaml"), "");
   const std::string huge = "/tmp/" + std::string(5000, 'f') + ".yaml";
-  EXPECT_EQ(costmap_layers_ros::badZoneFilename(huge),
+  EXPECT_EQ(zoneFilenameProblem(huge),
             "filename '/tmp/" + std::string(59, 'f') + "...' has 5010 characters, more than 4096 (PATH_MAX)");
 }
 
@@ -243,12 +254,19 @@ TEST(ZoneEditor, RefusedSavesAndLoadsChangeNothing)
   const auto not_yaml = e.save(target);
   EXPECT_FALSE(not_yaml.success);
   EXPECT_EQ(not_yaml.error.field, "save/filename");
-  std::ifstream in(target);
-  std::string kept((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  EXPECT_EQ(kept, "keep me\n");
+  EXPECT_EQ(contents(target), "keep me\n");
   const auto no_dir = e.save(dir.path + "/no/such/dir/z.yaml");
   EXPECT_FALSE(no_dir.success);
-  EXPECT_EQ(no_dir.error.field, "save");
+  EXPECT_EQ(no_dir.error.field, "save/filename");
+  // A YAML file in the folder that is not a zone file: the name is fine, the write is refused.
+  {
+    std::ofstream(dir.path + "/params.yaml") << "robot_radius: 0.3\n";
+  }
+  const auto not_zones = e.save("params.yaml");
+  EXPECT_FALSE(not_zones.success);
+  EXPECT_EQ(not_zones.error.field, "save");
+  EXPECT_NE(not_zones.message.find("not a zone file"), std::string::npos) << not_zones.message;
+  EXPECT_EQ(contents(dir.path + "/params.yaml"), "robot_radius: 0.3\n");
   const auto bad_name = e.load("/etc/passwd");
   EXPECT_FALSE(bad_name.success);
   EXPECT_EQ(bad_name.error.field, "load/filename");
@@ -257,4 +275,93 @@ TEST(ZoneEditor, RefusedSavesAndLoadsChangeNothing)
   EXPECT_EQ(missing.error.field, "load");
   EXPECT_EQ(missing.message, missing.error.message);
   EXPECT_EQ(e.zones().layout().shapes.size(), 2u);
+}
+
+TEST(ZoneEditor, SaveAndLoadStayInTheSaveDirectory)
+{
+  // The layout: <dir>/zones holds the zone file, <dir>/robot a robot's parameters.
+  TempDir dir;
+  ASSERT_EQ(::mkdir((dir.path + "/zones").c_str(), 0755), 0);
+  ASSERT_EQ(::mkdir((dir.path + "/zones/sub").c_str(), 0755), 0);
+  ASSERT_EQ(::mkdir((dir.path + "/robot").c_str(), 0755), 0);
+  const std::string params = dir.path + "/robot/params.yaml";
+  {
+    std::ofstream(params) << "robot_radius: 0.3\n";
+  }
+  ASSERT_EQ(::symlink((dir.path + "/robot").c_str(), (dir.path + "/zones/robot").c_str()), 0);
+  ZoneEditor e(layout(), dir.path + "/zones/zones.yaml");
+  ASSERT_TRUE(e.save("").success);
+  // The name, and others of its class: '..', an absolute path elsewhere, a linked folder
+  // leading out, a control character. Each refused for a save and for a load, nothing written.
+  for (const std::string name :
+       {dir.path + "/zones/sub/../../robot/params.yaml", std::string("../robot/params.yaml"), params,
+        std::string("robot/params.yaml"), std::string("robot/new.yaml"), std::string("new\n.yaml")})
+  {
+    const auto saved = e.save(name);
+    EXPECT_FALSE(saved.success) << name;
+    EXPECT_EQ(saved.error.field, "save/filename") << name;
+    EXPECT_EQ(saved.message.find('\n'), std::string::npos) << saved.message;
+    const auto loaded = e.load(name);
+    EXPECT_FALSE(loaded.success) << name;
+    EXPECT_EQ(loaded.error.field, "load/filename") << name;
+  }
+  EXPECT_EQ(contents(params), "robot_radius: 0.3\n");
+  EXPECT_NE(::access((dir.path + "/robot/new.yaml").c_str(), F_OK), 0);
+  // Inside: a relative name, a subfolder, an absolute name.
+  for (const std::string name : {std::string("copy.yaml"), std::string("sub/copy.yaml"), dir.path + "/zones/abs.yaml"})
+  {
+    const auto saved = e.save(name);
+    ASSERT_TRUE(saved.success) << name << ": " << saved.message;
+    EXPECT_TRUE(e.load(name).success) << name;
+  }
+  EXPECT_EQ(e.save("sub/copy.yaml").message, dir.path + "/zones/sub/copy.yaml");
+  // Another save directory, named by the parameter: names go there, the empty name to the loaded file.
+  ZoneEditor other(layout(), dir.path + "/zones/zones.yaml", dir.path + "/robot");
+  EXPECT_EQ(other.save("zones_copy.yaml").message, dir.path + "/robot/zones_copy.yaml");
+  EXPECT_EQ(other.save("").message, dir.path + "/zones/zones.yaml");
+  EXPECT_FALSE(other.save("params.yaml").success);  // inside, but not a zone file
+  EXPECT_FALSE(other.save(dir.path + "/zones/copy.yaml").success);
+  EXPECT_EQ(contents(params), "robot_radius: 0.3\n");
+}
+
+TEST(ZoneEditor, SavingTheLoadedFileThroughALinkKeepsTheLinkAndTheMode)
+{
+  TempDir dir;
+  ASSERT_EQ(::mkdir((dir.path + "/shared").c_str(), 0755), 0);
+  ZoneEditor writer(layout(), dir.path + "/shared/zones.yaml");
+  ASSERT_TRUE(writer.save("").success);
+  ASSERT_EQ(::chmod((dir.path + "/shared/zones.yaml").c_str(), 0600), 0);
+  ASSERT_EQ(::symlink((dir.path + "/shared/zones.yaml").c_str(), (dir.path + "/zones.yaml").c_str()), 0);
+  ZoneEditor e(layout(), dir.path + "/zones.yaml");
+  ASSERT_TRUE(e.remove("slow").success);
+  const auto saved = e.save("");
+  ASSERT_TRUE(saved.success) << saved.message;
+  EXPECT_EQ(saved.message, dir.path + "/shared/zones.yaml");
+  struct stat st
+  {
+  };
+  ASSERT_EQ(::lstat((dir.path + "/zones.yaml").c_str(), &st), 0);
+  EXPECT_TRUE(S_ISLNK(st.st_mode));
+  ASSERT_EQ(::stat((dir.path + "/shared/zones.yaml").c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 07777, 0600u);
+  EXPECT_EQ(costmap_layers::io::loadZoneFile(dir.path + "/shared/zones.yaml").shapes.size(), 1u);
+}
+
+TEST(ZoneEditor, FeedbackInAMalformedFrameIsRefusedWithoutEchoingIt)
+{
+  ZoneEditor e(layout(), "/unused.yaml");
+  // "map\nodom" would have put a line break into the log line; a space, a tab, a DEL, a huge frame too.
+  for (const std::string frame : {std::string("map\nodom"), std::string("map odom"), std::string("map\t"),
+                                  std::string("map\x7f"), std::string(100000, 'm')})
+  {
+    const auto d = e.drag("dock/2", frame, 3.5, 2.5);
+    EXPECT_TRUE(d.applies);
+    EXPECT_EQ(d.error.field, "feedback/header.frame_id");
+    EXPECT_NE(d.error.message.find("a frame id"), std::string::npos) << d.error.message;
+    EXPECT_EQ(d.error.message.find_first_of("\n\t\x7f"), std::string::npos) << d.error.message;
+    EXPECT_LT(d.error.message.size(), 400u);
+    ASSERT_TRUE(d.put_back);
+    EXPECT_EQ(e.zones().find("dock")->points[2].x, 3.0);
+  }
+  EXPECT_EQ(e.drag("dock/2", "", 3.5, 2.5).error.field, "feedback/header.frame_id");
 }

@@ -53,18 +53,21 @@ constexpr uint64_t kMaxYamlNodes = uint64_t{1} << 18;
 
 /// Parses YAML text; `what` names the source in error messages (e.g. a file name or "--params").
 /// repeated_keys, when given, receives one line per key written twice in one map (where, which key,
-/// where it was first), for the first 20 such keys, then one line counting the rest.
+/// where it was first), for the first 20 such keys, then one line counting the rest. max_nodes: the
+/// value budget (kMaxYamlNodes; a format with a larger byte cap passes its own, e.g. zone files).
 ParamValue parseParamsYaml(const std::string& text, const std::string& what, bool rosparam_floats = false,
-                           std::vector<std::string>* repeated_keys = nullptr);
+                           std::vector<std::string>* repeated_keys = nullptr, uint64_t max_nodes = kMaxYamlNodes);
 
 /// Reads and parses a YAML file: a regular file of at most max_bytes (file_limits.hpp); an error
 /// names the path when it cannot be opened, is not a regular file or is too large.
 ParamValue loadParamsYamlFile(const std::string& path, uint64_t max_bytes = kMaxParamsYamlBytes,
-                              bool rosparam_floats = false, std::vector<std::string>* repeated_keys = nullptr);
+                              bool rosparam_floats = false, std::vector<std::string>* repeated_keys = nullptr,
+                              uint64_t max_nodes = kMaxYamlNodes);
 
 /// loadParamsYamlFile for this package's own file formats (zones, features): there is no rosparam
 /// habit to keep, so a key written twice in one map, whose first value would be lost, refuses the file.
-ParamValue loadOwnFormatYamlFile(const std::string& path, uint64_t max_bytes = kMaxParamsYamlBytes);
+ParamValue loadOwnFormatYamlFile(const std::string& path, uint64_t max_bytes = kMaxParamsYamlBytes,
+                                 uint64_t max_nodes = kMaxYamlNodes);
 
 /// Throws, naming the first of repeated_keys (parseParamsYaml's lines) and how many more, unless empty.
 void refuseRepeatedKeys(const std::vector<std::string>& repeated_keys);

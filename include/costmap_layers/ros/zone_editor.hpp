@@ -11,6 +11,7 @@
 #include "costmap_layers/ZoneShapeDescription.h"
 #include "costmap_layers/core/config/input_error.hpp"
 #include "costmap_layers/core/zones/zone_shapes.hpp"
+#include "costmap_layers/io/zone_file.hpp"
 
 namespace costmap_layers_ros
 {
@@ -21,12 +22,6 @@ costmap_layers::ZoneShape fromMsg(const costmap_layers::ZoneShapeDescription& ms
 /// How a marker name maps to a shape handle: "<shape>/<k>" for polygon vertex k, "<shape>/center" and
 /// "<shape>/radius" for a circle's handles 0 and 1. @return false for any other name.
 bool parseHandleName(const std::string& marker, std::string* shape, std::size_t* index);
-
-/// Why a file name a peer sent cannot be used ("" when it can; an empty one means ~yaml_filename, taken
-/// as configured). No path is longer than PATH_MAX, and a peer's megabyte name must not come back whole
-/// in the answer and the log. Zone files are YAML by their name: a peer cannot make the server read or
-/// overwrite any other file (/etc/passwd, a key, a sudoers.d entry), only *.yaml and *.yml ones.
-std::string badZoneFilename(const std::string& name);
 
 /// A service request's outcome: the answer, and for a refusal the error to log (its field is the key).
 struct ZoneEdit
@@ -51,8 +46,10 @@ struct ZoneDrag
 class ZoneEditor
 {
 public:
-  /// @param yaml_filename  the file ~save and ~load use when they are sent no name
-  ZoneEditor(costmap_layers::ZoneSet zones, std::string yaml_filename);
+  /// @param yaml_filename   the file ~save and ~load use when they are sent no name
+  /// @param save_directory  where named files may be read and written (io::ZoneFolder); empty: the
+  ///                        folder of yaml_filename
+  ZoneEditor(costmap_layers::ZoneSet zones, const std::string& yaml_filename, const std::string& save_directory = "");
 
   const costmap_layers::ZoneSet& zones() const { return zones_; }
 
@@ -60,16 +57,21 @@ public:
   ZoneEdit set(const costmap_layers::ZoneShapeDescription& shape);
   /// ~remove_shape. Answers "shape '<name>' removed".
   ZoneEdit remove(const std::string& name);
-  /// ~save: writes the shapes to filename (empty: yaml_filename). Answers with the path written.
+  /// ~save: writes the shapes to filename (empty: yaml_filename), by io::ZoneFolder's rule (inside the
+  /// save directory, through a link to its target, only over a zone file). Answers with the path
+  /// written; a refused name has the key "save/filename", a failed write "save".
   ZoneEdit save(const std::string& filename) const;
-  /// ~load: replaces every shape by the file's (empty: yaml_filename). Answers "loaded <path>".
+  /// ~load: replaces every shape by the file's (empty: yaml_filename), by the same rule. Answers
+  /// "loaded <path>"; keys "load/filename" and "load".
   ZoneEdit load(const std::string& filename);
   /// A drag of the marker named `marker` to (x, y) in frame_id (RViz stamps feedback with the marker's
-  /// frame: a pose in no frame, or another, cannot be placed).
+  /// frame: a pose in no frame, in a malformed one (frameIdProblem()) or in another cannot be placed).
   ZoneDrag drag(const std::string& marker, const std::string& frame_id, double x, double y);
+
+  const costmap_layers::io::ZoneFolder& folder() const { return folder_; }
 
 private:
   costmap_layers::ZoneSet zones_;
-  std::string yaml_filename_;
+  costmap_layers::io::ZoneFolder folder_;
 };
 }  // namespace costmap_layers_ros

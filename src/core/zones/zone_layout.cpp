@@ -1,7 +1,6 @@
 #include "costmap_layers/core/zones/zone_layout.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -144,20 +143,63 @@ const char* zoneOverlayName(ZoneOverlay overlay)
   }
 }
 
+std::string zoneNameText(const std::string& name)
+{
+  std::string shown;
+  for (const char c : name.substr(0, 64))
+    shown += c >= ' ' && c < 127 ? c : '?';
+  return "'" + shown + (name.size() > 64 ? "...' (" + std::to_string(name.size()) + " bytes)" : "'");
+}
+
+std::size_t utf8ErrorAt(const std::string& text)
+{
+  const std::size_t n = text.size();
+  for (std::size_t k = 0; k < n;)
+  {
+    const auto b = [&](std::size_t i) { return i < n ? static_cast<unsigned char>(text[i]) : 0u; };
+    const unsigned c = b(k);
+    // The second byte's range rules out overlong forms, surrogates and code points past U+10FFFF.
+    std::size_t length = 0;
+    unsigned lo = 0x80, hi = 0xBF;
+    if (c < 0x80)
+      length = 1;
+    else if (c >= 0xC2 && c <= 0xDF)
+      length = 2;
+    else if (c >= 0xE0 && c <= 0xEF)
+    {
+      length = 3;
+      if (c == 0xE0) lo = 0xA0;
+      if (c == 0xED) hi = 0x9F;
+    }
+    else if (c >= 0xF0 && c <= 0xF4)
+    {
+      length = 4;
+      if (c == 0xF0) lo = 0x90;
+      if (c == 0xF4) hi = 0x8F;
+    }
+    else
+      return k;
+    for (std::size_t i = 1; i < length; ++i)
+    {
+      const unsigned d = b(k + i);
+      if (d < (i == 1 ? lo : 0x80u) || d > (i == 1 ? hi : 0xBFu)) return k;
+    }
+    k += length;
+  }
+  return std::string::npos;
+}
+
 InputError validateShape(const ZoneShape& s)
 {
   // A bad name never goes into the key or the message whole: a peer's megabyte name would become a
   // megabyte log line and a megabyte entry of the log's throttle table.
-  if (s.name.empty())
-    return InputError::of("shapes/(unnamed)/name", "shapes/(unnamed): a shape name has 1..64 characters (got 0)");
-  if (s.name.size() > 64)
-    return InputError::of("shapes/(bad name)/name", "shape name '" + s.name.substr(0, 64) +
-                                                        "...': a shape name has 1..64 characters (got " +
-                                                        std::to_string(s.name.size()) + ")");
-  for (const char c : s.name)
-    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.'))
-      return InputError::of("shapes/(bad name)/name", "shape name '" + s.name.substr(0, 64) +
-                                                          "' may hold only letters, digits, '_', '-' and '.'");
+  if (const std::string why = labelProblem(s.name); !why.empty())
+    return s.name.empty() ? InputError::of("shapes/(unnamed)/name", "a shape name is empty")
+                          : InputError::of("shapes/(bad name)/name", "shape " + why);
+  // A zone file is YAML, which holds Unicode text: bytes that are not UTF-8 would not read back.
+  if (const std::size_t at = utf8ErrorAt(s.name); at != std::string::npos)
+    return InputError::of("shapes/(bad name)/name",
+                          "shape " + zoneNameText(s.name) + " is not UTF-8 at byte " + std::to_string(at));
   if (s.value < -1 || s.value > 100)
     return InputError::of(where(s) + "/value",
                           where(s) + ": value must be in -1..100 (got " + std::to_string(s.value) + ")");
@@ -215,7 +257,8 @@ InputError checkLayout(const ZoneLayout& layout, bool shapes_valid)
   if (layout.default_value < -1 || layout.default_value > 100)
     return InputError::of("default_value",
                           "default_value must be in -1..100 (got " + std::to_string(layout.default_value) + ")");
-  if (layout.frame_id.empty()) return InputError::of("frame_id", "frame_id is empty");
+  if (const std::string why = frameIdProblem(layout.frame_id); !why.empty())
+    return InputError::of("frame_id", "frame_id " + why);
   if (layout.shapes.size() > limits::kMaxZoneShapes)
     return InputError::of("shapes", "at most " + std::to_string(limits::kMaxZoneShapes) + " shapes (got " +
                                         std::to_string(layout.shapes.size()) + ")");

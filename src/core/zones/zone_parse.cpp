@@ -51,7 +51,7 @@ ZoneShape parseZoneShape(const ParamValue& v, const std::string& what)
   if (!name || name->type() != ParamValue::Type::String)
     throw std::invalid_argument(what + ": 'name' must be set to a string");
   s.name = name->asString();
-  const std::string at = what + " (" + s.name + ")";
+  const std::string at = what + " (" + zoneNameText(s.name) + ")";  // clipped: the name is not checked yet
   const ParamValue* type = v.find("type");
   if (!type || type->type() != ParamValue::Type::String ||
       (type->asString() != "polygon" && type->asString() != "circle"))

@@ -61,7 +61,7 @@ InputError ZoneSet::remove(const std::string& name)
   auto it = std::find_if(next.shapes.begin(), next.shapes.end(), [&](const ZoneShape& s) { return s.name == name; });
   if (it == next.shapes.end())
     return InputError::of("shapes/" + std::string("(unknown)") + "/name",
-                          "there is no shape named '" + name.substr(0, 64) + "'");
+                          "there is no shape named " + zoneNameText(name));
   next.shapes.erase(it);
   return commit(std::move(next), true);
 }
@@ -69,7 +69,7 @@ InputError ZoneSet::remove(const std::string& name)
 InputError ZoneSet::moveHandle(const std::string& name, std::size_t index, double x, double y)
 {
   const ZoneShape* found = find(name);
-  if (!found) return InputError::of("shapes/(unknown)/name", "there is no shape named '" + name.substr(0, 64) + "'");
+  if (!found) return InputError::of("shapes/(unknown)/name", "there is no shape named " + zoneNameText(name));
   ZoneShape s = *found;
   const std::size_t handles = zoneHandles(s).size();
   if (index >= handles)

@@ -265,7 +265,8 @@ TEST(ZoneShapes, BadShapesAreRefusedNamingTheField)
       {polygon("v", {{0, 0}, {1, 0}, {1, 1}}, 101), "shapes/v/value"},
       {polygon("v2", {{0, 0}, {1, 0}, {1, 1}}, -2), "shapes/v2/value"},
       {polygon("", {{0, 0}, {1, 0}, {1, 1}}), "shapes/(unnamed)/name"},
-      {polygon("a/b", {{0, 0}, {1, 0}, {1, 1}}), "shapes/(bad name)/name"},
+      {polygon("a\nb", {{0, 0}, {1, 0}, {1, 1}}), "shapes/(bad name)/name"},
+      {polygon("caf\xff", {{0, 0}, {1, 0}, {1, 1}}), "shapes/(bad name)/name"},
       {circle("r0", 0, 0, 0.0), "shapes/r0/radius"},
       {circle("rn", 0, 0, nan), "shapes/rn/radius"},
       {circle("cn", nan, 0, 1.0), "shapes/cn/center"},
@@ -280,6 +281,67 @@ TEST(ZoneShapes, BadShapesAreRefusedNamingTheField)
   EXPECT_TRUE(validateShape(polygon("ok", {{0, 0}, {1, 0}, {1, 1}})).ok());
   EXPECT_TRUE(validateShape(polygon("u", {{0, 0}, {3, 0}, {3, 3}, {2, 3}, {2, 1}, {1, 1}, {1, 3}, {0, 3}})).ok());
   EXPECT_TRUE(validateShape(circle("c", 1, 1, 0.5)).ok());
+}
+
+TEST(ZoneShapes, ShapeNamesAreLabelsInUtf8)
+{
+  // The shared rule for names people give (labelProblem: 1..kMaxNameLength bytes, no control
+  // character), plus UTF-8, which a zone file (YAML) must hold to read a name back.
+  const std::vector<ZonePoint> tri = {{0, 0}, {1, 0}, {1, 1}};
+  for (const std::string good : {std::string("corner keepout"), std::string("zone #2 (dock)"), std::string("a/b"),
+                                 std::string("a/0"), std::string(" x "),
+                                 std::string("K\xc3\xbc"
+                                             "che"),
+                                 std::string("\xef\xbf\xbf"), std::string("\xf4\x8f\xbf\xbf"), std::string("\xc2\x85"),
+                                 std::string(kMaxNameLength, 'n')})
+    EXPECT_TRUE(validateShape(polygon(good, tri)).ok()) << good << ": " << validateShape(polygon(good, tri)).message;
+  for (const std::string bad :
+       {std::string(kMaxNameLength + 1, 'n'), std::string("a\nb"), std::string("a\x7f"), std::string("\tx"),
+        std::string("a\0b", 3), std::string("\xff"), std::string("\xc0\xaf"), std::string("\xed\xa0\x80"),
+        std::string("\xf4\x90\x80\x80"), std::string("ab\xe2\x82"), std::string("\x80")})
+  {
+    const InputError e = validateShape(polygon(bad, tri));
+    EXPECT_EQ(e.field, "shapes/(bad name)/name") << bad;
+    EXPECT_EQ(e.message.find('\n'), std::string::npos) << e.message;
+  }
+  EXPECT_EQ(validateShape(polygon("", tri)).field, "shapes/(unnamed)/name");
+}
+
+TEST(ZoneShapes, Utf8ErrorsAreFoundWhereTheyStart)
+{
+  EXPECT_EQ(utf8ErrorAt(""), std::string::npos);
+  EXPECT_EQ(utf8ErrorAt("plain"), std::string::npos);
+  EXPECT_EQ(utf8ErrorAt("\xe2\x80\xa8\xf0\x9f\x98\x80"), std::string::npos);  // U+2028, U+1F600
+  EXPECT_EQ(utf8ErrorAt("ab\xff"), 2u);
+  EXPECT_EQ(utf8ErrorAt("a\xc1\xbf"), 1u);                         // overlong '\x7f'
+  EXPECT_EQ(utf8ErrorAt("a\xe0\x9f\xbf"), 1u);                     // overlong U+07FF
+  EXPECT_EQ(utf8ErrorAt("\xed\x9f\xbf\xed\xa0\x80"), 3u);          // U+D7FF fine, U+D800 a surrogate
+  EXPECT_EQ(utf8ErrorAt("\xf0\x8f\xbf\xbf"), 0u);                  // overlong U+FFFF
+  EXPECT_EQ(utf8ErrorAt("\xf4\x8f\xbf\xbf\xf4\x90\x80\x80"), 4u);  // U+10FFFF fine, past it not
+  EXPECT_EQ(utf8ErrorAt("\xc3"), 0u);                              // cut short
+  EXPECT_EQ(utf8ErrorAt("\xc3\xa9\xc3("), 2u);
+}
+
+TEST(ZoneShapes, TheLayoutFrameIsATfFrameId)
+{
+  ZoneLayout l = layout({polygon("a", kRect)});
+  // The "map\nodom" (read back from a file as "map odom"), and others of the class.
+  for (const std::string bad : {std::string("map\nodom"), std::string("map odom"), std::string(""),
+                                std::string(kMaxNameLength + 1, 'f'), std::string("kar\xc3\xa9"), std::string("map\r")})
+  {
+    l.frame_id = bad;
+    const InputError e = validateLayout(l);
+    EXPECT_EQ(e.field, "frame_id") << bad;
+    EXPECT_EQ(e.message.find_first_of("\n\r"), std::string::npos) << e.message;
+    ZoneSet set(layout({polygon("a", kRect)}));
+    EXPECT_EQ(set.replace(l).field, "frame_id");
+    EXPECT_EQ(set.layout().frame_id, "map");
+  }
+  for (const std::string good : {std::string("odom"), std::string("/robot1/map"), std::string(kMaxNameLength, 'f')})
+  {
+    l.frame_id = good;
+    EXPECT_TRUE(validateLayout(l).ok()) << good;
+  }
 }
 
 TEST(ZoneShapes, HugeExtentIsRefusedBeforeAnyAllocation)
@@ -301,7 +363,7 @@ TEST(ZoneShapes, AHugeBadNameStaysOutOfTheKeyAndTheMessage)
   const ZoneShape s = polygon(std::string(1000000, 'x'), {{0, 0}, {1, 0}, {1, 1}});
   const InputError e = validateShape(s);
   EXPECT_EQ(e.field, "shapes/(bad name)/name");
-  EXPECT_LT(e.message.size(), 200u) << e.message.substr(0, 200);
+  EXPECT_LT(e.message.size(), 300u) << e.message.substr(0, 300);
   EXPECT_NE(e.message.find("1000000"), std::string::npos) << e.message;
 }
 

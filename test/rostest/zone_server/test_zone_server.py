@@ -11,6 +11,7 @@ import shutil
 import sys
 import tempfile
 import threading
+import time
 import unittest
 
 import rospy
@@ -23,7 +24,7 @@ from rosgraph_msgs.msg import Log
 from visualization_msgs.msg import InteractiveMarkerFeedback, InteractiveMarkerInit
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from grid_watch import ErrorLog, Latest  # noqa: E402
+from grid_watch import ErrorLog, Latest, logged_with_key  # noqa: E402
 
 RES = 0.1
 DOCK = [(1.02, 1.03), (2.97, 1.03), (2.97, 2.04), (1.02, 2.04)]
@@ -74,9 +75,11 @@ class ZoneServerTest(unittest.TestCase):
     def setUpClass(cls):
         rospy.init_node("test_zone_server")
         cls.log = ErrorLog("/zone_server", Log.WARN)  # warnings too
+        cls.info = ErrorLog("/zone_server", Log.INFO)  # every line, to count the mask's INFO lines
         cls.mask = Latest("/zone_mask", OccupancyGrid)
         cls.reloaded = Latest("/zone_mask_reloaded", OccupancyGrid)
-        cls.feedback = rospy.Publisher("/zone_server/feedback", InteractiveMarkerFeedback, queue_size=10)
+        # A queue for a whole burst: rospy drops what does not fit, and the burst case sends 300.
+        cls.feedback = rospy.Publisher("/zone_server/feedback", InteractiveMarkerFeedback, queue_size=1000)
         for name in ["set_shape", "remove_shape", "save", "load"]:
             rospy.wait_for_service("/zone_server/" + name, 30.0)
         rospy.wait_for_service("/zone_reloaded/load", 30.0)
@@ -87,11 +90,14 @@ class ZoneServerTest(unittest.TestCase):
         deadline = rospy.Time.now() + rospy.Duration(30.0)
         while cls.feedback.get_num_connections() == 0 and rospy.Time.now() < deadline:
             rospy.sleep(0.05)  # polling a condition (the subscriber's connection), with a deadline
-        cls.tmp = tempfile.mkdtemp(prefix="zone_server_test_")
+        cls.tmp = tempfile.mkdtemp(prefix="zone_server_test_")  # outside the save directory
+        cls.save_dir = rospy.get_param("/zone_server/save_directory")
+        os.makedirs(cls.save_dir)
 
     @classmethod
     def tearDownClass(cls):
         shutil.rmtree(cls.tmp, ignore_errors=True)
+        shutil.rmtree(cls.save_dir, ignore_errors=True)
 
     def drag(self, marker, x, y):
         f = InteractiveMarkerFeedback()
@@ -125,7 +131,7 @@ class ZoneServerTest(unittest.TestCase):
         self.drag("dock/2", 3.46, 2.57)
         self.assertTrue(self.mask.wait(matches(expected), 20.0), "the dragged vertex did not move the zone")
         # Save, and make the other server load the file: the same mask, cell for cell.
-        path = os.path.join(self.tmp, "saved.yaml")
+        path = os.path.join(self.save_dir, "saved.yaml")
         res = self.save(path)
         self.assertTrue(res.success, res.message)
         self.assertTrue(os.path.isfile(path))
@@ -236,7 +242,7 @@ class ZoneServerTest(unittest.TestCase):
         with open(target) as f:
             self.assertEqual(f.read(), "keep me\n")
         # A YAML file that is not a zone file: refused without quoting it.
-        secret = os.path.join(self.tmp, "secret.yaml")
+        secret = os.path.join(self.save_dir, "secret.yaml")
         with open(secret, "w") as f:
             f.write("token: hunter2\n")
         res = load(secret)
@@ -283,7 +289,7 @@ class ZoneServerTest(unittest.TestCase):
                 cond.notify_all()
 
         def handles(names):
-            return sorted(h for h in names if "/" in h)
+            return sorted(h for h in names if "/" in h and not h.endswith("/outline"))
         sub = rospy.Subscriber("/zone_server/update_full", InteractiveMarkerInit, on_init)
         with cond:
             self.assertTrue(cond.wait_for(lambda: inits, 30.0), "no update_full")
@@ -298,7 +304,8 @@ class ZoneServerTest(unittest.TestCase):
         offered = (10000 - handles_before) // 1000  # whole shapes, in order, after those already there
         self.assertLess(offered, len(names))
         with cond:  # the markers after the last shape came: its outline is drawn, with or without handles
-            self.assertTrue(cond.wait_for(lambda: names[-1] in inits[-1], 30.0), "no update_full with big9")
+            self.assertTrue(cond.wait_for(lambda: names[-1] + "/outline" in inits[-1], 30.0),
+                            "no update_full with big9")
             last = handles(inits[-1])
         self.assertIn("big%d/999" % (offered - 1), last)
         self.assertFalse([h for h in last if h.startswith("big%d/" % offered)], "a shape past the limit has handles")
@@ -308,6 +315,85 @@ class ZoneServerTest(unittest.TestCase):
         for name in names:
             self.assertTrue(self.remove_shape(name).success)
         self.assertTrue(self.mask.wait(lambda m: list(m.data) == before, 20.0))
+
+    def test_save_stays_in_its_directory(self):
+        """~save and ~load name files only inside ~save_directory; a file there that is not a zone file
+        is not replaced. Issue 34: '<dir>/sub/../robot/params.yaml' replaced a robot's parameters."""
+        robot = os.path.join(self.tmp, "robot")
+        os.makedirs(robot, exist_ok=True)
+        params = os.path.join(robot, "params.yaml")
+        with open(params, "w") as f:
+            f.write("robot_radius: 0.3\n")
+        escape = os.path.join(self.save_dir, "escape")
+        if not os.path.islink(escape):
+            os.symlink(robot, escape)
+        os.makedirs(os.path.join(self.save_dir, "sub"), exist_ok=True)
+        load = rospy.ServiceProxy("/zone_server/load", LoadZones)
+        rel = os.path.relpath(params, os.path.join(self.save_dir, "sub"))  # ../../<tmp>/robot/params.yaml
+        for name, why in [(os.path.join(self.save_dir, "sub", rel), "'..'"), (rel, "'..'"),
+                          (params, "outside the save directory"), ("escape/params.yaml", "outside the save directory"),
+                          ("escape/new.yaml", "outside the save directory"), ("bad\nname.yaml", "character code 10")]:
+            res = self.save(name)
+            self.assertFalse(res.success, name)
+            self.assertIn(why, res.message)
+            self.assertNotIn("\n", res.message)
+            res = load(name)
+            self.assertFalse(res.success, name)
+            self.assertIn(why, res.message)
+        with open(params) as f:
+            self.assertEqual(f.read(), "robot_radius: 0.3\n")
+        self.assertFalse(os.path.exists(os.path.join(robot, "new.yaml")))
+        self.assertTrue(self.log.wait("/zone_server/save/filename", [], 20.0), "the refusal was not logged")
+        # Inside the folder, but not a zone file: the name is fine, the file is not replaced.
+        other = os.path.join(self.save_dir, "params.yaml")
+        with open(other, "w") as f:
+            f.write("robot_radius: 0.3\n")
+        res = self.save("params.yaml")
+        self.assertFalse(res.success)
+        self.assertIn("not a zone file", res.message)
+        with open(other) as f:
+            self.assertEqual(f.read(), "robot_radius: 0.3\n")
+        # Inside, by a relative and by an absolute name: saved, and loads again.
+        for name in ["inside.yaml", os.path.join(self.save_dir, "sub", "inside.yaml")]:
+            res = self.save(name)
+            self.assertTrue(res.success, res.message)
+            self.assertTrue(os.path.isfile(os.path.join(self.save_dir, name)))
+            self.assertTrue(load(name).success)
+
+    def test_a_burst_of_drags_is_coalesced(self):
+        """300 drags as fast as they can be sent: the mask is republished at most publish_rate times a
+        second (plus the tick in progress), its INFO line at most once a second, and the mask that
+        stays is the last drag's."""
+        initial = expected_mask([(DOCK, 100)], [(SLOW, 40)])
+        self.assertTrue(self.mask.wait(matches(initial), 30.0), "the mask did not settle")
+        rate = rospy.get_param("/zone_server/publish_rate", 10.0)
+
+        def put_dock_back():
+            self.set_shape(ZoneShape(name="dock", type="polygon", value=100, fill=True,
+                                     points=[Point(x, y, 0.0) for x, y in DOCK]))
+            self.assertTrue(self.mask.wait(matches(initial), 20.0), "dock was not put back")
+
+        self.addCleanup(put_dock_back)
+        n = 300
+        last = (3.46, 2.57)
+        expected = expected_mask([([DOCK[0], DOCK[1], last, DOCK[3]], 100)], [(SLOW, 40)])
+        masks_before = self.mask.count
+        with self.info.cond:
+            lines_before = len(logged_with_key(self.info.lines, "/zone_server/published"))
+        start = time.monotonic()
+        for k in range(1, n + 1):  # up and right of the square's corner: every step keeps it convex
+            self.drag("dock/2", DOCK[2][0] + (last[0] - DOCK[2][0]) * k / n, DOCK[2][1] + (last[1] - DOCK[2][1]) * k / n)
+        self.assertTrue(self.mask.wait(matches(expected), 20.0), "the last drag's mask was not published")
+        elapsed = time.monotonic() - start
+        masks = self.mask.count - masks_before
+        with self.info.cond:
+            lines = len(logged_with_key(self.info.lines, "/zone_server/published")) - lines_before
+        print("[figures] %d drags: %d masks and %d INFO lines in %.2f s" % (n, masks, lines, elapsed))
+        self.assertGreaterEqual(masks, 1)
+        self.assertLessEqual(masks, int(elapsed * rate) + 2,
+                             "%d masks in %.2f s for %d drags at publish_rate %g" % (masks, elapsed, n, rate))
+        self.assertTrue(matches(expected)(self.mask.msg))
+        self.assertLessEqual(lines, int(elapsed) + 2, "%d INFO lines in %.2f s" % (lines, elapsed))
 
 
 if __name__ == "__main__":

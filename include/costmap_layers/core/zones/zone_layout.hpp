@@ -62,15 +62,25 @@ struct ZoneGridExtent
 /// "shapes/<name>" ("shapes/(unnamed)" without a name): how errors name a shape.
 std::string zoneShapePath(const ZoneShape& shape);
 
+/// A shape name as a message quotes it: at most 64 bytes, those that are not printable ASCII as '?',
+/// then its length when it was longer (a peer's name, which may be anything).
+std::string zoneNameText(const std::string& name);
+
+/// The position of the first byte of `text` that does not begin a well-formed UTF-8 character (RFC
+/// 3629: no overlong form, no surrogate, nothing past U+10FFFF), or std::string::npos.
+std::size_t utf8ErrorAt(const std::string& text);
+
 /// Checks one shape (see the file comment). The field names the shape and what is wrong
-/// ("shapes/<name>/points", ".../radius", ".../value", ".../name").
+/// ("shapes/<name>/points", ".../radius", ".../value"; a bad name has the fixed key
+/// "shapes/(bad name)/name", an empty one "shapes/(unnamed)/name").
 InputError validateShape(const ZoneShape& shape);
 
-/// Checks the layout: resolution in [kMinResolution, kMaxResolution], default_value in -1..100, frame
-/// not empty, at most limits::kMaxZoneShapes shapes, the polygons' vertices squared summed within
-/// limits::kMaxZoneVertexPairs (field "shapes"), unique names, every shape valid, the extent
-/// within limits::kMaxGridCells, and the work of drawing it (each shape's bounding box in cells, plus
-/// rows times vertices for a polygon) within limits::kMaxZoneRasterWork (field "extent" for both).
+/// Checks the layout: resolution in [kMinResolution, kMaxResolution], default_value in -1..100, the
+/// frame a tf frame id (frameIdProblem(): printable ASCII, no space, 1..kMaxNameLength), at most
+/// limits::kMaxZoneShapes shapes, the polygons' vertices squared summed within
+/// limits::kMaxZoneVertexPairs (field "shapes"), unique names, every shape valid, the extent within
+/// limits::kMaxGridCells, and the work of drawing it (each shape's bounding box in cells, plus rows
+/// times vertices for a polygon) within limits::kMaxZoneRasterWork (field "extent" for both).
 InputError validateLayout(const ZoneLayout& layout);
 
 /// The extent of a layout (file comment). Throws std::invalid_argument when it exceeds

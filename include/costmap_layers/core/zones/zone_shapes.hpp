@@ -21,8 +21,8 @@
 //    or `min` of the two values. A cell no shape claims holds default_value (which takes no part in
 //    max / min, unlike Nav2's vector object server).
 //
-// What a valid shape is (validateShape()): a name of 1..64 characters from [A-Za-z0-9_.-] (so that a
-// marker name "<shape>/<k>" splits unambiguously); a value in -1..100; every coordinate finite and
+// What a valid shape is (validateShape()): a name by labelProblem() (1..kMaxNameLength bytes, no
+// control character) that is UTF-8 (a zone file is YAML, Unicode text); a value in -1..100; every coordinate finite and
 // within limits::kMaxCoordinate; a polygon has 3..limits::kMaxZoneVertices vertices, no zero-length
 // edge, a non-zero area and no self-intersection (no two edges meet except neighbours at their shared
 // vertex, and neighbours do not fold back over each other); a circle's radius is finite, > 0 and at
