@@ -94,13 +94,20 @@ void CostmapFilter::onInitialize()
   if (!usesFilterInfo()) mask_topic_ = params.getTopic("mask_topic", defaultMaskTopic(), true);
   onInitializeFilter(params);
   mask_port_ = inputs().size();
-  addInput(InputPort::grid(InputKind::Mask, mask_topic_,
-                           [this](const std::shared_ptr<const OccupancyGridData>& mask) { setMaskOf(0, mask); }));
+  addInput(maskPort(mask_topic_, 0));
+  info_port_ = inputs().size();
   if (usesFilterInfo())
     addInput(InputPort::filterInfo(filter_info_topic_,
                                    [this](const std::shared_ptr<const FilterInfoData>& info) { setFilterInfo(info); }));
   // Switched off from the start: the outputs say "no effect" once (the host never calls the filter).
   if (!enabled()) processInactive();
+}
+
+InputPort CostmapFilter::maskPort(const std::string& topic, uint64_t generation)
+{
+  return InputPort::grid(InputKind::Mask, topic,
+                         [this, generation](const std::shared_ptr<const OccupancyGridData>& mask)
+                         { setMaskOf(generation, mask); });
 }
 
 std::string CostmapFilter::maskTopic() const
@@ -118,6 +125,11 @@ std::shared_ptr<const FilterInfoData> CostmapFilter::getFilterInfo() const
 std::string CostmapFilter::setFilterInfo(std::shared_ptr<const FilterInfoData> info)
 {
   std::lock_guard<std::mutex> serial(info_mutex_);
+  {
+    // Nav2 has no subscription then; deactivate() and activate() change this under info_mutex_ too.
+    std::lock_guard<std::mutex> lock(mask_mutex_);
+    if (deactivated_) return "the filter is deactivated: filter info ignored";
+  }
   const InputError error = info ? checkFilterInfoFor(filterFamily(), *info) : InputError::of("data", "no filter info");
   if (!error.ok())
   {
@@ -160,11 +172,71 @@ std::string CostmapFilter::setFilterInfo(std::shared_ptr<const FilterInfoData> i
     context_->report(Severity::Warn, "filter_info/base", warn.str());
   }
   onFilterInfo(*info);
-  if (moved)
-    replaceInput(mask_port_, InputPort::grid(InputKind::Mask, info->filter_mask_topic,
-                                             [this, generation](const std::shared_ptr<const OccupancyGridData>& mask)
-                                             { setMaskOf(generation, mask); }));
+  if (moved) replaceInput(mask_port_, maskPort(info->filter_mask_topic, generation));
   return {};
+}
+
+void CostmapFilter::deactivate()
+{
+  std::lock_guard<std::mutex> lifecycle(lifecycle_mutex_);
+  uint64_t generation;
+  {
+    // After an info being applied (which may move the mask port), so that what follows is final.
+    std::lock_guard<std::mutex> serial(info_mutex_);
+    std::lock_guard<std::mutex> lock(mask_mutex_);
+    if (deactivated_) return;
+    deactivated_ = true;
+    generation = ++mask_generation_;  // masks still on their way from the subscription are stale
+    if (!mask_changed_) pending_old_ = mask_;
+    mask_changed_ = true;  // the dropped mask's extent is redrawn without it
+    mask_ = nullptr;
+    latest_rejected_ = false;
+    if (usesFilterInfo())
+    {
+      info_ = nullptr;
+      mask_topic_.clear();  // the next info names it
+    }
+  }
+  {
+    std::lock_guard<std::mutex> lock(outputs_mutex_);
+    processInactive();
+  }
+  // The host ends the subscriptions (a port without a topic is not subscribed). Not under info_mutex_:
+  // an info callback waiting for it would keep the host's unsubscribing waiting for that callback.
+  replaceInput(mask_port_, maskPort("", generation));
+  if (usesFilterInfo())
+    replaceInput(info_port_, InputPort::filterInfo("", [this](const std::shared_ptr<const FilterInfoData>& info)
+                                                   { setFilterInfo(info); }));
+}
+
+void CostmapFilter::activate()
+{
+  std::lock_guard<std::mutex> lifecycle(lifecycle_mutex_);
+  uint64_t generation;
+  std::string topic;
+  {
+    std::lock_guard<std::mutex> serial(info_mutex_);
+    std::lock_guard<std::mutex> lock(mask_mutex_);
+    if (!deactivated_) return;
+    deactivated_ = false;
+    restart_grace_ = true;  // a latched mask or info comes moments after the subscription, as at start
+    generation = ++mask_generation_;
+    topic = mask_topic_;
+  }
+  // A new subscription: the host delivers what is latched on the topic again. In the filter_info_topic
+  // form the info then names the mask topic (setFilterInfo() subscribes it).
+  if (usesFilterInfo())
+    replaceInput(info_port_,
+                 InputPort::filterInfo(filter_info_topic_, [this](const std::shared_ptr<const FilterInfoData>& info)
+                                       { setFilterInfo(info); }));
+  else
+    replaceInput(mask_port_, maskPort(topic, generation));
+}
+
+bool CostmapFilter::isActive() const
+{
+  std::lock_guard<std::mutex> lock(mask_mutex_);
+  return mask_ && (!usesFilterInfo() || info_);
 }
 
 void CostmapFilter::onEnabledChanged(bool on)
@@ -196,10 +268,12 @@ std::string CostmapFilter::setMask(std::shared_ptr<const OccupancyGridData> mask
 std::string CostmapFilter::setMaskOf(uint64_t generation, std::shared_ptr<const OccupancyGridData> mask)
 {
   static const char* const kStale = "the mask came from a topic no longer in force";
+  static const char* const kDeactivated = "the filter is deactivated: mask ignored";
   {
-    // From a topic the filter info has moved away from (delivered while the host re-subscribed):
-    // neither used nor judged.
+    // From a topic the filter info has moved away from (delivered while the host re-subscribed), or
+    // from a subscription that a deactivation ended: neither used nor judged.
     std::lock_guard<std::mutex> lock(mask_mutex_);
+    if (deactivated_) return kDeactivated;
     if (generation != mask_generation_) return kStale;
   }
   InputError error = mask ? validateGrid(*mask) : InputError::of("data", "no mask");
@@ -208,6 +282,7 @@ std::string CostmapFilter::setMaskOf(uint64_t generation, std::shared_ptr<const 
   {
     const uint64_t now = context_ ? context_->nowNs() : UINT64_MAX;
     std::lock_guard<std::mutex> lock(mask_mutex_);
+    if (deactivated_) return kDeactivated;
     if (generation != mask_generation_) return kStale;  // the info moved on while this mask was checked
     if (!mask_ || !isOutOfOrder(mask->stamp_ns, mask_->stamp_ns, now))
     {
@@ -295,8 +370,12 @@ void CostmapFilter::updateBounds(double robot_x, double robot_y, double robot_ya
   std::shared_ptr<const OccupancyGridData> old;
   bool changed = false;
   std::string mask_topic;
+  bool deactivated;
   {
     std::lock_guard<std::mutex> lock(mask_mutex_);
+    if (restart_grace_) startup_grace_ = StartupGrace{};  // activated: waiting starts again
+    restart_grace_ = false;
+    deactivated = deactivated_;
     active_info_ = info_;
     // In the filter_info_topic form a mask means nothing until an info says how to read it.
     active_mask_ = usesFilterInfo() && !info_ ? nullptr : mask_;
@@ -354,7 +433,7 @@ void CostmapFilter::updateBounds(double robot_x, double robot_y, double robot_ya
   }
   // Said every cycle (the host's log throttles) once the start-up grace is over: a latched mask or
   // info comes moments after start.
-  if (!active_mask_ && enabled() && startup_grace_.over(context_->nowNs()))
+  if (!active_mask_ && enabled() && !deactivated && startup_grace_.over(context_->nowNs()))
   {
     if (usesFilterInfo() && !active_info_)
       context_->report(Severity::Warn, "waiting",
@@ -464,6 +543,11 @@ LayerStatus CostmapFilter::status() const
   {
     s.add("mask size [cells]", std::to_string(mask_->width) + " x " + std::to_string(mask_->height));
     s.add("mask frame", mask_->frame_id);
+  }
+  if (deactivated_)
+  {
+    s.message = "deactivated: no mask or filter info until activated";
+    return s;
   }
   if (!enabled())
   {

@@ -4,10 +4,10 @@
 #include <cmath>
 #include <limits>
 
-#include "costmap_layers/core/layers/ray_geometry.hpp"
-#include "costmap_layers/core/grid/cost_values.hpp"
-#include "costmap_layers/core/rules/limits.hpp"
 #include "costmap_layers/core/config/param_reader.hpp"
+#include "costmap_layers/core/grid/cost_values.hpp"
+#include "costmap_layers/core/layers/ray_geometry.hpp"
+#include "costmap_layers/core/rules/limits.hpp"
 
 namespace costmap_layers
 {
@@ -83,31 +83,70 @@ void VoxelLayer::raytraceFreespace(const Observation& obs, double* min_x, double
     if (VoxelGrid::markedCount(col) <= mark_t)
       grid[index] = VoxelGrid::unknownCount(col) > unknown_t ? NO_INFORMATION : FREE_SPACE;
   };
-  // Voxel units of the grid; the top and far edges are pulled in by a hair so that floor() stays inside.
+  // Voxel units of the grid; the top and far edges are pulled in by a hair so that the voxel of a point
+  // on them is the last one inside.
   const double lim_x = voxels_.sizeX() * (1.0 - 1e-9), lim_y = voxels_.sizeY() * (1.0 - 1e-9),
                lim_z = voxels_.sizeZ() * (1.0 - 1e-9);
-  TouchedBox<double> ends(ox, oy);
+  auto vx = [&](double x) { return std::min(lim_x, std::max(0.0, (x - gx0) / res)); };
+  auto vy = [&](double y) { return std::min(lim_y, std::max(0.0, (y - gy0) / res)); };
+  auto vz = [&](double z) { return std::min(lim_z, std::max(0.0, (z - gz0) / zres)); };
+  const double sx = vx(ox), sy = vy(oy), sz = vz(oz);
+  const auto ix0 = static_cast<unsigned int>(sx), iy0 = static_cast<unsigned int>(sy),
+             iz0 = static_cast<unsigned int>(sz);
+  // costmap_2d's reach (voxel_grid's raytraceLine with cellDistance): the ranges in whole cells of the
+  // costmap, rounded up, counted along the line in voxel units, where a z voxel counts as one cell
+  // whatever z_resolution is. The same rule as the obstacle layer's: step k of the walk lies k * step
+  // along the line, and min_cells <= k * step <= max_cells is cleared, the end voxel included. NaN
+  // clears nothing.
+  const double min_cells = costmap_.cellDistance(obs.raytrace_min_range);
+  const double max_cells =
+      std::isnan(obs.raytrace_max_range) ? -1.0 : static_cast<double>(costmap_.cellDistance(obs.raytrace_max_range));
+  const unsigned int size_x = costmap_.getSizeInCellsX();
+  TouchedBox<unsigned int> visited_cells(ix0, iy0);
   auto ray = [&](const Point3f& p)
   {
     const double a = p.x - ox, b = p.y - oy, c = p.z - oz;
-    const double d = std::sqrt(a * a + b * b + c * c);
-    if (!(d > 0.0)) return;
-    double t = std::min(1.0, obs.raytrace_max_range / d);
-    t = clipRayToBox<3>({ox, oy, oz}, {a, b, c}, {gx0, gy0, gz0}, {gx1, gy1, gz1}, t);
-    const double t0 = obs.raytrace_min_range / d;
-    if (t0 >= t) return;
-    auto vx = [&](double s) { return std::min(lim_x, std::max(0.0, (ox + s * a - gx0) / res)); };
-    auto vy = [&](double s) { return std::min(lim_y, std::max(0.0, (oy + s * b - gy0) / res)); };
-    auto vz = [&](double s) { return std::min(lim_z, std::max(0.0, (oz + s * c - gz0) / zres)); };
-    voxels_.walkLine(clear, vx(t0), vy(t0), vz(t0), vx(t), vy(t), vz(t));
-    ends.add(ox + t * a, oy + t * b);
+    if (!std::isfinite(a) || !std::isfinite(b) || !std::isfinite(c)) return;
+    // As costmap_2d: the line runs towards the reading, cut at the grid's box only, so a reading beyond
+    // the range keeps its direction; the range then stops the walk along it.
+    const double t = clipRayToBox<3>({ox, oy, oz}, {a, b, c}, {gx0, gy0, gz0}, {gx1, gy1, gz1}, 1.0);
+    const double ex = vx(ox + t * a), ey = vy(oy + t * b), ez = vz(oz + t * c);
+    const auto ix1 = static_cast<unsigned int>(ex), iy1 = static_cast<unsigned int>(ey),
+               iz1 = static_cast<unsigned int>(ez);
+    const unsigned int steps = VoxelGrid::lineSteps(ix0, iy0, iz0, ix1, iy1, iz1);
+    // voxel_grid measures the line between the exact points (in voxel units) and steps between whole
+    // voxels, so a step is length / steps along it (0 for a reading in the sensor's voxel).
+    const double length = std::sqrt((ex - sx) * (ex - sx) + (ey - sy) * (ey - sy) + (ez - sz) * (ez - sz));
+    const double step = steps == 0 ? 0.0 : length / steps;
+    // The walk needs to go no further than the first step past max_cells.
+    const double bound = step > 0.0 ? std::floor(max_cells / step) + 1.0 : 0.0;
+    const unsigned int last_step =
+        bound < static_cast<double>(steps) ? static_cast<unsigned int>(std::max(0.0, bound)) : steps;
+    bool cleared = false;
+    unsigned int last = 0;
+    voxels_.traceLine(
+        [&](unsigned int index, unsigned int z, unsigned int k)
+        {
+          const double along = static_cast<double>(k) * step;
+          if (along < min_cells || along > max_cells) return;
+          clear(index, z);
+          last = index;
+          cleared = true;
+        },
+        ix0, iy0, iz0, ix1, iy1, iz1, last_step);
+    // The walk stays in the box of its first and last voxels: the origin's column and the last cleared
+    // one hold every column it changed.
+    if (cleared) visited_cells.add(last % size_x, last / size_x);
   };
   for (const Point3f& p : obs.points)
     ray(p);
   for (const Point3f& p : obs.clear_only)
     ray(p);
-  touch(ends.min_x, ends.min_y, min_x, min_y, max_x, max_y);
-  touch(ends.max_x, ends.max_y, min_x, min_y, max_x, max_y);
+  double wx, wy;
+  costmap_.mapToWorld(visited_cells.min_x, visited_cells.min_y, wx, wy);
+  touch(wx, wy, min_x, min_y, max_x, max_y);
+  costmap_.mapToWorld(visited_cells.max_x, visited_cells.max_y, wx, wy);
+  touch(wx, wy, min_x, min_y, max_x, max_y);
 }
 
 void VoxelLayer::markObservation(const Observation& obs, double* min_x, double* min_y, double* max_x, double* max_y)

@@ -13,6 +13,11 @@
 //    the mask from the old topic is dropped (it is not what the new info describes) and the filter
 //    waits for a mask on the new one; masks still arriving from the old topic are ignored. An info
 //    naming the same topic keeps the mask and changes only how it is read.
+//
+// The lifecycle (Nav2's resetFilter() / initializeFilter(); in ROS 1 move_base's costmap stop() and
+// start()): deactivate() drops the mask and the filter info, ends their subscriptions and puts the
+// outputs to "no effect"; masks and infos that still arrive are ignored. activate() subscribes again
+// (a latched mask or info comes anew) and the filter waits for them as at start.
 #pragma once
 
 #include <algorithm>
@@ -25,12 +30,12 @@
 #include <type_traits>
 #include <vector>
 
-#include "costmap_layers/core/grid/costmap_2d.hpp"
-#include "costmap_layers/core/filters/filter_info.hpp"
-#include "costmap_layers/core/grid/grid_sampler.hpp"
 #include "costmap_layers/core/config/input_error.hpp"
 #include "costmap_layers/core/costmap/layer.hpp"
 #include "costmap_layers/core/costmap/layered_costmap.hpp"
+#include "costmap_layers/core/filters/filter_info.hpp"
+#include "costmap_layers/core/grid/costmap_2d.hpp"
+#include "costmap_layers/core/grid/grid_sampler.hpp"
 #include "costmap_layers/core/rules/limits.hpp"
 #include "costmap_layers/core/rules/stamp_order.hpp"
 
@@ -63,6 +68,17 @@ public:
   /// Calls process(); skips (writing nothing) when disabled, without a mask, or without a transform.
   void updateCosts(Costmap2D& master_grid, int min_i, int min_j, int max_i, int max_j) final;
   bool isClearable() override { return false; }
+  /// Drops the mask and the filter info (the mask's costs go at the next update), ends the inputs'
+  /// subscriptions (the host unsubscribes ports whose topic is empty) and puts the outputs to "no
+  /// effect" (processInactive()), as Nav2's ZoneParameterFilter::resetFilter(). Any thread; a second
+  /// call does nothing.
+  void deactivate() override;
+  /// After deactivate(): subscribes the mask (or the filter info) again, so that a latched one comes
+  /// anew, and waits for it as at start (the "no mask yet" grace starts again). Otherwise nothing.
+  void activate() override;
+  /// Whether a mask is in force, with its info in the filter_info_topic form (Nav2's isActive()): false
+  /// before the first one and from deactivate() until a new one arrives.
+  bool isActive() const;
 
   /// Replaces the mask, unless it is invalid or stamped before the mask in force (isOutOfOrder()): then
   /// the previous mask stays, and the reason is reported (an Error keyed by the field) and returned.
@@ -84,9 +100,9 @@ public:
   std::string setFilterInfo(std::shared_ptr<const FilterInfoData> info);
   /// The filter info in force (nullptr before the first accepted one, and always in the mask_topic form).
   std::shared_ptr<const FilterInfoData> getFilterInfo() const;
-  /// OK when switched off or when a mask is in force; WARN while no mask has arrived (naming the topic
-  /// and the last rejection), when the latest mask was rejected, or when the mask cannot be placed (no
-  /// transform into its frame).
+  /// OK when switched off, deactivated or when a mask is in force; WARN while no mask has arrived
+  /// (naming the topic and the last rejection), when the latest mask was rejected, or when the mask
+  /// cannot be placed (no transform into its frame).
   LayerStatus status() const override;
 
 protected:
@@ -153,17 +169,24 @@ private:
   /// older generation (a topic no longer in force) are ignored.
   std::string setMaskOf(uint64_t generation, std::shared_ptr<const OccupancyGridData> mask);
 
+  /// The mask input's port for masks of generation `generation` (as subscribed by setFilterInfo()).
+  InputPort maskPort(const std::string& topic, uint64_t generation);
+
   std::string filter_info_topic_;  ///< set once in onInitialize()
   std::size_t mask_port_ = 0;      ///< index of the mask input
+  std::size_t info_port_ = 0;      ///< index of the filter info input (filter_info_topic form)
+  std::mutex lifecycle_mutex_;     ///< one activate() / deactivate() at a time
   /// Serialises processPose() / processInactive() between the update thread and a switch-off
   /// (onEnabledChanged() on the toggle service's thread).
   std::mutex outputs_mutex_;
   StartupGrace startup_grace_;  ///< before the first mask: when "no mask yet" is said (update thread)
-  std::mutex info_mutex_;  ///< one setFilterInfo() at a time, so that port replacements stay in order
+  std::mutex info_mutex_;       ///< one setFilterInfo() at a time, so that port replacements stay in order
   mutable std::mutex mask_mutex_;
-  std::string mask_topic_;                                ///< guarded by mask_mutex_
-  uint64_t mask_generation_ = 0;                          ///< guarded by mask_mutex_; +1 per topic change
-  std::shared_ptr<const FilterInfoData> info_;            ///< guarded by mask_mutex_
+  std::string mask_topic_;                      ///< guarded by mask_mutex_
+  uint64_t mask_generation_ = 0;                ///< guarded by mask_mutex_; +1 per topic change and per (de)activation
+  bool deactivated_ = false;                    ///< guarded by mask_mutex_: between deactivate() and activate()
+  bool restart_grace_ = false;                  ///< guarded by mask_mutex_: activate() asks the update thread
+  std::shared_ptr<const FilterInfoData> info_;  ///< guarded by mask_mutex_
   std::shared_ptr<const OccupancyGridData> mask_;         ///< guarded by mask_mutex_
   std::shared_ptr<const OccupancyGridData> pending_old_;  ///< the mask replaced since the last bounds
   bool mask_changed_ = false;                             ///< guarded by mask_mutex_

@@ -59,12 +59,22 @@ public:
   bool markVoxel(unsigned int x, unsigned int y, unsigned int z, unsigned int mark_threshold);
   void clearVoxel(unsigned int x, unsigned int y, unsigned int z);
 
-  /// Walks the voxels of the segment between two points given in voxel units (x / resolution, ...),
-  /// both inside the grid, from the first to the voxel holding the end point, that one included (as
-  /// costmap_2d's voxel_grid raytraceLine, whose last call comes after its loop). Calls
-  /// at(column_index, z) once per voxel; nothing is allocated. Steps of at most one voxel per axis.
+  /// voxel_grid's line (its raytraceLine, a Bresenham walk over whole voxels): from voxel (x0, y0, z0)
+  /// to voxel (x1, y1, z1), both inside the grid (else nothing is visited). The axis with the largest
+  /// change in voxels drives the walk (x on a tie with y or z, y on a tie with z), one voxel per step,
+  /// the others follow through error terms starting at half the step count, as there; step 0 is the
+  /// first voxel and step `lineSteps` the last one, which is visited too. Calls at(column_index, z, k)
+  /// for the steps k = 0 .. min(last_step, lineSteps) in order; nothing is allocated.
   template <class ActionType>
-  void walkLine(ActionType&& at, double x0, double y0, double z0, double x1, double y1, double z1) const;
+  void traceLine(ActionType&& at, unsigned int x0, unsigned int y0, unsigned int z0, unsigned int x1, unsigned int y1,
+                 unsigned int z1, unsigned int last_step) const;
+  /// The number of steps of traceLine's walk between two voxels: the largest change along an axis.
+  static unsigned int lineSteps(unsigned int x0, unsigned int y0, unsigned int z0, unsigned int x1, unsigned int y1,
+                                unsigned int z1)
+  {
+    auto change = [](unsigned int a, unsigned int b) { return a > b ? a - b : b - a; };
+    return std::max(change(x0, x1), std::max(change(y0, y1), change(z0, z1)));
+  }
 
 private:
   /// Bit count without relying on a popcnt instruction (the build targets baseline x86-64, where
@@ -83,40 +93,35 @@ private:
 };
 
 template <class ActionType>
-void VoxelGrid::walkLine(ActionType&& at, double x0, double y0, double z0, double x1, double y1, double z1) const
+void VoxelGrid::traceLine(ActionType&& at, unsigned int x0, unsigned int y0, unsigned int z0, unsigned int x1,
+                          unsigned int y1, unsigned int z1, unsigned int last_step) const
 {
-  // Both ends are inside the grid (non-negative voxel units below 2^20), so 32.32 fixed point walks
-  // the segment exactly enough and truncation is floor.
-  const double dx = x1 - x0, dy = y1 - y0, dz = z1 - z0;
-  const double longest = std::max(std::fabs(dx), std::max(std::fabs(dy), std::fabs(dz)));
-  if (!(longest > 0.0) || !(longest < 1e6)) return;  // also NaN
-  if (!(x0 >= 0.0 && y0 >= 0.0 && z0 >= 0.0 && x0 < size_x_ && y0 < size_y_ && z0 < size_z_)) return;
-  const unsigned int steps = static_cast<unsigned int>(std::ceil(longest));
-  constexpr double kOne = 4294967296.0;  // 2^32
-  int64_t fx = static_cast<int64_t>(x0 * kOne), fy = static_cast<int64_t>(y0 * kOne),
-          fz = static_cast<int64_t>(z0 * kOne);
-  const int64_t sx = static_cast<int64_t>(dx / steps * kOne), sy = static_cast<int64_t>(dy / steps * kOne),
-                sz = static_cast<int64_t>(dz / steps * kOne);
-  const int64_t ex = static_cast<int64_t>(std::floor(x1)), ey = static_cast<int64_t>(std::floor(y1)),
-                ez = static_cast<int64_t>(std::floor(z1));
-  auto inside = [this](int64_t ix, int64_t iy, int64_t iz)
+  if (x0 >= size_x_ || y0 >= size_y_ || z0 >= size_z_ || x1 >= size_x_ || y1 >= size_y_ || z1 >= size_z_) return;
+  // Both ends are inside the grid, so every voxel of the walk is (it stays in the box of its ends).
+  const int64_t delta[3] = {static_cast<int64_t>(x1) - x0, static_cast<int64_t>(y1) - y0,
+                            static_cast<int64_t>(z1) - z0};
+  const int64_t change[3] = {delta[0] < 0 ? -delta[0] : delta[0], delta[1] < 0 ? -delta[1] : delta[1],
+                             delta[2] < 0 ? -delta[2] : delta[2]};
+  const int major = change[0] >= std::max(change[1], change[2]) ? 0 : (change[1] >= change[2] ? 1 : 2);
+  const int64_t steps = change[major];
+  const int64_t end = std::min<int64_t>(steps, last_step);
+  int64_t pos[3] = {x0, y0, z0};
+  int64_t error[3] = {steps / 2, steps / 2, steps / 2};
+  for (int64_t k = 0;; ++k)
   {
-    return ix >= 0 && iy >= 0 && iz >= 0 && ix < static_cast<int64_t>(size_x_) && iy < static_cast<int64_t>(size_y_) &&
-           iz < static_cast<int64_t>(size_z_);
-  };
-  int64_t px = -1, py = -1, pz = -1;
-  for (unsigned int i = 0; i < steps; ++i, fx += sx, fy += sy, fz += sz)
-  {
-    // Arithmetic shift: a hair below zero becomes -1 and ends the walk below.
-    const int64_t ix = fx >> 32, iy = fy >> 32, iz = fz >> 32;
-    if (ix == px && iy == py && iz == pz) continue;  // still in the voxel just visited
-    if (!inside(ix, iy, iz)) return;
-    at(static_cast<unsigned int>(iy) * size_x_ + static_cast<unsigned int>(ix), static_cast<unsigned int>(iz));
-    if (ix == ex && iy == ey && iz == ez) return;
-    px = ix, py = iy, pz = iz;
+    at(static_cast<unsigned int>(pos[1]) * size_x_ + static_cast<unsigned int>(pos[0]),
+       static_cast<unsigned int>(pos[2]), static_cast<unsigned int>(k));
+    if (k == end) return;
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      if (axis != major)
+      {
+        error[axis] += change[axis];
+        if (error[axis] < steps) continue;
+        error[axis] -= steps;
+      }
+      pos[axis] += delta[axis] > 0 ? 1 : -1;
+    }
   }
-  // The last position walked lies one step before the end point: its voxel, when not reached yet.
-  if (inside(ex, ey, ez))
-    at(static_cast<unsigned int>(ey) * size_x_ + static_cast<unsigned int>(ex), static_cast<unsigned int>(ez));
 }
 }  // namespace costmap_layers
