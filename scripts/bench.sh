@@ -22,8 +22,8 @@ if [ -z "${COSTMAP_LAYERS_BENCH_MAP:-}" ]; then
   python3 "$ROOT/scripts/dev/make_synthetic_map.py" "$OUT/maps"
   export COSTMAP_LAYERS_BENCH_MAP="$OUT/maps/synthetic_indoor_4000.yaml"
 fi
-# bench_move_base (built when costmap_2d is found) hosts the bridge, which reads parameters: give it a
-# master of its own on a free port, stopped on exit.
+# bench_move_base and bench_sensor_path (its costmap_2d side, built when costmap_2d is found) read
+# parameters from a master: give them one of their own on a free port, stopped on exit.
 with_master() {
   local port pid rc
   port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
@@ -49,10 +49,33 @@ run() {  # run NAME EXE [ARGS...]: one benchmark program, its JSON, its ratios
   shift 2
   echo "== $name"
   runner=()
-  [ "$name" = bench_move_base ] && runner=(with_master)
+  case "$name" in bench_move_base | bench_sensor_path) runner=(with_master) ;; esac
   "${runner[@]}" "$exe" --benchmark_repetitions="${BENCH_REPETITIONS:-5}" --benchmark_report_aggregates_only=true \
     --benchmark_out="$OUT/$name.json" --benchmark_out_format=json "$@"
-  python3 "$ROOT/scripts/dev/bench_ratios.py" "$OUT/$name.json"
+  if [ "$name" = bench_sensor_path ]; then
+    sensor_path_rows "$OUT/$name.json"
+  else
+    python3 "$ROOT/scripts/dev/bench_ratios.py" "$OUT/$name.json"
+  fi
+}
+# bench_sensor_path times both sides and a memcpy in its own counters: their medians and minima over
+# the repetitions, ours / costmap_2d's side by side (issue 38).
+sensor_path_rows() {
+  python3 - "$1" << 'EOF_PY'
+import json, sys
+rows = {}
+for b in json.load(open(sys.argv[1]))["benchmarks"]:
+    agg = b.get("aggregate_name")
+    if agg in ("median", "min"):
+        rows.setdefault(b["run_name"], {"label": b.get("label", "")})[agg] = b
+keys = ["ours_msg_us", "c2d_msg_us", "ratio_msg", "ours_cycle_us", "c2d_cycle_us", "ratio_cycle",
+        "ours_cpu_ms_per_s", "c2d_cpu_ms_per_s", "ratio_cpu", "ours_msg_x_memcpy", "lethal_agree_pct"]
+for name, r in rows.items():
+    print(f"{name}  ({r['label']})")
+    for k in keys:
+        if k in r.get("median", {}):
+            print(f"    {k:20s} median {r['median'][k]:10.4g}   min {r.get('min', {}).get(k, float('nan')):10.4g}")
+EOF_PY
 }
 for exe in "$BIN"/bench_*; do
   [ -x "$exe" ] && [ "${exe%.py}" = "$exe" ] || continue

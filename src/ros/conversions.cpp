@@ -9,9 +9,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "costmap_layers/core/rules/cost_translation.hpp"
 #include "costmap_layers/core/costmap/publish_schedule.hpp"
 #include "costmap_layers/core/layers/sensor_parsing.hpp"
+#include "costmap_layers/core/rules/cost_translation.hpp"
 
 namespace costmap_layers_ros
 {
@@ -157,6 +157,27 @@ costmap_layers::PointCloud2Data fromMsg(const sensor_msgs::PointCloud2& msg)
   d.row_step = msg.row_step;
   d.data = msg.data;
   d.is_dense = msg.is_dense;
+  return d;
+}
+
+costmap_layers::PointCloud2Data fromMsg(const sensor_msgs::PointCloud2ConstPtr& msg)
+{
+  costmap_layers::PointCloud2Data d;
+  if (!msg) throw std::invalid_argument("no PointCloud2 message");
+  d.frame_id = msg->header.frame_id;
+  d.stamp_ns = msg->header.stamp.toNSec();
+  d.height = msg->height;
+  d.width = msg->width;
+  d.fields.reserve(msg->fields.size());
+  for (const auto& f : msg->fields)
+    d.fields.push_back({f.name, f.offset, f.datatype, f.count});
+  d.is_bigendian = msg->is_bigendian;
+  d.point_step = msg->point_step;
+  d.row_step = msg->row_step;
+  d.is_dense = msg->is_dense;
+  d.view = msg->data.data();
+  d.view_size = msg->data.size();
+  d.keep = std::shared_ptr<const void>(msg.get(), [msg](const void*) {});
   return d;
 }
 

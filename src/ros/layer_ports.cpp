@@ -97,6 +97,9 @@ LayerPorts::LayerPorts(ros::NodeHandle public_nh, ros::NodeHandle private_nh, co
               break;
             }
         }
+        // A filter's deactivate() ends a subscription with an empty topic; one that had none yet
+        // (a filter info that named no mask topic) changes nothing worth a line.
+        if (port.topic.empty() && old_topic.empty()) return;
         // Each move is logged (each one matters), ending with the layer's stable key; a sender moving
         // the topic over and over gets kMovesLogged lines per kMovePeriod and then a count.
         constexpr std::size_t kMovesLogged = 10;
@@ -114,7 +117,8 @@ LayerPorts::LayerPorts(ros::NodeHandle public_nh, ros::NodeHandle private_nh, co
         std::string more;
         if (moves_unlogged_ > 0) more = " (and " + std::to_string(moves_unlogged_) + " moves before, not logged)";
         moves_unlogged_ = 0;
-        ROS_INFO("%s: now reading %s%s [%s/input]", ns.c_str(), next.getTopic().c_str(), more.c_str(), ns.c_str());
+        const std::string what = port.topic.empty() ? "stopped reading " + old_topic : "now reading " + next.getTopic();
+        ROS_INFO("%s: %s%s [%s/input]", ns.c_str(), what.c_str(), more.c_str(), ns.c_str());
       });
   for (const costmap_layers::OutputPort& out : layer.outputs())
   {
@@ -284,7 +288,7 @@ void LayerPorts::subscribeSensor(const std::string& topic, const std::string& se
   const std::string global = global_frame_;
   tf2::BufferCore& tf = tf_;
   auto ready = [=, &tf](const typename Msg::ConstPtr& msg)
-  { dispatchReading(*msg, tf, global, sensor_frame, cb, source); };
+  { dispatchReading(msg, tf, global, sensor_frame, cb, source); };
   auto failed = [=](const typename Msg::ConstPtr& msg, TfVerdict verdict)
   {
     reportDroppedReading(msg->header.frame_id, msg->header.stamp, verdict, ros::Time::now(), global, sensor_frame,

@@ -30,9 +30,11 @@ void convertAndDeliver(const Msg& msg, const Callback& cb, const PortSource& src
   }
 }
 
-template <class Msg, class Reading>
+/// `converted` is what fromMsg() takes: the message, or its pointer to borrow from it.
+template <class Msg, class Reading, class Converted = Msg>
 void placeAndDeliver(const Msg& msg, tf2::BufferCore& tf, const std::string& global, const std::string& sensor_frame,
-                     const costmap_layers::SensorCallback<Reading>& cb, const PortSource& src)
+                     const costmap_layers::SensorCallback<Reading>& cb, const PortSource& src,
+                     const Converted* converted = nullptr)
 {
   try
   {
@@ -45,7 +47,10 @@ void placeAndDeliver(const Msg& msg, tf2::BufferCore& tf, const std::string& glo
     pose.origin_x = origin.transform.translation.x;
     pose.origin_y = origin.transform.translation.y;
     pose.origin_z = origin.transform.translation.z;
-    cb(std::make_shared<const Reading>(fromMsg(msg)), pose);
+    if constexpr (std::is_same_v<Converted, Msg>)
+      cb(std::make_shared<const Reading>(fromMsg(msg)), pose);
+    else
+      cb(std::make_shared<const Reading>(fromMsg(*converted)), pose);
   }
   catch (const std::exception& e)
   {
@@ -121,6 +126,34 @@ void dispatchReading(const sensor_msgs::PointCloud& msg, tf2::BufferCore& tf, co
                      const costmap_layers::SensorCallback<costmap_layers::PointCloud2Data>& cb, const PortSource& src)
 {
   placeAndDeliver(msg, tf, global, sensor_frame, cb, src);
+}
+
+void dispatchReading(const sensor_msgs::LaserScanConstPtr& msg, tf2::BufferCore& tf, const std::string& global,
+                     const std::string& sensor_frame,
+                     const costmap_layers::SensorCallback<costmap_layers::LaserScanData>& cb, const PortSource& src)
+{
+  if (msg) placeAndDeliver(*msg, tf, global, sensor_frame, cb, src);
+}
+
+void dispatchReading(const sensor_msgs::PointCloud2ConstPtr& msg, tf2::BufferCore& tf, const std::string& global,
+                     const std::string& sensor_frame,
+                     const costmap_layers::SensorCallback<costmap_layers::PointCloud2Data>& cb, const PortSource& src)
+{
+  if (msg) placeAndDeliver(*msg, tf, global, sensor_frame, cb, src, &msg);
+}
+
+void dispatchReading(const sensor_msgs::PointCloudConstPtr& msg, tf2::BufferCore& tf, const std::string& global,
+                     const std::string& sensor_frame,
+                     const costmap_layers::SensorCallback<costmap_layers::PointCloud2Data>& cb, const PortSource& src)
+{
+  if (msg) placeAndDeliver(*msg, tf, global, sensor_frame, cb, src);
+}
+
+void dispatchReading(const sensor_msgs::RangeConstPtr& msg, tf2::BufferCore& tf, const std::string& global,
+                     const std::string& sensor_frame,
+                     const costmap_layers::SensorCallback<costmap_layers::RangeData>& cb, const PortSource& src)
+{
+  if (msg) placeAndDeliver(*msg, tf, global, sensor_frame, cb, src);
 }
 
 void dispatchReading(const sensor_msgs::Range& msg, tf2::BufferCore& tf, const std::string& global,

@@ -15,12 +15,12 @@
 
 #include "costmap_layers/CostmapFilterInfo.h"
 #include "costmap_layers/SpeedLimits.h"
-#include "costmap_layers/core/grid/costmap_2d.hpp"
-#include "costmap_layers/core/data/grid_data.hpp"
-#include "costmap_layers/core/costmap/layered_costmap.hpp"
 #include "costmap_layers/core/config/param_value.hpp"
+#include "costmap_layers/core/costmap/layered_costmap.hpp"
+#include "costmap_layers/core/data/grid_data.hpp"
 #include "costmap_layers/core/data/path_data.hpp"
 #include "costmap_layers/core/data/sensor_data.hpp"
+#include "costmap_layers/core/grid/costmap_2d.hpp"
 
 namespace costmap_layers_ros
 {
@@ -51,6 +51,8 @@ costmap_layers::OdometryData fromMsg(const nav_msgs::Odometry& msg);
 /// Sensor messages: plain copies; the core validates them.
 costmap_layers::LaserScanData fromMsg(const sensor_msgs::LaserScan& msg);
 costmap_layers::PointCloud2Data fromMsg(const sensor_msgs::PointCloud2& msg);
+/// The same without copying the points: the result borrows msg's bytes and keeps msg alive.
+costmap_layers::PointCloud2Data fromMsg(const sensor_msgs::PointCloud2ConstPtr& msg);
 /// The older sensor_msgs/PointCloud as a PointCloud2 of its points (fields x, y, z, FLOAT32, one row),
 /// as costmap_2d converts it; its channels are not used by any layer and are left out.
 costmap_layers::PointCloud2Data fromMsg(const sensor_msgs::PointCloud& msg);

@@ -64,6 +64,20 @@ void dispatchReading(const sensor_msgs::LaserScan& msg, tf2::BufferCore& tf, con
 void dispatchReading(const sensor_msgs::PointCloud2& msg, tf2::BufferCore& tf, const std::string& global,
                      const std::string& sensor_frame,
                      const costmap_layers::SensorCallback<costmap_layers::PointCloud2Data>& cb, const PortSource& src);
+/// As received (what LayerPorts calls): the same, a PointCloud2's points borrowed from the message
+/// rather than copied.
+void dispatchReading(const sensor_msgs::LaserScanConstPtr& msg, tf2::BufferCore& tf, const std::string& global,
+                     const std::string& sensor_frame,
+                     const costmap_layers::SensorCallback<costmap_layers::LaserScanData>& cb, const PortSource& src);
+void dispatchReading(const sensor_msgs::PointCloud2ConstPtr& msg, tf2::BufferCore& tf, const std::string& global,
+                     const std::string& sensor_frame,
+                     const costmap_layers::SensorCallback<costmap_layers::PointCloud2Data>& cb, const PortSource& src);
+void dispatchReading(const sensor_msgs::PointCloudConstPtr& msg, tf2::BufferCore& tf, const std::string& global,
+                     const std::string& sensor_frame,
+                     const costmap_layers::SensorCallback<costmap_layers::PointCloud2Data>& cb, const PortSource& src);
+void dispatchReading(const sensor_msgs::RangeConstPtr& msg, tf2::BufferCore& tf, const std::string& global,
+                     const std::string& sensor_frame,
+                     const costmap_layers::SensorCallback<costmap_layers::RangeData>& cb, const PortSource& src);
 /// The older PointCloud, delivered as a PointCloud2Data of its points.
 void dispatchReading(const sensor_msgs::PointCloud& msg, tf2::BufferCore& tf, const std::string& global,
                      const std::string& sensor_frame,

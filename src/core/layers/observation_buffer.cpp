@@ -28,6 +28,56 @@ void ObservationBuffer::noteTimeLocked(uint64_t now_ns) const
   last_updated_ns_ = now_ns;
 }
 
+std::shared_ptr<ObservationPool> ObservationPool::make()
+{
+  std::shared_ptr<ObservationPool> pool(new ObservationPool());
+  pool->self_ = pool;
+  return pool;
+}
+
+std::shared_ptr<Observation> ObservationPool::take()
+{
+  std::unique_ptr<Observation> o;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!free_.empty())
+    {
+      o = std::move(free_.back());
+      free_.pop_back();
+    }
+  }
+  if (o)
+  {
+    // As new, the capacity of its vectors kept.
+    std::vector<Point3f> points = std::move(o->points), clear_only = std::move(o->clear_only);
+    points.clear();
+    clear_only.clear();
+    *o = Observation{};
+    o->points = std::move(points);
+    o->clear_only = std::move(clear_only);
+  }
+  else
+  {
+    o = std::make_unique<Observation>();
+  }
+  std::weak_ptr<ObservationPool> pool = self_;
+  return std::shared_ptr<Observation>(o.release(),
+                                      [pool](Observation* released)
+                                      {
+                                        if (auto p = pool.lock())
+                                          p->giveBack(released);
+                                        else
+                                          delete released;
+                                      });
+}
+
+void ObservationPool::giveBack(Observation* observation)
+{
+  std::unique_ptr<Observation> o(observation);
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (free_.size() < kMaxFree) free_.push_back(std::move(o));
+}
+
 bool olderThanPersistence(uint64_t stamp_ns, uint64_t now_ns, double observation_persistence)
 {
   if (!(observation_persistence > 0.0)) return false;

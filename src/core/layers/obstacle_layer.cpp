@@ -7,18 +7,62 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "costmap_layers/core/layers/ray_geometry.hpp"
-#include "costmap_layers/core/grid/cost_values.hpp"
 #include "costmap_layers/core/config/input_error.hpp"
-#include "costmap_layers/core/costmap/layered_costmap.hpp"
-#include "costmap_layers/core/rules/limits.hpp"
 #include "costmap_layers/core/config/param_reader.hpp"
+#include "costmap_layers/core/costmap/layered_costmap.hpp"
+#include "costmap_layers/core/grid/cost_values.hpp"
+#include "costmap_layers/core/layers/ray_geometry.hpp"
+#include "costmap_layers/core/rules/limits.hpp"
 #include "costmap_layers/core/rules/stamp_order.hpp"
 
 namespace costmap_layers
 {
 namespace
 {
+/// std::hypot of two cell counts, as Costmap2D::raytraceLine computes a line's length (the same bits:
+/// the cleared steps depend on it), looked up for the short lines a local costmap traces.
+double lineLength(unsigned int a, unsigned int b)
+{
+  constexpr unsigned int kSide = 128;
+  struct Table
+  {
+    std::vector<double> length;
+    Table() : length(kSide * kSide)
+    {
+      for (unsigned int i = 0; i < kSide; ++i)
+        for (unsigned int j = 0; j < kSide; ++j)
+          length[i * kSide + j] = std::hypot(static_cast<double>(i), static_cast<double>(j));
+    }
+  };
+  static const Table table;
+  if (a < kSide && b < kSide) return table.length[a * kSide + b];
+  return std::hypot(static_cast<double>(a), static_cast<double>(b));
+}
+
+/// The first step k >= 0 whose k * step (in double, as the walk would compute it) is >= bound; step > 0.
+int64_t firstStepAtLeast(double step, double bound)
+{
+  if (!(bound > 0.0)) return 0;
+  int64_t k = static_cast<int64_t>(std::min(std::ceil(bound / step), 4e18));
+  while (k > 0 && static_cast<double>(k - 1) * step >= bound)
+    --k;
+  while (static_cast<double>(k) * step < bound)
+    ++k;
+  return k;
+}
+
+/// The last step k whose k * step is <= bound (-1 for none; a NaN bound has none); step > 0.
+int64_t lastStepAtMost(double step, double bound)
+{
+  if (!(bound >= 0.0)) return -1;
+  int64_t k = static_cast<int64_t>(std::min(std::floor(bound / step), 4e18));
+  while (k >= 0 && static_cast<double>(k) * step > bound)
+    --k;
+  while (static_cast<double>(k + 1) * step <= bound)
+    ++k;
+  return k;
+}
+
 /// The new name when set, else the old one, else the default. Ranges are lengths: kMaxDistance.
 double rangeParam(const ParamReader& p, const std::string& name, const std::string& old_name, double def)
 {
@@ -85,7 +129,7 @@ ObservationSourceConfig parseObservationSourceConfig(const ParamReader& p, const
   c.name = name;
   c.topic = p.getTopic("topic", name, true);
   if (c.topic.empty()) p.fail("topic", "must not be empty");
-  c.sensor_frame = p.getString("sensor_frame", c.sensor_frame);
+  c.sensor_frame = p.getFrameId("sensor_frame", c.sensor_frame, true);  // empty: the message's frame
   c.observation_persistence =
       p.getDouble("observation_persistence", c.observation_persistence, 0.0, limits::kMaxDuration);
   c.expected_update_rate = p.getDouble("expected_update_rate", c.expected_update_rate, 0.0, limits::kMaxDuration);
@@ -265,46 +309,78 @@ LayerStatus ObstacleLayer::status() const
   return s;
 }
 
+namespace
+{
+/// Moves a point of the sensor's frame into the global frame and keeps it when its height is within
+/// the source's limits (and its coordinates finite).
+struct Projection
+{
+  const Transform3D& T;
+  double zmin, zmax;
+  void operator()(const Point3f& p, std::vector<Point3f>& out) const
+  {
+    double gx, gy, gz;
+    T.apply(p.x, p.y, p.z, gx, gy, gz);
+    if (!(gz >= zmin && gz <= zmax)) return;  // also drops NaN from a broken transform
+    if (!std::isfinite(gx) || !std::isfinite(gy)) return;
+    out.push_back({static_cast<float>(gx), static_cast<float>(gy), static_cast<float>(gz)});
+  }
+};
+}  // namespace
+
+std::string ObstacleLayer::refuseReading(std::size_t source, const std::string& error)
+{
+  context_->report(Severity::Warn, "invalid/" + config_.sources[source].name,
+                   sourceLabel(source) + ": reading rejected: " + error);
+  return noteReading(source, error);
+}
+
+// Each reading goes from the message's own storage straight into the observation the buffer keeps: the
+// points are parsed, moved into the global frame and height-filtered in one pass, with no copy between.
 std::string ObstacleLayer::addLaserScan(std::size_t source, const LaserScanData& scan, const SensorPose& pose)
 {
   if (source >= config_.sources.size()) return "no observation source " + std::to_string(source);
   if (!active_) return {};
-  thread_local std::vector<Point3f> local, local_clear;
-  local.clear();
-  local_clear.clear();
-  const ParseResult r = laserScanToPoints(scan, config_.sources[source].inf_is_valid, local, local_clear);
-  if (!r.ok())
-  {
-    context_->report(Severity::Warn, "invalid/" + config_.sources[source].name,
-                     sourceLabel(source) + ": reading rejected: " + r.error);
-    return noteReading(source, r.error);
-  }
-  return noteReading(source, bufferPoints(source, local, local_clear, scan.stamp_ns, pose));
+  const std::string invalid = validateLaserScan(scan);
+  if (!invalid.empty()) return refuseReading(source, invalid);
+  const uint64_t now = context_->nowNs();
+  std::string refused = refuseStamp(source, scan.stamp_ns, now);
+  if (!refused.empty()) return noteReading(source, std::move(refused));
+  const ObservationSourceConfig& s = config_.sources[source];
+  std::shared_ptr<Observation> obs = startObservation(source, scan.stamp_ns, now, pose);
+  obs->points.reserve(scan.ranges.size());
+  const Projection project{pose.to_global, s.min_obstacle_height, s.max_obstacle_height};
+  ParseResult r;
+  forEachScanPoint(scan, s.inf_is_valid, r,
+                   [&](const Point3f& p, bool clear_only) { project(p, clear_only ? obs->clear_only : obs->points); });
+  buffers_[source]->add(std::move(obs), now);
+  return noteReading(source, {});
 }
 
 std::string ObstacleLayer::addPointCloud2(std::size_t source, const PointCloud2Data& cloud, const SensorPose& pose)
 {
   if (source >= config_.sources.size()) return "no observation source " + std::to_string(source);
   if (!active_) return {};
-  thread_local std::vector<Point3f> local, local_clear;
-  local.clear();
-  local_clear.clear();
-  const ParseResult r = pointCloud2ToPoints(cloud, local);
-  if (!r.ok())
-  {
-    context_->report(Severity::Warn, "invalid/" + config_.sources[source].name,
-                     sourceLabel(source) + ": reading rejected: " + r.error);
-    return noteReading(source, r.error);
-  }
-  return noteReading(source, bufferPoints(source, local, local_clear, cloud.stamp_ns, pose));
+  detail::CloudLayout layout;
+  const std::string invalid = detail::cloudLayout(cloud, layout);
+  if (!invalid.empty()) return refuseReading(source, invalid);
+  const uint64_t now = context_->nowNs();
+  std::string refused = refuseStamp(source, cloud.stamp_ns, now);
+  if (!refused.empty()) return noteReading(source, std::move(refused));
+  const ObservationSourceConfig& s = config_.sources[source];
+  std::shared_ptr<Observation> obs = startObservation(source, cloud.stamp_ns, now, pose);
+  // The layout check bounds width * height by data.size() / point_step, so this reservation is safe.
+  obs->points.reserve(static_cast<std::size_t>(cloud.width) * cloud.height);
+  const Projection project{pose.to_global, s.min_obstacle_height, s.max_obstacle_height};
+  ParseResult r;
+  forEachCloudPoint(cloud, layout, r, [&](const Point3f& p) { project(p, obs->points); });
+  buffers_[source]->add(std::move(obs), now);
+  return noteReading(source, {});
 }
 
-std::string ObstacleLayer::bufferPoints(std::size_t source, const std::vector<Point3f>& local,
-                                        const std::vector<Point3f>& local_clear, uint64_t stamp_ns,
-                                        const SensorPose& pose)
+std::string ObstacleLayer::refuseStamp(std::size_t source, uint64_t stamp_ns, uint64_t now)
 {
   const ObservationSourceConfig& s = config_.sources[source];
-  const uint64_t now = context_->nowNs();
   // Buffered, it would count as fresh until the clock caught up with it: a ghost re-marked every cycle.
   if (isAheadOfNow(stamp_ns, now))
   {
@@ -320,7 +396,14 @@ std::string ObstacleLayer::bufferPoints(std::size_t source, const std::vector<Po
     context_->report(Severity::Warn, "old/" + s.name, sourceLabel(source) + ": reading rejected: " + error);
     return error;
   }
-  auto obs = std::make_shared<Observation>();
+  return {};
+}
+
+std::shared_ptr<Observation> ObstacleLayer::startObservation(std::size_t source, uint64_t stamp_ns, uint64_t now,
+                                                             const SensorPose& pose)
+{
+  const ObservationSourceConfig& s = config_.sources[source];
+  std::shared_ptr<Observation> obs = pool_->take();
   obs->origin_x = pose.origin_x;
   obs->origin_y = pose.origin_y;
   obs->origin_z = pose.origin_z;
@@ -329,24 +412,7 @@ std::string ObstacleLayer::bufferPoints(std::size_t source, const std::vector<Po
   obs->obstacle_max_range = s.obstacle_max_range;
   obs->raytrace_min_range = s.raytrace_min_range;
   obs->raytrace_max_range = s.raytrace_max_range;
-  const Transform3D& T = pose.to_global;
-  const double zmin = s.min_obstacle_height, zmax = s.max_obstacle_height;
-  auto project = [&](const std::vector<Point3f>& in, std::vector<Point3f>& out)
-  {
-    out.reserve(in.size());
-    for (const Point3f& p : in)
-    {
-      double gx, gy, gz;
-      T.apply(p.x, p.y, p.z, gx, gy, gz);
-      if (!(gz >= zmin && gz <= zmax)) continue;  // also drops NaN from a broken transform
-      if (!std::isfinite(gx) || !std::isfinite(gy)) continue;
-      out.push_back({static_cast<float>(gx), static_cast<float>(gy), static_cast<float>(gz)});
-    }
-  };
-  project(local, obs->points);
-  project(local_clear, obs->clear_only);
-  buffers_[source]->add(std::move(obs), now);
-  return {};
+  return obs;
 }
 
 void ObstacleLayer::addStaticObservation(const Observation& observation, bool marking, bool clearing)
@@ -494,6 +560,7 @@ void ObstacleLayer::raytraceFreespace(const Observation& obs, double* min_x, dou
   const unsigned int size_x = costmap_.getSizeInCellsX();
   uint8_t* grid = costmap_.data();
   TouchedBox<unsigned int> visited_cells(x0, y0);
+  ray_ends_.reset(costmap_.cellCount());
   auto ray = [&](const Point3f& p)
   {
     // As costmap_2d: the line runs towards the reading's own cell (cut at the grid's border only) and
@@ -503,32 +570,59 @@ void ObstacleLayer::raytraceFreespace(const Observation& obs, double* min_x, dou
     if (!clipRay2D(ox, oy, p.x, p.y, std::numeric_limits<double>::infinity(), t)) return;
     int cx, cy;
     costmap_.worldToMapEnforceBounds(ox + t * (p.x - ox), oy + t * (p.y - oy), cx, cy);
+    // A walk depends on its two end cells only: a ray ending where an earlier one of this observation
+    // ended clears nothing new (a dense cloud sends many readings per cell).
+    const std::size_t end = static_cast<std::size_t>(cy) * size_x + static_cast<std::size_t>(cx);
+    if (ray_ends_.test(end)) return;
+    ray_ends_.set(end);
     const int dx = cx - static_cast<int>(x0), dy = cy - static_cast<int>(y0);
-    const int major = std::max(std::abs(dx), std::abs(dy));
-    // The walk makes one step of the major axis per cell and visits the end cell (the reading's, or
-    // where the grid cuts the line) last; step k lies k * step cells along the line from the origin's
-    // cell. Cleared: min_cells <= k * step <= the range in whole cells, as costmap_2d clears: the
-    // reading's own cell too (marked again afterwards when the reading marks), and a reading in the
-    // origin's cell clears that cell. Both ends are applied on the same line (costmap_2d restarts the
-    // line from a rounded cell at the minimum range, which bends it).
-    const double step = major == 0 ? 0.0 : std::hypot(static_cast<double>(dx), static_cast<double>(dy)) / major;
-    unsigned int k = 0, last = 0;
-    bool visited = false;
-    costmap_.raytraceLine(
-        [&](unsigned int index)
-        {
-          const double along = static_cast<double>(k++) * step;
-          if (along >= min_cells && along <= max_cells)
-          {
-            grid[index] = FREE_SPACE;
-            last = index;
-            visited = true;
-          }
-        },
-        x0, y0, static_cast<unsigned>(cx), static_cast<unsigned>(cy), walk_cells, 0);
-    if (!visited) return;
+    const unsigned int abs_dx = static_cast<unsigned int>(std::abs(dx)),
+                       abs_dy = static_cast<unsigned int>(std::abs(dy));
+    // The walk is costmap_2d's raytraceLine (Costmap2D::raytraceLine): one step of the major axis per
+    // cell, cut at walk_cells along the line, the end cell (the reading's, or where the grid cuts the
+    // line) visited last. Step k lies k * step cells along the line from the origin's cell. Cleared:
+    // min_cells <= k * step <= the range in whole cells, as costmap_2d clears: the reading's own cell
+    // too (marked again afterwards when the reading marks), and a reading in the origin's cell clears
+    // that cell. Both ends are applied on the same line (costmap_2d restarts the line from a rounded
+    // cell at the minimum range, which bends it). The first and last cleared step are found once per
+    // ray, so the walk itself only writes.
+    const bool x_major = abs_dx >= abs_dy;
+    const unsigned int abs_da = x_major ? abs_dx : abs_dy, abs_db = x_major ? abs_dy : abs_dx;
+    const double dist = lineLength(abs_dx, abs_dy);
+    const double step = abs_da == 0 ? 0.0 : dist / abs_da;
+    const double scale = dist == 0.0 ? 1.0 : std::min(1.0, walk_cells / dist);
+    const int64_t length = static_cast<unsigned int>(scale * abs_da);  // the walk's last step
+    int64_t lo, hi;
+    if (step == 0.0)
+    {
+      const bool cleared = 0.0 >= min_cells && 0.0 <= max_cells;
+      lo = 0;
+      hi = cleared ? 0 : -1;
+    }
+    else
+    {
+      lo = firstStepAtLeast(step, min_cells);
+      hi = std::min(length, lastStepAtMost(step, max_cells));
+    }
+    if (hi < lo) return;
+    const int offset_a = x_major ? (dx > 0 ? 1 : -1) : (dy > 0 ? 1 : -1) * static_cast<int>(size_x);
+    const int offset_b = x_major ? (dy > 0 ? 1 : -1) * static_cast<int>(size_x) : (dx > 0 ? 1 : -1);
+    unsigned int offset = y0 * size_x + x0;
+    unsigned int error = abs_da / 2;
+    for (int64_t k = 0;; ++k)
+    {
+      if (k >= lo) grid[offset] = FREE_SPACE;
+      if (k == hi) break;
+      offset += offset_a;
+      error += abs_db;
+      if (error >= abs_da)
+      {
+        offset += offset_b;
+        error -= abs_da;
+      }
+    }
     // Bresenham stays in the box of its first and last cells: that box is what changed.
-    visited_cells.add(last % size_x, last / size_x);
+    visited_cells.add(offset % size_x, offset / size_x);
   };
   for (const Point3f& p : obs.points)
     ray(p);

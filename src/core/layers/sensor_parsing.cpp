@@ -53,61 +53,37 @@ std::string validateLaserScan(const LaserScanData& scan)
   return {};
 }
 
+const BeamDirections& beamDirections(const LaserScanData& scan)
+{
+  thread_local BeamDirections dir;
+  const std::size_t n = scan.ranges.size();
+  // Compared bit for bit (a NaN angle never reaches here: the scan was validated).
+  if (dir.cos.size() != n || dir.angle_min != scan.angle_min || dir.angle_increment != scan.angle_increment)
+  {
+    dir.angle_min = scan.angle_min;
+    dir.angle_increment = scan.angle_increment;
+    dir.cos.resize(n);
+    dir.sin.resize(n);
+    const double a0 = scan.angle_min, da = scan.angle_increment;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const double a = a0 + static_cast<double>(i) * da;
+      dir.cos[i] = std::cos(a);
+      dir.sin[i] = std::sin(a);
+    }
+  }
+  return dir;
+}
+
 ParseResult laserScanToPoints(const LaserScanData& scan, bool inf_is_valid, std::vector<Point3f>& points,
                               std::vector<Point3f>& clear_only)
 {
   ParseResult result;
   result.error = validateLaserScan(scan);
   if (!result.ok()) return result;
-
-  const std::size_t n = scan.ranges.size();
-  points.reserve(points.size() + n);
-  const double a0 = scan.angle_min, da = scan.angle_increment;
-  const float rmin = scan.range_min, rmax = scan.range_max;
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    const float r = scan.ranges[i];
-    float use;
-    bool clearing_only = false;
-    if (std::isnan(r))
-    {
-      ++result.dropped;
-      continue;
-    }
-    if (std::isinf(r))
-    {
-      if (r < 0 || !inf_is_valid)
-      {
-        ++result.dropped;
-        continue;
-      }
-      use = rmax;
-      clearing_only = true;
-    }
-    else if (r < rmin || r >= rmax)
-    {
-      ++result.dropped;
-      continue;
-    }
-    else
-    {
-      use = r;
-    }
-    const double a = a0 + static_cast<double>(i) * da;
-    Point3f p;
-    p.x = static_cast<float>(use * std::cos(a));
-    p.y = static_cast<float>(use * std::sin(a));
-    if (clearing_only)
-    {
-      clear_only.push_back(p);
-      ++result.clear_only;
-    }
-    else
-    {
-      points.push_back(p);
-      ++result.points;
-    }
-  }
+  points.reserve(points.size() + scan.ranges.size());
+  forEachScanPoint(scan, inf_is_valid, result,
+                   [&](const Point3f& p, bool only_clears) { (only_clears ? clear_only : points).push_back(p); });
   return result;
 }
 
@@ -166,12 +142,6 @@ T readSwapped(const uint8_t* p, bool swap)
   return value;
 }
 
-inline double readCoordinate(const uint8_t* point, const FieldView& f, bool swap)
-{
-  if (f.size == 4) return readSwapped<float>(point + f.offset, swap);
-  return readSwapped<double>(point + f.offset, swap);
-}
-
 std::string validateLayout(const PointCloud2Data& cloud, FieldView fields[3])
 {
   const uint64_t count = static_cast<uint64_t>(cloud.width) * cloud.height;
@@ -188,8 +158,8 @@ std::string validateLayout(const PointCloud2Data& cloud, FieldView fields[3])
     return "PointCloud2 row_step " + std::to_string(cloud.row_step) +
            " is below width * point_step = " + std::to_string(row_bytes);
   const uint64_t needed = static_cast<uint64_t>(cloud.row_step) * cloud.height;
-  if (static_cast<uint64_t>(cloud.data.size()) < needed)
-    return "PointCloud2 data has " + std::to_string(cloud.data.size()) + " bytes, row_step * height needs " +
+  if (static_cast<uint64_t>(cloud.byteCount()) < needed)
+    return "PointCloud2 data has " + std::to_string(cloud.byteCount()) + " bytes, row_step * height needs " +
            std::to_string(needed);
   return {};
 }
@@ -201,51 +171,38 @@ std::string validatePointCloud2(const PointCloud2Data& cloud)
   return validateLayout(cloud, fields);
 }
 
+namespace detail
+{
+double readCloudCoordinate(const uint8_t* point, uint32_t offset, uint8_t size, bool swap)
+{
+  if (size == 4) return readSwapped<float>(point + offset, swap);
+  return readSwapped<double>(point + offset, swap);
+}
+
+std::string cloudLayout(const PointCloud2Data& cloud, CloudLayout& layout)
+{
+  FieldView f[3];
+  std::string error = validateLayout(cloud, f);
+  if (!error.empty()) return error;
+  for (int k = 0; k < 3; ++k)
+  {
+    layout.offset[k] = f[k].offset;
+    layout.size[k] = f[k].size;
+  }
+  layout.swap = cloud.is_bigendian != hostIsBigEndian();
+  return {};
+}
+}  // namespace detail
+
 ParseResult pointCloud2ToPoints(const PointCloud2Data& cloud, std::vector<Point3f>& points)
 {
   ParseResult result;
-  FieldView f[3];
-  result.error = validateLayout(cloud, f);
+  detail::CloudLayout layout;
+  result.error = detail::cloudLayout(cloud, layout);
   if (!result.ok()) return result;
-  const bool swap = cloud.is_bigendian != hostIsBigEndian();
   // The layout check bounds width * height by data.size() / point_step, so this reservation is safe.
   points.reserve(points.size() + static_cast<std::size_t>(cloud.width) * cloud.height);
-  const bool all_float = f[0].size == 4 && f[1].size == 4 && f[2].size == 4 && !swap;
-  for (uint32_t row = 0; row < cloud.height; ++row)
-  {
-    const uint8_t* p = cloud.data.data() + static_cast<std::size_t>(row) * cloud.row_step;
-    for (uint32_t col = 0; col < cloud.width; ++col, p += cloud.point_step)
-    {
-      Point3f q;
-      if (all_float)
-      {
-        std::memcpy(&q.x, p + f[0].offset, 4);
-        std::memcpy(&q.y, p + f[1].offset, 4);
-        std::memcpy(&q.z, p + f[2].offset, 4);
-        if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
-        {
-          ++result.dropped;
-          continue;
-        }
-      }
-      else
-      {
-        const double x = readCoordinate(p, f[0], swap), y = readCoordinate(p, f[1], swap),
-                     z = readCoordinate(p, f[2], swap);
-        q.x = static_cast<float>(x);
-        q.y = static_cast<float>(y);
-        q.z = static_cast<float>(z);
-        // Doubles beyond float's range become infinite here and are dropped with the rest.
-        if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
-        {
-          ++result.dropped;
-          continue;
-        }
-      }
-      points.push_back(q);
-      ++result.points;
-    }
-  }
+  forEachCloudPoint(cloud, layout, result, [&](const Point3f& p) { points.push_back(p); });
   return result;
 }
 

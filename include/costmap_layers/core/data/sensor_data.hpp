@@ -4,7 +4,9 @@
 // validates them, so malformed readings are rejected in one place that tests can reach.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -66,7 +68,9 @@ struct PointFieldData
   uint32_t count = 0;
 };
 
-/// sensor_msgs/PointCloud2.
+/// sensor_msgs/PointCloud2. Its bytes are either in `data` or, received from a message, borrowed from it
+/// (`view`, `view_size`, the message kept alive by `keep`): a cloud is read once, where it arrived, and
+/// copying megabytes per message was what a cloud cost most. Read them through bytes() / byteCount().
 struct PointCloud2Data
 {
   std::string frame_id;
@@ -77,6 +81,12 @@ struct PointCloud2Data
   uint32_t point_step = 0, row_step = 0;
   std::vector<uint8_t> data;
   bool is_dense = false;
+  const uint8_t* view = nullptr;  ///< when set, the bytes (data stays empty)
+  std::size_t view_size = 0;
+  std::shared_ptr<const void> keep;  ///< owns what view points into
+
+  const uint8_t* bytes() const { return view != nullptr ? view : data.data(); }
+  std::size_t byteCount() const { return view != nullptr ? view_size : data.size(); }
 };
 
 /// sensor_msgs/Range.

@@ -29,6 +29,27 @@ struct Observation
   double raytrace_min_range = 0.0, raytrace_max_range = 3.0;  ///< [m] clearing window from the origin
 };
 
+/// Observations to fill, reused once every reference to them went: their vectors keep their capacity,
+/// so that a sensor's steady stream of readings allocates no point storage. Thread-safe; an observation
+/// may outlive its pool (it is then freed as usual).
+class ObservationPool
+{
+public:
+  /// The most unused observations kept (each holds a reading's worth of points).
+  static constexpr std::size_t kMaxFree = 4;
+  static std::shared_ptr<ObservationPool> make();
+  /// An observation with no points and the defaults otherwise; returned here when released.
+  std::shared_ptr<Observation> take();
+
+private:
+  ObservationPool() = default;
+  void giveBack(Observation* observation);
+
+  std::weak_ptr<ObservationPool> self_;
+  std::mutex mutex_;
+  std::vector<std::unique_ptr<Observation>> free_;  ///< guarded by mutex_
+};
+
 /// True when a reading stamped stamp_ns is older at now_ns than observation_persistence (> 0) allows:
 /// a buffer drops it (a reading stamped ahead counts as age 0). 0 (keep the newest) never expires one.
 bool olderThanPersistence(uint64_t stamp_ns, uint64_t now_ns, double observation_persistence);

@@ -15,9 +15,9 @@
 #include <vector>
 
 #include "costmap_layers/core/costmap/costmap_layer.hpp"
+#include "costmap_layers/core/data/sensor_data.hpp"
 #include "costmap_layers/core/grid/footprint.hpp"
 #include "costmap_layers/core/layers/observation_buffer.hpp"
-#include "costmap_layers/core/data/sensor_data.hpp"
 
 namespace costmap_layers
 {
@@ -136,15 +136,21 @@ protected:
   ObstacleConfig config_;
 
 private:
-  /// Moves parsed points into the global frame, filters heights and buffers the observation.
-  /// @return "" when buffered, else the reason (reported).
-  std::string bufferPoints(std::size_t source, const std::vector<Point3f>& local,
-                           const std::vector<Point3f>& local_clear, uint64_t stamp_ns, const SensorPose& pose);
+  /// Why a valid reading of `source` stamped stamp_ns cannot be buffered at now_ns ("" when it can):
+  /// stamped ahead of now, or older than the source's persistence (reported).
+  std::string refuseStamp(std::size_t source, uint64_t stamp_ns, uint64_t now_ns);
+  /// An empty observation of `source` (from the pool) at `pose`, stamped stamp_ns (or now_ns).
+  std::shared_ptr<Observation> startObservation(std::size_t source, uint64_t stamp_ns, uint64_t now_ns,
+                                                const SensorPose& pose);
+  /// Reports a reading the parser refused; returns the reason.
+  std::string refuseReading(std::size_t source, const std::string& error);
 
   /// Records what happened to one reading of `source` for status(); returns result.
   std::string noteReading(std::size_t source, std::string result);
 
   std::vector<std::unique_ptr<ObservationBuffer>> buffers_;
+  /// Where readings are projected into: no allocation per reading once the sensors run.
+  std::shared_ptr<ObservationPool> pool_ = ObservationPool::make();
   struct SourceCounts
   {
     uint64_t accepted = 0, rejected = 0;
@@ -160,6 +166,35 @@ private:
 
   // Update thread only; kept between cycles so that a cycle allocates nothing once warm.
   std::vector<std::shared_ptr<const Observation>> marking_, clearing_, scratch_;
+  /// The cells where the rays of the observation being traced ended: one bit per cell, and the list of
+  /// the bits set, so that starting over costs what the last observation set.
+  class CellSet
+  {
+  public:
+    void reset(std::size_t cells)
+    {
+      if (bits_.size() != (cells + 63) / 64)
+      {
+        bits_.assign((cells + 63) / 64, 0);
+        set_.clear();
+      }
+      for (const std::size_t w : set_)
+        bits_[w] = 0;
+      set_.clear();
+    }
+    bool test(std::size_t cell) const { return (bits_[cell / 64] >> (cell % 64)) & 1u; }
+    void set(std::size_t cell)
+    {
+      uint64_t& w = bits_[cell / 64];
+      if (w == 0) set_.push_back(cell / 64);
+      w |= uint64_t{1} << (cell % 64);
+    }
+
+  private:
+    std::vector<uint64_t> bits_;
+    std::vector<std::size_t> set_;  ///< the words with a bit set
+  };
+  CellSet ray_ends_;
   Footprint transformed_footprint_;
 };
 }  // namespace costmap_layers

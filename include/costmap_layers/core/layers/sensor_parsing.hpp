@@ -3,8 +3,10 @@
 // what was wrong (field name and value) instead of crashing. All arithmetic on sizes is done in 64 bits.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -43,6 +45,26 @@ std::string validateLaserScan(const LaserScanData& scan);
 ParseResult laserScanToPoints(const LaserScanData& scan, bool inf_is_valid, std::vector<Point3f>& points,
                               std::vector<Point3f>& clear_only);
 
+/// The cosine and sine of every beam angle of a scan (angle_min + i * angle_increment, in double), kept
+/// per thread and recomputed only when angle_min, angle_increment or the beam count change: a scanner
+/// sends the same angles in every message, and the trigonometry was most of a scan's cost.
+struct BeamDirections
+{
+  float angle_min = 0, angle_increment = 0;
+  std::vector<double> cos, sin;
+};
+const BeamDirections& beamDirections(const LaserScanData& scan);
+
+/// laserScanToPoints without the intermediate vectors: sink(point, clear_only) gets each point in
+/// beam order (the same points, bit for bit). The scan must be valid (validateLaserScan).
+template <class Sink>
+void forEachScanPoint(const LaserScanData& scan, bool inf_is_valid, ParseResult& result, Sink&& sink);
+
+/// pointCloud2ToPoints without the intermediate vector: sink(point) gets each point with finite
+/// coordinates in storage order. The cloud's layout must be valid (validatePointCloud2).
+template <class Sink>
+void forEachCloudPoint(const PointCloud2Data& cloud, ParseResult& result, Sink&& sink);
+
 /// Checks a PointCloud2's layout: fields x, y and z present, each FLOAT32 or FLOAT64 with its bytes
 /// inside point_step; point_step > 0 when there are points; row_step >= width * point_step;
 /// data.size() >= row_step * height.
@@ -78,4 +100,104 @@ struct RangeInterpretation
 /// ignored; range == max_range clears the cone when clear_on_max_reading. FIXED: only +-inf are valid;
 /// -inf is a detection at min_range, +inf clears the cone when clear_on_max_reading (else ignored).
 RangeInterpretation interpretRange(const RangeData& range, RangeInputType type, bool clear_on_max_reading);
+
+// ---- The point loops (templates: the sink is inlined into them).
+template <class Sink>
+void forEachScanPoint(const LaserScanData& scan, bool inf_is_valid, ParseResult& result, Sink&& sink)
+{
+  const BeamDirections& dir = beamDirections(scan);
+  const std::size_t n = scan.ranges.size();
+  const float rmin = scan.range_min, rmax = scan.range_max;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const float r = scan.ranges[i];
+    float use;
+    bool clearing_only = false;
+    if (std::isnan(r))
+    {
+      ++result.dropped;
+      continue;
+    }
+    if (std::isinf(r))
+    {
+      if (r < 0 || !inf_is_valid)
+      {
+        ++result.dropped;
+        continue;
+      }
+      use = rmax;
+      clearing_only = true;
+    }
+    else if (r < rmin || r >= rmax)
+    {
+      ++result.dropped;
+      continue;
+    }
+    else
+    {
+      use = r;
+    }
+    Point3f p;
+    p.x = static_cast<float>(use * dir.cos[i]);
+    p.y = static_cast<float>(use * dir.sin[i]);
+    ++(clearing_only ? result.clear_only : result.points);
+    sink(p, clearing_only);
+  }
+}
+
+namespace detail
+{
+/// Where x, y and z sit in a point, and how to read them (see validatePointCloud2).
+struct CloudLayout
+{
+  uint32_t offset[3] = {0, 0, 0};
+  uint8_t size[3] = {4, 4, 4};  ///< 4 (FLOAT32) or 8 (FLOAT64)
+  bool swap = false;
+};
+/// The layout of a cloud validatePointCloud2 accepts ("" and the layout), else the reason.
+std::string cloudLayout(const PointCloud2Data& cloud, CloudLayout& layout);
+double readCloudCoordinate(const uint8_t* point, uint32_t offset, uint8_t size, bool swap);
+}  // namespace detail
+
+template <class Sink>
+void forEachCloudPoint(const PointCloud2Data& cloud, const detail::CloudLayout& f, ParseResult& result, Sink&& sink)
+{
+  const bool all_float = f.size[0] == 4 && f.size[1] == 4 && f.size[2] == 4 && !f.swap;
+  for (uint32_t row = 0; row < cloud.height; ++row)
+  {
+    const uint8_t* p = cloud.bytes() + static_cast<std::size_t>(row) * cloud.row_step;
+    for (uint32_t col = 0; col < cloud.width; ++col, p += cloud.point_step)
+    {
+      Point3f q;
+      if (all_float)
+      {
+        std::memcpy(&q.x, p + f.offset[0], 4);
+        std::memcpy(&q.y, p + f.offset[1], 4);
+        std::memcpy(&q.z, p + f.offset[2], 4);
+      }
+      else
+      {
+        // Doubles beyond float's range become infinite here and are dropped with the rest.
+        q.x = static_cast<float>(detail::readCloudCoordinate(p, f.offset[0], f.size[0], f.swap));
+        q.y = static_cast<float>(detail::readCloudCoordinate(p, f.offset[1], f.size[1], f.swap));
+        q.z = static_cast<float>(detail::readCloudCoordinate(p, f.offset[2], f.size[2], f.swap));
+      }
+      if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
+      {
+        ++result.dropped;
+        continue;
+      }
+      ++result.points;
+      sink(q);
+    }
+  }
+}
+
+template <class Sink>
+void forEachCloudPoint(const PointCloud2Data& cloud, ParseResult& result, Sink&& sink)
+{
+  detail::CloudLayout layout;
+  result.error = detail::cloudLayout(cloud, layout);
+  if (result.ok()) forEachCloudPoint(cloud, layout, result, sink);
+}
 }  // namespace costmap_layers
