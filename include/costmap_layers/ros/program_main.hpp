@@ -18,7 +18,8 @@ namespace costmap_layers_ros
 int runProgram(int argc, char** argv, const std::string& default_name, const std::function<int()>& body,
                uint32_t init_options = 0);
 
-/// Logs "<node>: <what> [<node>/startup]" once at FATAL level, on stderr and on /rosout. /rosout only
+/// Logs "<node>: <what> [<program>/startup]" once (<program>: runProgram's default_name, the stable key
+/// whatever __name:= says; the node's name outside runProgram) at FATAL level, on stderr and on /rosout. /rosout only
 /// delivers to a subscriber that is already connected (a program that fails in its first milliseconds
 /// would lose the line), so it waits up to 2 s of wall time for rosout's subscription first, and a
 /// moment after the line for it to leave. Returns 1, the code programs exit with.

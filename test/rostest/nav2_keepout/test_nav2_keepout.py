@@ -177,12 +177,13 @@ class Nav2KeepoutTest(unittest.TestCase):
         for k, (args, needle) in enumerate([(["_type:=7"], "type must be 0"),
                              (["_type:=speed"], "~type must be an integer (got \"speed\")"),
                              (["_base:=1e39"], "~base does not fit the message's float32"),
-                             (["_mask_topic:=a b"], "~mask_topic is not a valid topic name")]):
+                             (["_mask_topic:=a b"], "parameter ~mask_topic: the topic")]):
             proc = self.run_info_server("bad_info_server_%d" % k, *args)
             out, err = proc.communicate(timeout=30)
             self.assertEqual(proc.returncode, 1, (args, out, err))
             self.assertIn(needle, out + err, args)
-            self.assertIn("[costmap_filter_info_server/parameters]", out + err)
+            self.assertIn("[costmap_filter_info_server/startup]", out + err)
+            self.assertEqual((out + err).count("FATAL"), 1, (args, out, err))
 
     def test_5_info_server_warns_about_use_sim_time_and_publishes(self):
         got = []

@@ -95,6 +95,8 @@ class StartupErrorsTest(unittest.TestCase):
         self.assertEqual(len(fatal_lines), 1, "%s: want one FATAL line, got:\n%s%s" % (what, err, out))
         for needle in needles:
             self.assertIn(needle, fatal_lines[0], what)
+        # The stable key is the program's, whatever name the node runs under.
+        self.assertIn("[%s/startup]" % prog, fatal_lines[0], what)
         logs = self.fatal_on_rosout(node)
         with self.lock:
             seen = sorted(set("%s:%d" % (m.name, m.level) for m in self.logs))
