@@ -25,6 +25,62 @@
 namespace costmap_layers_ros
 {
 using costmap_layers::InputKind;
+using costmap_layers::OutputKind;
+
+std::string portMessageType(InputKind kind)
+{
+  switch (kind)
+  {
+    case InputKind::Map:
+    case InputKind::Mask:
+      return ros::message_traits::datatype<nav_msgs::OccupancyGrid>();
+    case InputKind::MapUpdates:
+      return ros::message_traits::datatype<map_msgs::OccupancyGridUpdate>();
+    case InputKind::SpeedLimits:
+      return ros::message_traits::datatype<costmap_layers::SpeedLimits>();
+    case InputKind::FilterInfo:
+      return ros::message_traits::datatype<costmap_layers::CostmapFilterInfo>();
+    case InputKind::Path:
+      return ros::message_traits::datatype<nav_msgs::Path>();
+    case InputKind::Odometry:
+      return ros::message_traits::datatype<nav_msgs::Odometry>();
+    case InputKind::LaserScan:
+      return ros::message_traits::datatype<sensor_msgs::LaserScan>();
+    case InputKind::PointCloud2:
+      return ros::message_traits::datatype<sensor_msgs::PointCloud2>();
+    case InputKind::PointCloud:
+      return ros::message_traits::datatype<sensor_msgs::PointCloud>();
+    case InputKind::Range:
+      return ros::message_traits::datatype<sensor_msgs::Range>();
+  }
+  return "";
+}
+
+std::string portMessageType(OutputKind kind)
+{
+  switch (kind)
+  {
+    case OutputKind::MaxSpeed:
+      return ros::message_traits::datatype<costmap_layers::MaxSpeed>();
+    case OutputKind::SpeedLimit:
+      return ros::message_traits::datatype<costmap_layers::Nav2SpeedLimit>();
+    case OutputKind::ZoneState:
+      return ros::message_traits::datatype<std_msgs::UInt8>();
+    case OutputKind::BinaryState:
+      return ros::message_traits::datatype<std_msgs::Bool>();
+    case OutputKind::Setpoints:
+      return "";
+  }
+  return "";
+}
+
+std::vector<std::string> layerServices(const costmap_layers::Layer& layer)
+{
+  // A filter's one switch, under this package's name and under Nav2's (a Nav2 CostmapFilter's
+  // `toggle_filter`, with its answers "Enabled" / "Disabled").
+  if (dynamic_cast<const costmap_layers::CostmapFilter*>(&layer) != nullptr) return {"toggle", "toggle_filter"};
+  return {};
+}
 
 LayerPorts::LayerPorts(ros::NodeHandle public_nh, ros::NodeHandle private_nh, costmap_layers::Layer& layer,
                        std::string global_frame, tf2_ros::Buffer& tf, std::shared_ptr<ThrottledLog> log,
@@ -136,9 +192,8 @@ LayerPorts::LayerPorts(ros::NodeHandle public_nh, ros::NodeHandle private_nh, co
   }
   if (!publishers_.empty() || setpoints_)
     layer.setOutputListener([this](const costmap_layers::OutputEvent& e) { publish(e); });
-  // A filter's one switch, as a service: the same flag as its `enabled` parameter. Under this
-  // package's name `toggle` and under Nav2's `toggle_filter` (a Nav2 CostmapFilter's service, with its
-  // answers "Enabled" / "Disabled"), one handler.
+  // A filter's one switch, as a service: the same flag as its `enabled` parameter; one handler for
+  // every name layerServices() gives.
   if (auto* filter = dynamic_cast<costmap_layers::CostmapFilter*>(&layer))
   {
     const auto toggle = [filter](std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res)
@@ -148,7 +203,7 @@ LayerPorts::LayerPorts(ros::NodeHandle public_nh, ros::NodeHandle private_nh, co
       res.message = req.data ? "Enabled" : "Disabled";
       return true;
     };
-    for (const char* name : {"toggle", "toggle_filter"})
+    for (const std::string& name : layerServices(layer))
       toggles_.push_back(
           private_nh_.advertiseService<std_srvs::SetBool::Request, std_srvs::SetBool::Response>(name, toggle));
   }

@@ -22,6 +22,11 @@ std::vector<std::string> PluginFactory::availableTypes() const
   return impl_->loader.getDeclaredClasses();
 }
 
+std::string PluginFactory::description(const std::string& type) const
+{
+  return impl_->loader.getClassDescription(type);
+}
+
 std::shared_ptr<costmap_layers::Layer> PluginFactory::create(const std::string& written_type)
 {
   // costmap_2d's and Nav2's names for the layers this package re-implements load its own classes.

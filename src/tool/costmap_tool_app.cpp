@@ -19,13 +19,14 @@
 #include "costmap_layers/core/costmap/layer.hpp"
 #include "costmap_layers/core/costmap/layered_costmap.hpp"
 #include "costmap_layers/core/rules/limits.hpp"
-#include "costmap_layers/tool/run_timing.hpp"
 #include "costmap_layers/io/features_file.hpp"
 #include "costmap_layers/io/map_file.hpp"
 #include "costmap_layers/io/param_yaml.hpp"
 #include "costmap_layers/io/png_writer.hpp"
 #include "costmap_layers/io/zone_file.hpp"
 #include "costmap_layers/ros/plugin_factory.hpp"
+#include "costmap_layers/tool/param_reference.hpp"
+#include "costmap_layers/tool/run_timing.hpp"
 
 namespace costmap_layers_ros
 {
@@ -39,7 +40,9 @@ const char* kDescription =
     "and prints one JSON line: width, height, resolution, origin_x, origin_y, update_ms_median,\n"
     "update_ms_min, repeats, max_speed. On a rolling_window costmap the result is the window of the\n"
     "configured width/height centred on --pose, as costmap_node publishes it. Each option may be given\n"
-    "once, except --mask, --features and --filter-info (once per plugin name).";
+    "once, except --mask, --features and --filter-info (once per plugin name).\n"
+    "costmap_tool --describe-params [--markdown] prints every parameter, topic and service of every plugin\n"
+    "(docs/parameters.md is that output).";
 
 struct ToolArgs
 {
@@ -473,6 +476,29 @@ int run(const ToolArgs& a, std::ostream& out, std::ostream& err)
 
 int runCostmapTool(const std::vector<std::string>& args, std::ostream& out, std::ostream& err)
 {
+  // The reference mode needs no map and no params: what every plugin reads, from its parse functions.
+  if (!args.empty() && args[0] == "--describe-params")
+  {
+    const bool markdown = args.size() == 2 && args[1] == "--markdown";
+    if (args.size() > 2 || (args.size() == 2 && !markdown))
+    {
+      err << "costmap_tool: --describe-params takes only --markdown (got \"" << args.back() << "\")" << std::endl;
+      return 2;
+    }
+    try
+    {
+      PluginFactory factory;
+      const ParamReference reference = describeParameters(factory);
+      out << (markdown ? referenceMarkdown(reference) : referenceText(reference));
+      out.flush();
+      return 0;
+    }
+    catch (const std::exception& e)
+    {
+      err << "costmap_tool: error: " << e.what() << std::endl;
+      return 1;
+    }
+  }
   ToolCommandLine command_line;
   ToolArgs parsed;
   try

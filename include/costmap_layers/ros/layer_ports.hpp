@@ -25,6 +25,14 @@
 
 namespace costmap_layers_ros
 {
+/// The ROS message type LayerPorts subscribes for an input of this kind ("sensor_msgs/LaserScan").
+std::string portMessageType(costmap_layers::InputKind kind);
+/// The ROS message type LayerPorts advertises for an output of this kind; "" for one it publishes on
+/// no topic (Setpoints: parameters set through other nodes' dynamic_reconfigure servers).
+std::string portMessageType(costmap_layers::OutputKind kind);
+/// The services LayerPorts offers in the layer's own namespace (a filter's switch, std_srvs/SetBool).
+std::vector<std::string> layerServices(const costmap_layers::Layer& layer);
+
 class LayerPorts
 {
 public:

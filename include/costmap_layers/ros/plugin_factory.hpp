@@ -19,6 +19,8 @@ public:
   /// available types when it is unknown or cannot be loaded.
   std::shared_ptr<costmap_layers::Layer> create(const std::string& type);
   std::vector<std::string> availableTypes() const;
+  /// The <description> of a type in the plugin description file.
+  std::string description(const std::string& type) const;
 
 private:
   struct Impl;

@@ -18,9 +18,40 @@ void ParamReader::fail(const std::string& name, const std::string& what) const
   throw std::invalid_argument(msg.str());
 }
 
+namespace
+{
+thread_local ParamSpecLog* g_spec_log = nullptr;
+}
+
+ParamSpecLog::ParamSpecLog() : previous_(g_spec_log)
+{
+  g_spec_log = this;
+}
+ParamSpecLog::~ParamSpecLog()
+{
+  g_spec_log = previous_;
+}
+ParamSpecLog* ParamSpecLog::current()
+{
+  return g_spec_log;
+}
+
 void ParamReader::note(ParamSpec spec) const
 {
+  if (ParamSpecLog* log = ParamSpecLog::current()) log->entries().push_back({owner_, spec});
   if (record_ != nullptr) record_->push_back(std::move(spec));
+}
+
+void ParamReader::declare(const std::string& name, const std::string& what, const std::string& default_text) const
+{
+  if (ParamSpecLog* log = ParamSpecLog::current())
+  {
+    ParamSpec spec;
+    spec.name = name;
+    spec.default_value = ParamValue::makeString(default_text);
+    spec.role = what;
+    log->entries().push_back({owner_, std::move(spec)});
+  }
 }
 
 bool ParamReader::getBool(const std::string& name, bool def) const
@@ -36,7 +67,7 @@ bool ParamReader::getBool(const std::string& name, bool def) const
     value = v->asInt() == 1;
   else
     fail(name, "must be a boolean");
-  note({name, ParamValue::Type::Bool, ParamValue::makeBool(def), ParamValue::makeBool(value), 0, 1, {}});
+  note({name, ParamValue::Type::Bool, ParamValue::makeBool(def), ParamValue::makeBool(value), 0, 1, {}, {}});
   return value;
 }
 
@@ -51,6 +82,7 @@ int ParamReader::getInt(const std::string& name, int def, int min, int max) cons
           ParamValue::makeInt(value),
           double(min),
           double(max),
+          {},
           {}});
     return value;
   };
@@ -72,7 +104,8 @@ double ParamReader::getDouble(const std::string& name, double def, double min, d
   const ParamValue* v = ns_.find(name);
   const auto noted = [&](double value)
   {
-    note({name, ParamValue::Type::Double, ParamValue::makeDouble(def), ParamValue::makeDouble(value), min, max, {}});
+    note(
+        {name, ParamValue::Type::Double, ParamValue::makeDouble(def), ParamValue::makeDouble(value), min, max, {}, {}});
     return value;
   };
   if (v == nullptr) return noted(def);
@@ -108,13 +141,20 @@ std::string ParamReader::getString(const std::string& name, const std::string& d
   const ParamValue* v = ns_.find(name);
   if (v != nullptr && v->type() != ParamValue::Type::String) fail(name, "must be a string");
   const std::string value = v != nullptr ? v->asString() : def;
-  note({name, ParamValue::Type::String, ParamValue::makeString(def), ParamValue::makeString(value), 0, 0, {}});
+  note({name, ParamValue::Type::String, ParamValue::makeString(def), ParamValue::makeString(value), 0, 0, {}, {}});
   return value;
+}
+
+void ParamReader::markRole(const char* role) const
+{
+  if (record_ != nullptr) record_->back().role = role;
+  if (ParamSpecLog* log = ParamSpecLog::current()) log->entries().back().spec.role = role;
 }
 
 std::string ParamReader::getTopic(const std::string& name, const std::string& def, bool allow_empty) const
 {
   const std::string value = getString(name, def);
+  markRole("topic");
   if (value.empty() && allow_empty) return value;
   const std::string problem = rosNameProblem(value);
   if (!problem.empty()) fail(name, "must be a topic name: " + problem);
@@ -124,6 +164,7 @@ std::string ParamReader::getTopic(const std::string& name, const std::string& de
 std::string ParamReader::getFrameId(const std::string& name, const std::string& def, bool allow_empty) const
 {
   const std::string value = getString(name, def);
+  markRole("frame id");
   if (value.empty() && allow_empty) return value;
   const std::string problem = frameIdProblem(value);
   if (!problem.empty()) fail(name, "must be a frame id: the frame id " + problem);
@@ -139,6 +180,7 @@ std::string ParamReader::getChoice(const std::string& name, const std::string& d
     if (c == value)
     {
       if (record_ != nullptr) record_->back().choices = choices;
+      if (ParamSpecLog* log = ParamSpecLog::current()) log->entries().back().spec.choices = choices;
       return value;
     }
   }

@@ -162,6 +162,10 @@ std::vector<PluginSpec> parseOneList(const ParamValue& ns, const std::string& ke
 PluginLists parsePluginLists(const ParamValue& ns)
 {
   PluginLists lists;
+  const ParamReader p(ns, "costmap");
+  p.declare("plugins", "[{name: <name>, type: <type>}, ...] (or Nav2's forms), at most 64 with filters",
+            "none");
+  p.declare("filters", "the same, applied after the plugins", "none");
   lists.plugins = parseOneList(ns, "plugins");
   lists.filters = parseOneList(ns, "filters");
   checkPluginCount("plugins' and 'filters", lists.plugins.size() + lists.filters.size());

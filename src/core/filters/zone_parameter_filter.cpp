@@ -97,6 +97,8 @@ ZoneParameterConfig parseZoneParameterConfig(const ParamReader& params)
   if (c.state_event_topic.empty()) params.fail("state_event_topic", "must not be empty");
   c.setpoint_timeout = params.getDouble("setpoint_timeout", c.setpoint_timeout, 1e-3, limits::kMaxDuration);
 
+  params.declare("nominal_defaults", "<name>: {node, parameter, value}, ...", "none");
+  params.declare("states", "state names; each a namespace <state>: {id, setpoints, <setpoint>: {...}}", "none");
   // nominal_defaults: a map of name -> {node, parameter, value}.
   if (const ParamValue* nominal = params.raw("nominal_defaults"))
   {

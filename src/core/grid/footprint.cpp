@@ -215,6 +215,8 @@ FootprintConfig parseFootprintConfig(const ParamReader& params)
   // costmap_2d takes any padding; a negative one shrinks the footprint.
   cfg.footprint_padding =
       params.getDouble("footprint_padding", cfg.footprint_padding, -limits::kMaxDistance, limits::kMaxDistance);
+  params.declare("footprint", "[[x, y], ...] in the robot frame [m], or that text",
+                 "none: the circle of robot_radius");
   const ParamValue* fp = params.raw("footprint");
   if (fp != nullptr && !fp->isNull()) parseFootprintValue(*fp, params, cfg);
   // A shrink as large as a vertex's distance from the robot's axes would move that vertex across

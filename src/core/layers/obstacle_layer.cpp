@@ -73,6 +73,8 @@ double rangeParam(const ParamReader& p, const std::string& name, const std::stri
 std::vector<std::string> sourceNames(const ParamReader& p)
 {
   std::vector<std::string> names;
+  p.declare("observation_sources",
+            "source names, separated by spaces (or a list); each source's parameters in <source>/", "no source");
   const ParamValue* v = p.raw("observation_sources");
   if (v == nullptr) return names;
   if (v->type() == ParamValue::Type::String)

@@ -17,6 +17,7 @@ namespace costmap_layers
 RangeSensorConfig parseRangeSensorConfig(const ParamReader& p)
 {
   RangeSensorConfig c;
+  p.declare("topics", "topic names of sensor_msgs/Range, separated by spaces (or a list)", "none");
   if (const ParamValue* t = p.raw("topics"))
   {
     if (t->type() == ParamValue::Type::String)

@@ -21,6 +21,36 @@ struct ParamSpec
   ParamValue value;
   double min = 0.0, max = 0.0;       ///< Int and Double only
   std::vector<std::string> choices;  ///< String choices, when limited
+  /// What a string names ("topic", "frame id"), or what a parameter read as a whole value holds ("a list
+  /// of [x, y] points", ...: type Null); empty for a plain value.
+  std::string role;
+};
+
+/// Every parameter any ParamReader on this thread reads while the log lives, with the reader's owner
+/// (e.g. "obstacle_layer" or "obstacle_layer/scan" for a source's sub-namespace): how the reference
+/// (`costmap_tool --describe-params`) learns what a plugin reads from the plugin's own parse functions,
+/// so that it cannot drift from them. Logs nest; the innermost records.
+class ParamSpecLog
+{
+public:
+  struct Entry
+  {
+    std::string owner;
+    ParamSpec spec;
+  };
+  ParamSpecLog();
+  ~ParamSpecLog();
+  ParamSpecLog(const ParamSpecLog&) = delete;
+  ParamSpecLog& operator=(const ParamSpecLog&) = delete;
+
+  const std::vector<Entry>& entries() const { return entries_; }
+  std::vector<Entry>& entries() { return entries_; }
+  /// The log recording on this thread, or nullptr.
+  static ParamSpecLog* current();
+
+private:
+  std::vector<Entry> entries_;
+  ParamSpecLog* previous_ = nullptr;
 };
 
 class ParamReader
@@ -50,6 +80,9 @@ public:
   /// A tf frame id: fails naming the parameter unless it is one (frameIdProblem), or empty when
   /// allow_empty (e.g. "use the message's frame").
   std::string getFrameId(const std::string& name, const std::string& def, bool allow_empty = false) const;
+  /// Notes, for the reference only, a parameter read whole through raw() (a list, a dictionary, text of
+  /// several words): `what` says what it holds, `default_text` what its absence means.
+  void declare(const std::string& name, const std::string& what, const std::string& default_text) const;
   /// Accepts one of the given choices only.
   std::string getChoice(const std::string& name, const std::string& def, const std::vector<std::string>& choices) const;
 
@@ -61,6 +94,8 @@ public:
 
 private:
   void note(ParamSpec spec) const;
+  /// Sets the role of what the last getter noted.
+  void markRole(const char* role) const;
 
   const ParamValue& ns_;
   std::string owner_;
