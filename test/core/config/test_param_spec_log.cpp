@@ -20,7 +20,8 @@ TEST(ParamSpecLog, RecordsEveryReadWithItsOwnerAndRole)
   r.getTopic("topic", "/map");
   r.getFrameId("frame", "map");
   r.getChoice("mode", "a", {"a", "b"});
-  const ParamReader sub(ParamValue::makeMap(), "layer/scan");
+  const ParamValue empty = ParamValue::makeMap();  // a reader keeps a reference: the map must outlive it
+  const ParamReader sub(empty, "layer/scan");
   sub.getBool("marking", true);
   r.declare("sources", "names", "none");
   ASSERT_EQ(log.entries().size(), 6u);
