@@ -48,6 +48,19 @@ picture all_filters "$EX/warehouse.yaml" "$ROOT/params/costmap_example.yaml" \
   --mask lanes_filter="$EX/lanes_mask.yaml" --features speed_filter="$EX/speed_limits.yaml" \
   --mask zone_keepout="$EX/zones.yaml" --mask binary_filter="$EX/binary_mask.yaml" \
   --pose 5.0,1.5,0.0
+# The README's picture: the same at zoom 3, each zone, lane and speed area labelled where its file puts it
+# (example/keepout_mask.pgm: the dock 12-15.8 x 7-9.8 m, the wet floor 13-15.8 x 0.2-2.6 m;
+# speed_mask.pgm: area 1 x 4-7 m, area 2 x 9-12 m, y 0.2-3 m; binary_mask.pgm: the office 3-8 x 4.4-5.8 m;
+# lanes_mask.pgm: 1-12.5 x 3.6-6.6 m; example/zones.yaml: the triangle, the fence, the puddle).
+picture overview "$EX/warehouse.yaml" "$ROOT/params/costmap_example.yaml" \
+  --mask keepout_filter="$EX/keepout_mask.yaml" --mask speed_filter="$EX/speed_mask.yaml" \
+  --mask lanes_filter="$EX/lanes_mask.yaml" --features speed_filter="$EX/speed_limits.yaml" \
+  --mask zone_keepout="$EX/zones.yaml" --mask binary_filter="$EX/binary_mask.yaml" \
+  --pose 5.0,1.5,0.0 --zoom 3 \
+  --label "13.9,8.4,loading dock: keepout" --label "14.4,1.0,wet floor: cost 127" \
+  --label "5.5,0.7,speed area 1: 0.3 m/s" --label "10.5,0.7,area 2: 0.6 m/s" \
+  --label "9.25,2.85,fence" --label "14.6,5.2,corner" --label "12.95,3.4,puddle" \
+  --label "5.5,5.1,office: cameras off" --label "10.3,5.1,lanes"
 # zone_server's mask (example/zones.yaml, rasterised as zone_server publishes it) in a KeepoutFilter.
 picture zones "$EX/warehouse.yaml" "$PARAMS/zones.yaml" --mask zone_keepout="$EX/zones.yaml"
 picture gradient "$EX/warehouse.yaml" "$PARAMS/gradient.yaml"

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <iterator>
+#include <sstream>
 #include <stdexcept>
 #include <vector>
 
@@ -88,6 +90,11 @@ const Glyph kFont[] = {
   {':', {".....", ".##..", ".##..", ".....", ".##..", ".##..", "....."}},
   {' ', {".....", ".....", ".....", ".....", ".....", ".....", "....."}},
   {'?', {".###.", "#...#", "....#", "...#.", "..#..", ".....", "..#.."}},
+  {'/', {".....", "....#", "...#.", "..#..", ".#...", "#....", "....."}},
+  {'(', {"...#.", "..#..", ".#...", ".#...", ".#...", "..#..", "...#."}},
+  {')', {".#...", "..#..", "...#.", "...#.", "...#.", "..#..", ".#..."}},
+  {',', {".....", ".....", ".....", ".....", ".##..", "..#..", ".#..."}},
+  {'_', {".....", ".....", ".....", ".....", ".....", ".....", "#####"}},
 };
 // clang-format on
 
@@ -103,6 +110,12 @@ const Glyph& glyphFor(char c)
     if (g.c == '?') return g;
   }
   return kFont[0];
+}
+
+bool hasGlyph(char c)
+{
+  if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+  return std::any_of(std::begin(kFont), std::end(kFont), [c](const Glyph& g) { return g.c == c; });
 }
 
 constexpr int kGlyphW = 5;
@@ -319,8 +332,74 @@ void savePng(const std::string& path, const Canvas& canvas)
   }
 }
 
+std::string shown(const std::string& text)
+{
+  std::string out;
+  for (char c : text.substr(0, kMaxPngLabelLength + 8))
+    out += (c >= 0x20 && c < 0x7f) ? c : '?';
+  return text.size() > kMaxPngLabelLength + 8 ? out + "..." : out;
+}
+
+/// Every option checked before anything is drawn or written; errors name the label and the value.
+void checkOptions(const std::string& path, unsigned width, unsigned height, const PngOptions& o)
+{
+  const std::string where = "cannot write PNG '" + path + "': ";
+  if (o.zoom < 1 || o.zoom > kMaxPngZoom)
+    throw std::runtime_error(where + "zoom " + std::to_string(o.zoom) + " is outside 1.." + std::to_string(kMaxPngZoom));
+  const double pixels = static_cast<double>(width) * o.zoom * static_cast<double>(height) * o.zoom;
+  if (o.zoom > 1 && pixels > static_cast<double>(kMaxPngZoomedPixels))
+    throw std::runtime_error(where + "a " + std::to_string(width) + "x" + std::to_string(height) + " grid at zoom " +
+                             std::to_string(o.zoom) + " is more than " + std::to_string(kMaxPngZoomedPixels) +
+                             " pixels: use a smaller zoom");
+  if (o.labels.size() > kMaxPngLabels)
+    throw std::runtime_error(where + std::to_string(o.labels.size()) + " labels, at most " +
+                             std::to_string(kMaxPngLabels));
+  for (size_t k = 0; k < o.labels.size(); ++k)
+  {
+    const PngLabel& l = o.labels[k];
+    const std::string which = "label " + std::to_string(k + 1) + " \"" + shown(l.text) + "\": ";
+    if (l.text.empty() || l.text.size() > kMaxPngLabelLength)
+      throw std::runtime_error(where + which + "its text must have 1.." + std::to_string(kMaxPngLabelLength) +
+                               " characters (it has " + std::to_string(l.text.size()) + ")");
+    for (char c : l.text)
+      if (!hasGlyph(c))
+        throw std::runtime_error(where + which + "the character " +
+                                 ((c >= 0x20 && c < 0x7f) ? "'" + std::string(1, c) + "'"
+                                                          : "of code " + std::to_string(static_cast<unsigned char>(c))) +
+                                 " has no glyph (letters, digits, space and - . : / ( ) , _ ?)");
+    // NaN fails both comparisons, and so is refused with the points outside the grid.
+    if (!(l.col >= 0.0 && l.col <= width) || !(l.row >= 0.0 && l.row <= height))
+    {
+      std::ostringstream msg;
+      msg << where << which << "its place (" << l.col << ", " << l.row << ") [cells] is outside the " << width << "x"
+          << height << " grid";
+      throw std::runtime_error(msg.str());
+    }
+  }
+}
+
+/// A label's text on a tan box with a dark frame, so that it reads on every cost colour; centred on its
+/// place, moved inside the grid's part of the picture when it would stick out.
+void drawLabel(Canvas& canvas, const PngLabel& l, unsigned zoom, unsigned width, unsigned height)
+{
+  const int s = zoom >= 2 ? static_cast<int>((zoom + 1) / 2) : 1;
+  const long pad = 2 * s;
+  const long text_w = static_cast<long>(l.text.size()) * kAdvance * s - s;
+  const long box_w = text_w + 2 * pad + 2;
+  const long box_h = kGlyphH * s + 2 * pad + 2;
+  const long grid_w = static_cast<long>(width) * zoom;
+  const long grid_h = static_cast<long>(height) * zoom;
+  const long cx = std::lround(l.col * zoom);
+  const long cy = std::lround((height - l.row) * zoom);  // row 0 is the bottom of the picture
+  const long x = std::max(0L, std::min(cx - box_w / 2, grid_w - box_w));
+  const long y = std::max(0L, std::min(cy - box_h / 2, grid_h - box_h));
+  canvas.rect(x, y, box_w, box_h, kBand);
+  canvas.frame(x, y, box_w, box_h, 1, kRule);
+  canvas.text(x + 1 + pad, y + 1 + pad, l.text, s, kInk);
+}
+
 template <typename T, typename ColourFn>
-void writeGridPng(const std::string& path, const T* cells, unsigned width, unsigned height, bool legend,
+void writeGridPng(const std::string& path, const T* cells, unsigned width, unsigned height, const PngOptions& options,
                   ColourFn colour, const std::vector<LegendEntry>& entries)
 {
   if (cells == nullptr) throw std::runtime_error("cannot write PNG '" + path + "': no cell data (null pointer)");
@@ -330,24 +409,35 @@ void writeGridPng(const std::string& path, const T* cells, unsigned width, unsig
   if (width > 1000000u || height > 1000000u)
     throw std::runtime_error("cannot write PNG '" + path + "': grid " + std::to_string(width) + "x" +
                              std::to_string(height) + " is too large");
+  checkOptions(path, width, height, options);
+  const unsigned z = options.zoom;
+  const unsigned grid_w = width * z;
+  const unsigned grid_h = height * z;
   LegendLayout layout;
-  unsigned canvas_w = width;
-  unsigned canvas_h = height;
-  if (legend)
+  unsigned canvas_w = grid_w;
+  unsigned canvas_h = grid_h;
+  if (options.legend)
   {
-    layout = layoutLegend(entries, width);
+    layout = layoutLegend(entries, grid_w);
     canvas_w = static_cast<unsigned>(layout.width);
-    canvas_h = height + static_cast<unsigned>(layout.height);
+    canvas_h = grid_h + static_cast<unsigned>(layout.height);
   }
   Canvas canvas(canvas_w, canvas_h, kBand);
   for (unsigned j = 0; j < height; ++j)
   {
     const T* row = cells + static_cast<size_t>(j) * width;
-    const long y = static_cast<long>(height - 1 - j);  // row 0 (lowest y) at the bottom
+    const long y = static_cast<long>(height - 1 - j) * z;  // row 0 (lowest y) at the bottom
     for (unsigned i = 0; i < width; ++i)
-      canvas.set(i, y, colour(row[i]));
+    {
+      if (z == 1)
+        canvas.set(i, y, colour(row[i]));
+      else
+        canvas.rect(static_cast<long>(i) * z, y, z, z, colour(row[i]));
+    }
   }
-  if (legend) drawLegend(canvas, height, entries, layout);
+  for (const PngLabel& l : options.labels)
+    drawLabel(canvas, l, z, width, height);
+  if (options.legend) drawLegend(canvas, grid_h, entries, layout);
   savePng(path, canvas);
 }
 }  // namespace
@@ -387,6 +477,14 @@ Rgb legendBackground()
 
 void writeCostmapPng(const std::string& path, const uint8_t* cells, unsigned width, unsigned height, bool legend)
 {
+  PngOptions o;
+  o.legend = legend;
+  writeCostmapPng(path, cells, width, height, o);
+}
+
+void writeCostmapPng(const std::string& path, const uint8_t* cells, unsigned width, unsigned height,
+                     const PngOptions& options)
+{
   const std::vector<LegendEntry> entries = {
       {LegendEntry::Kind::Solid, costColour(0), "free"},
       {LegendEntry::Kind::Ramp, Rgb{}, "cost 1-252"},
@@ -394,7 +492,7 @@ void writeCostmapPng(const std::string& path, const uint8_t* cells, unsigned wid
       {LegendEntry::Kind::Solid, costColour(254), "lethal 254"},
       {LegendEntry::Kind::Solid, costColour(255), "unknown 255"},
   };
-  writeGridPng(path, cells, width, height, legend, costColour, entries);
+  writeGridPng(path, cells, width, height, options, costColour, entries);
 }
 
 void writeOccupancyPng(const std::string& path, const int8_t* values, unsigned width, unsigned height, bool legend)
@@ -406,7 +504,9 @@ void writeOccupancyPng(const std::string& path, const int8_t* values, unsigned w
       {LegendEntry::Kind::Solid, occupancyColour(100), "lethal 100"},
       {LegendEntry::Kind::Solid, occupancyColour(-1), "unknown -1"},
   };
-  writeGridPng(path, values, width, height, legend, occupancyColour, entries);
+  PngOptions o;
+  o.legend = legend;
+  writeGridPng(path, values, width, height, o, occupancyColour, entries);
 }
 
 void writeRawBytes(const std::string& path, const uint8_t* cells, size_t n)

@@ -51,6 +51,13 @@ struct ToolArgs
   bool has_pose = false;
   double x = 0, y = 0, yaw = 0;
   int repeat = 0;
+  unsigned zoom = 1;
+  struct Label
+  {
+    double x = 0, y = 0;  // in the global frame [m]
+    std::string text;
+  };
+  std::vector<Label> labels;
 };
 
 struct UsageError : std::runtime_error
@@ -120,6 +127,49 @@ void parsePose(const std::string& v, ToolArgs& a)
   a.yaw = p[2];
 }
 
+unsigned parseZoom(const std::string& v)
+{
+  std::size_t used = 0;
+  long n = -1;
+  try
+  {
+    n = std::stol(v, &used);
+  }
+  catch (const std::exception&)
+  {
+  }
+  if (used != v.size() || n < 1 || n > static_cast<long>(io::kMaxPngZoom))
+    throw UsageError("--zoom expects a whole number in 1.." + std::to_string(io::kMaxPngZoom) + " (got \"" + v + "\")");
+  return static_cast<unsigned>(n);
+}
+
+/// X,Y,TEXT: the text is everything after the second comma (it may hold commas); what it may hold and
+/// where it may go is checked by the PNG writer, which knows the font and the grid.
+ToolArgs::Label parseLabel(const std::string& v)
+{
+  const auto c1 = v.find(',');
+  const auto c2 = c1 == std::string::npos ? std::string::npos : v.find(',', c1 + 1);
+  ToolArgs::Label l;
+  bool ok = c2 != std::string::npos && c2 + 1 < v.size();
+  for (int k = 0; ok && k < 2; ++k)
+  {
+    const std::string num = k == 0 ? v.substr(0, c1) : v.substr(c1 + 1, c2 - c1 - 1);
+    std::istringstream in(num);
+    double d = 0;
+    ok = static_cast<bool>(in >> d) && in.eof() && std::fabs(d) <= limits::kMaxCoordinate;  // NaN fails too
+    (k == 0 ? l.x : l.y) = d;
+  }
+  if (!ok)
+  {
+    std::ostringstream msg;
+    msg << "--label expects X,Y,TEXT: two finite numbers, |X| and |Y| at most " << limits::kMaxCoordinate
+        << " m, then the text (got \"" << v.substr(0, 80) << (v.size() > 80 ? "..." : "") << "\")";
+    throw UsageError(msg.str());
+  }
+  l.text = v.substr(c2 + 1);
+  return l;
+}
+
 /// The command line. Each single-valued option may appear once (CLI11's Throw policy: a second one is
 /// an error naming the option); --mask and --features repeat, once per plugin name.
 class ToolCommandLine
@@ -151,6 +201,10 @@ public:
         ->type_name("N");
     app_.add_option("--out-raw", out_raw_, "write the costs, one byte per cell, row 0 first")->type_name("FILE");
     app_.add_option("--out-png", out_png_, "write the costs as a PNG picture")->type_name("FILE");
+    app_.add_option("--zoom", zoom_, "--out-png: draw each cell as N x N pixels (1..8)")->type_name("N");
+    app_.add_option("--label", labels_, "--out-png: write TEXT centred on (X, Y) [m, global frame] (repeatable)")
+        ->allow_extra_args(false)
+        ->type_name("X,Y,TEXT");
     app_.allow_extras(true);  // reported below as unknown options, in the tool's own words
   }
 
@@ -192,13 +246,18 @@ public:
     a.infos = assignments("--filter-info", infos_);
     if (app_.count("--repeat")) a.repeat = parseRepeat(repeat_);
     if (app_.count("--pose")) parsePose(pose_, a);
+    if (app_.count("--zoom")) a.zoom = parseZoom(zoom_);
+    for (const auto& l : labels_)
+      a.labels.push_back(parseLabel(l));
+    if ((app_.count("--zoom") || !a.labels.empty()) && a.out_png.empty())
+      throw UsageError("--zoom and --label shape the --out-png picture: give --out-png FILE too");
     return a;
   }
 
 private:
   CLI::App app_;
-  std::string map_, params_, ns_, out_raw_, out_png_, pose_, repeat_;
-  std::vector<std::string> masks_, features_, infos_;
+  std::string map_, params_, ns_, out_raw_, out_png_, pose_, repeat_, zoom_;
+  std::vector<std::string> masks_, features_, infos_, labels_;
 };
 
 /// The tool's LayerContext: no tf (every frame is the global frame), reports to stderr. The tool itself
@@ -450,7 +509,27 @@ int run(const ToolArgs& a, std::ostream& out, std::ostream& err)
 
   const Costmap2D& grid = costmap->getCostmap();
   if (!a.out_raw.empty()) io::writeRawBytes(a.out_raw, grid.data(), grid.cellCount());
-  if (!a.out_png.empty()) io::writeCostmapPng(a.out_png, grid.data(), grid.getSizeInCellsX(), grid.getSizeInCellsY());
+  if (!a.out_png.empty())
+  {
+    io::PngOptions png;
+    png.zoom = a.zoom;
+    const double res = grid.getResolution();
+    const double w = grid.getSizeInCellsX(), h = grid.getSizeInCellsY();
+    for (const auto& l : a.labels)  // into cells; what the text may hold the writer checks
+    {
+      const double col = (l.x - grid.getOriginX()) / res, row = (l.y - grid.getOriginY()) / res;
+      if (!(col >= 0 && col <= w && row >= 0 && row <= h))
+      {
+        std::ostringstream msg;
+        msg << "--label \"" << l.text.substr(0, 48) << "\": (" << l.x << ", " << l.y
+            << ") is outside the costmap, which spans x " << grid.getOriginX() << ".." << grid.getOriginX() + w * res
+            << " and y " << grid.getOriginY() << ".." << grid.getOriginY() + h * res << " m";
+        throw std::runtime_error(msg.str());
+      }
+      png.labels.push_back({col, row, l.text});
+    }
+    io::writeCostmapPng(a.out_png, grid.data(), grid.getSizeInCellsX(), grid.getSizeInCellsY(), png);
+  }
 
   nlohmann::ordered_json json;
   json["width"] = grid.getSizeInCellsX();

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <png.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -20,6 +21,8 @@
 using costmap_layers::io::costColour;
 using costmap_layers::io::legendBackground;
 using costmap_layers::io::occupancyColour;
+using costmap_layers::io::PngLabel;
+using costmap_layers::io::PngOptions;
 using costmap_layers::io::Rgb;
 using costmap_layers::io::writeCostmapPng;
 using costmap_layers::io::writeOccupancyPng;
@@ -273,6 +276,135 @@ TEST_F(PngWriterTest, Errors)
   e = errorOf([&] { writeOccupancyPng(tmp("n2.png"), nullptr, 2, 2, false); });
   EXPECT_NE(e.find("n2.png"), std::string::npos) << e;
   EXPECT_FALSE(std::filesystem::exists(tmp("n.png")));
+}
+
+const Rgb kTan{235, 225, 190};   // the label's box (the legend band's colour)
+const Rgb kFrame{90, 90, 90};    // its frame
+const Rgb kInkC{25, 25, 25};     // its text
+
+PngOptions noLegend(unsigned zoom)
+{
+  PngOptions o;
+  o.legend = false;
+  o.zoom = zoom;
+  return o;
+}
+
+TEST_F(PngWriterTest, ZoomDrawsEachCellAsASquareBlock)
+{
+  // 3 x 2 cells, row 0 (lowest y) = {0, 253, 254}, row 1 = {255, 1, 252}; at zoom 3 a 9 x 6 picture.
+  const std::vector<uint8_t> cells = {0, 253, 254, 255, 1, 252};
+  writeCostmapPng(tmp("z3.png"), cells.data(), 3, 2, noLegend(3));
+  const Picture pic = readRgbPng(tmp("z3.png"));
+  ASSERT_EQ(pic.width, 9u);
+  ASSERT_EQ(pic.height, 6u);
+  const Rgb top[3] = {kGrey, costColour(1), costColour(252)};  // row 1, drawn at the top
+  const Rgb bottom[3] = {kWhite, kOrange, kBlack};
+  for (uint32_t y = 0; y < 6; ++y)
+    for (uint32_t x = 0; x < 9; ++x)
+      ASSERT_EQ(pic.at(x, y), y < 3 ? top[x / 3] : bottom[x / 3]) << x << "," << y;
+  // with the legend, the band starts below the zoomed grid
+  PngOptions o;
+  o.zoom = 4;
+  writeCostmapPng(tmp("z4.png"), cells.data(), 3, 2, o);
+  const Picture legend = readRgbPng(tmp("z4.png"));
+  EXPECT_EQ(legend.at(0, 7), bottom[0]);
+  EXPECT_EQ(legend.at(0, 8), kFrame);  // the rule between grid and band
+  EXPECT_GT(legend.height, 8u);
+}
+
+TEST_F(PngWriterTest, ALabelIsCentredOnItsPlaceOnAFramedBox)
+{
+  // 40 x 20 free cells at zoom 2: an 80 x 40 picture. "ab" at (20, 10) cells = pixel (40, 20). Font
+  // scale 1 at zoom 2: text 2 * 6 - 1 = 11 px wide, 9 high; padding 2 and a 1 px frame on each side:
+  // a 17 x 15 box from (40 - 8, 20 - 7) = (32, 13) to (48, 27).
+  const std::vector<uint8_t> cells(40 * 20, 0);
+  PngOptions o = noLegend(2);
+  o.labels.push_back(PngLabel{20.0, 10.0, "ab"});
+  writeCostmapPng(tmp("l.png"), cells.data(), 40, 20, o);
+  const Picture pic = readRgbPng(tmp("l.png"));
+  ASSERT_EQ(pic.width, 80u);
+  EXPECT_EQ(pic.at(32, 13), kFrame);
+  EXPECT_EQ(pic.at(48, 27), kFrame);
+  EXPECT_EQ(pic.at(33, 14), kTan);
+  EXPECT_EQ(pic.at(31, 13), kWhite);
+  EXPECT_EQ(pic.at(49, 27), kWhite);
+  EXPECT_EQ(pic.at(32, 28), kWhite);
+  size_t ink_inside = 0, not_white_outside = 0;
+  for (uint32_t y = 0; y < pic.height; ++y)
+    for (uint32_t x = 0; x < pic.width; ++x)
+    {
+      const bool inside = x >= 32 && x <= 48 && y >= 13 && y <= 27;
+      if (inside && pic.at(x, y) == kInkC) ++ink_inside;
+      if (!inside && pic.at(x, y) != kWhite) ++not_white_outside;
+    }
+  EXPECT_GT(ink_inside, 10u);  // 'a' and 'b' have 14 and 16 inked pixels
+  EXPECT_EQ(not_white_outside, 0u);
+}
+
+TEST_F(PngWriterTest, ALabelAtTheCornerStaysInsideTheGrid)
+{
+  // At (0, 0), the bottom-left corner: the box is moved up and right to fit, and the legend band
+  // below the grid is not drawn over.
+  const std::vector<uint8_t> cells(30 * 10, 0);
+  PngOptions o;
+  o.zoom = 3;
+  o.labels.push_back(PngLabel{0.0, 0.0, "corner"});
+  o.labels.push_back(PngLabel{30.0, 10.0, "top right"});
+  writeCostmapPng(tmp("c.png"), cells.data(), 30, 10, o);
+  const Picture pic = readRgbPng(tmp("c.png"));
+  EXPECT_EQ(pic.at(0, 29), kFrame);   // the box's bottom-left corner on the grid's
+  EXPECT_EQ(pic.at(89, 0), kFrame);   // the other's top-right corner on the grid's
+  EXPECT_EQ(pic.at(0, 30), kFrame);   // the legend's rule, one row below the grid, untouched
+  EXPECT_EQ(pic.at(1, 31), legendBackground());
+}
+
+TEST_F(PngWriterTest, BadOptionsAreRefusedNamingTheValueAndWriteNothing)
+{
+  const std::vector<uint8_t> cells(4, 0);
+  struct Case
+  {
+    PngOptions options;
+    std::string needle;
+  };
+  auto withLabel = [](double col, double row, std::string text)
+  {
+    PngOptions o;
+    o.labels.push_back(PngLabel{col, row, std::move(text)});
+    return o;
+  };
+  PngOptions many;
+  many.labels.assign(65, PngLabel{1.0, 1.0, "x"});
+  std::vector<Case> cases = {
+      {noLegend(0), "zoom 0 is outside 1..8"},
+      {noLegend(9), "zoom 9 is outside 1..8"},
+      {many, "65 labels, at most 64"},
+      {withLabel(1, 1, ""), "1..48 characters (it has 0)"},
+      {withLabel(1, 1, std::string(49, 'a')), "(it has 49)"},
+      {withLabel(1, 1, "dock#1"), "the character '#' has no glyph"},
+      {withLabel(1, 1, "a\nb"), "the character of code 10 has no glyph"},
+      {withLabel(1, 1, "caf\xc3\xa9"), "of code 195"},
+      {withLabel(-0.01, 1, "left"), "outside the 2x2 grid"},
+      {withLabel(1, 2.01, "above"), "outside the 2x2 grid"},
+      {withLabel(std::nan(""), 1, "nan"), "outside the 2x2 grid"},
+      {withLabel(1, 1e300, "far"), "outside the 2x2 grid"},
+  };
+  for (const Case& c : cases)
+  {
+    const std::string e = errorOf([&] { writeCostmapPng(tmp("bad.png"), cells.data(), 2, 2, c.options); });
+    EXPECT_NE(e.find(c.needle), std::string::npos) << e;
+    EXPECT_NE(e.find("bad.png"), std::string::npos) << e;
+    EXPECT_FALSE(std::filesystem::exists(tmp("bad.png"))) << c.needle;
+  }
+  // The edges themselves are accepted: zoom 1 and 8, 64 labels of 48 characters, places on the border.
+  PngOptions edge = noLegend(8);
+  edge.labels.assign(63, PngLabel{2.0, 2.0, std::string(48, 'z')});
+  edge.labels.push_back(PngLabel{0.0, 0.0, "(a/b, c_d) 1.5: -?"});
+  writeCostmapPng(tmp("edge.png"), cells.data(), 2, 2, edge);
+  EXPECT_EQ(readRgbPng(tmp("edge.png")).width, 16u);
+  // Too many pixels: refused before any cell is read (the buffer is deliberately small).
+  const std::string e = errorOf([&] { writeCostmapPng(tmp("huge.png"), cells.data(), 20000, 20000, noLegend(2)); });
+  EXPECT_NE(e.find("20000x20000 grid at zoom 2 is more than 134217728 pixels"), std::string::npos) << e;
 }
 
 TEST_F(PngWriterTest, RawBytes)

@@ -205,6 +205,58 @@ keepout: {plugin: "nav2_costmap_2d::KeepoutFilter", filter_info_topic: /costmap_
   EXPECT_NE(wrong.err.find("type 1"), std::string::npos) << wrong.err;
 }
 
+TEST(CostmapTool, ZoomAndLabelsShapeThePictureAndBadOnesAreRefused)
+{
+  TempDir dir;
+  const std::string map = writeMap(dir, "map", 120, 10, std::vector<uint8_t>(1200, 254), 0.5, -2.0, 1.0);
+  const std::string params = dir.write("params.yaml", kGradientParams);
+  // The map spans x -2..58 and y 1..6 m; a label at each corner and one with commas in its text.
+  const ToolResult ok = runTool({"--map", map, "--params", params, "--out-png", dir.file("z.png"), "--zoom", "3",
+                                 "--label", "-2,1,low left", "--label", "58,6,high right", "--label",
+                                 "5.5,3.5,a, b, c"},
+                                dir);
+  ASSERT_EQ(ok.exit_code, 0) << ok.err;
+  const std::string png = readFile(dir.file("z.png"));
+  ASSERT_GT(png.size(), 24u);
+  auto be32 = [&](size_t at)
+  {
+    return (static_cast<uint32_t>(static_cast<uint8_t>(png[at])) << 24) |
+           (static_cast<uint32_t>(static_cast<uint8_t>(png[at + 1])) << 16) |
+           (static_cast<uint32_t>(static_cast<uint8_t>(png[at + 2])) << 8) | static_cast<uint8_t>(png[at + 3]);
+  };
+  EXPECT_EQ(be32(16), 360u);  // IHDR width: 120 cells at zoom 3 (the legend fits in that width)
+  EXPECT_GT(be32(20), 30u);   // IHDR height: 10 cells at zoom 3, and the legend band below
+  struct Case
+  {
+    std::vector<std::string> args;
+    std::string needle;
+  };
+  const std::vector<Case> cases = {
+      {{"--zoom", "2"}, "give --out-png FILE too"},
+      {{"--label", "1,2,x"}, "give --out-png FILE too"},
+      {{"--out-png", dir.file("a.png"), "--zoom", "9"}, "--zoom expects a whole number in 1..8 (got \"9\")"},
+      {{"--out-png", dir.file("a.png"), "--zoom", "2.5"}, "(got \"2.5\")"},
+      {{"--out-png", dir.file("a.png"), "--label", "1,2"}, "--label expects X,Y,TEXT"},
+      {{"--out-png", dir.file("a.png"), "--label", "1,2,"}, "--label expects X,Y,TEXT"},
+      {{"--out-png", dir.file("a.png"), "--label", "nan,2,x"}, "--label expects X,Y,TEXT"},
+      {{"--out-png", dir.file("a.png"), "--label", "1e8,2,x"}, "--label expects X,Y,TEXT"},
+      {{"--out-png", dir.file("a.png"), "--label", "58.1,3,east"},
+       "--label \"east\": (58.1, 3) is outside the costmap, which spans x -2..58 and y 1..6 m"},
+      {{"--out-png", dir.file("a.png"), "--label", "0,0.9,south"}, "is outside the costmap"},
+      {{"--out-png", dir.file("a.png"), "--label", "1,2,dock #1"}, "the character '#' has no glyph"},
+  };
+  for (const auto& c : cases)
+  {
+    std::vector<std::string> args = {"--map", map, "--params", params};
+    args.insert(args.end(), c.args.begin(), c.args.end());
+    const ToolResult r = runTool(args, dir);
+    EXPECT_NE(r.exit_code, 0) << c.needle;
+    EXPECT_NE(r.err.find(c.needle), std::string::npos) << "stderr was: " << r.err;
+    EXPECT_EQ(r.out, "") << c.needle;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("a.png"))) << c.needle;
+  }
+}
+
 TEST(CostmapTool, BadInputGivesOneClearLineAndNonZeroExit)
 {
   TempDir dir;

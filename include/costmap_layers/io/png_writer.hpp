@@ -21,6 +21,11 @@
 // is filled with the band's light tan colour (235, 225, 190). The grid always starts at the top-left
 // pixel.
 //
+// With PngOptions, each cell may be drawn as zoom x zoom pixels (1..8), and labels may be written on the
+// grid: each label's text (letters, digits, space and - . : / ( ) , _ ?; letters drawn lowercase) on a
+// tan box with a dark frame, centred on its place and kept inside the grid's part of the picture; the
+// font is enlarged with the zoom (2x at zoom 3 and 4).
+//
 // Errors (null data, zero size, file not writable, libpng failure) throw std::runtime_error naming
 // the path.
 #pragma once
@@ -28,6 +33,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace costmap_layers
 {
@@ -42,6 +48,27 @@ struct Rgb
   bool operator!=(const Rgb& o) const { return !(*this == o); }
 };
 
+/// Text written on the grid, centred on (col, row) in cells: (0, 0) is the outer corner of cell 0 (the
+/// lowest x and y), (width, height) the opposite corner.
+struct PngLabel
+{
+  double col = 0.0;
+  double row = 0.0;
+  std::string text;
+};
+
+constexpr unsigned kMaxPngZoom = 8;
+constexpr size_t kMaxPngLabels = 64;
+constexpr size_t kMaxPngLabelLength = 48;
+constexpr unsigned long kMaxPngZoomedPixels = 1UL << 27;  // 134 Mpx, 403 MB of RGB: a picture, not a dump
+
+struct PngOptions
+{
+  bool legend = true;
+  unsigned zoom = 1;
+  std::vector<PngLabel> labels;
+};
+
 /// The colour of a costmap cost (see above).
 Rgb costColour(uint8_t cost);
 /// The colour of an occupancy value (see above).
@@ -52,6 +79,10 @@ Rgb legendBackground();
 /// `cells`: width * height costs, row-major, row 0 = lowest y.
 void writeCostmapPng(const std::string& path, const uint8_t* cells, unsigned width, unsigned height,
                      bool legend = true);
+
+/// The same with a zoom and labels; every option is checked before anything is written.
+void writeCostmapPng(const std::string& path, const uint8_t* cells, unsigned width, unsigned height,
+                     const PngOptions& options);
 
 /// `values`: width * height occupancy values (-1, 0..100), row-major, row 0 = lowest y.
 void writeOccupancyPng(const std::string& path, const int8_t* values, unsigned width, unsigned height,
