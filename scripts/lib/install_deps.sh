@@ -18,6 +18,8 @@ PKGS=(
   libinteractive-markers-dev python3-interactive-markers libvisualization-msgs-dev
   ros-visualization-msgs python3-visualization-msgs
   clang libclang-rt-14-dev
+  # RViz, its Python bindings and a virtual X server: the demo's RViz view and its test (test/rostest/rviz)
+  rviz python3-rviz xvfb
 )
 missing=()
 for p in "${PKGS[@]}"; do

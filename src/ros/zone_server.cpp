@@ -1,5 +1,6 @@
 #include "costmap_layers/ros/zone_server.hpp"
 
+#include <std_msgs/ColorRGBA.h>
 #include <visualization_msgs/InteractiveMarker.h>
 #include <visualization_msgs/InteractiveMarkerControl.h>
 #include <visualization_msgs/Marker.h>
@@ -10,8 +11,10 @@
 #include <cstdio>
 #include <optional>
 #include <stdexcept>
+#include <vector>
 
 #include "costmap_layers/core/rules/limits.hpp"
+#include "costmap_layers/core/zones/zone_set.hpp"
 #include "costmap_layers/io/zone_file.hpp"
 #include "costmap_layers/ros/node_params.hpp"
 
@@ -39,6 +42,15 @@ costmap_layers::ZoneLayout loadStartFile(const ZoneServer::Options& o)
 
 constexpr double kHandleSize = 0.25;  ///< [m] diameter of a handle's sphere in RViz
 constexpr int kCircleSegments = 72;   ///< of a circle's drawn outline
+// Text in RViz: a handle's label as tall as the handle, a shape's name a little taller, both a small gap
+// from what they name. Drawn above the masks (z = 0) and the spheres, so neither covers them.
+constexpr double kLabelHeight = kHandleSize;  ///< [m]
+constexpr double kNameHeight = 0.3;           ///< [m]
+constexpr double kLabelGap = 0.05;            ///< [m] between a sphere and its label
+constexpr double kLabelZ = kHandleSize;       ///< [m]
+constexpr double kCharWidth = 0.6;            ///< RViz's text: a character's width over the text height
+constexpr double kOutlineWidth = 0.05;        ///< [m] of a shape's drawn outline
+constexpr double kOutlineZ = 0.05;            ///< [m] the outline's height above the masks
 
 geometry_msgs::Point toPoint(const ZonePoint& p)
 {
@@ -54,14 +66,80 @@ std::string handleName(const costmap_layers::ZoneShape& s, std::size_t k)
   return s.name + "/" + std::to_string(k);
 }
 
-/// A handle: a sphere that moves in the ground plane.
-visualization_msgs::InteractiveMarker handleMarker(const std::string& frame, const std::string& name,
-                                                   const ZonePoint& at)
+/// A text that faces the viewer, in the handles' orange, which reads on free (white), costly (blue to
+/// red) and lethal (magenta) cells alike; at (x, y) relative to its interactive marker.
+visualization_msgs::Marker textMarker(const std::string& text, double x, double y, double height)
+{
+  visualization_msgs::Marker m;
+  m.type = visualization_msgs::Marker::TEXT_VIEW_FACING;
+  m.text = text;
+  m.scale.z = height;
+  m.pose.position.x = x;
+  m.pose.position.y = y;
+  m.pose.position.z = kLabelZ;
+  m.pose.orientation.w = 1.0;
+  m.color.r = 1.0f;
+  m.color.g = 0.55f;
+  m.color.a = 1.0f;
+  return m;
+}
+
+/// +1 for a polygon listed counter-clockwise, -1 clockwise (the sign of its area, summed relative to its
+/// first vertex so that far-away shapes keep their precision).
+double winding(const std::vector<ZonePoint>& ring)
+{
+  double area2 = 0.0;
+  for (std::size_t i = 0; i < ring.size(); ++i)
+  {
+    const ZonePoint& a = ring[i];
+    const ZonePoint& b = ring[(i + 1) % ring.size()];
+    area2 += (a.x - ring[0].x) * (b.y - ring[0].y) - (b.x - ring[0].x) * (a.y - ring[0].y);
+  }
+  return area2 < 0.0 ? -1.0 : 1.0;
+}
+
+/// Which way is out of a polygon of that winding at its vertex k: the sum of the outward normals of the
+/// two edges that meet there (the outer bisector, at convex and reflex corners alike), a unit vector.
+ZonePoint outwardAt(const std::vector<ZonePoint>& ring, std::size_t k, double sign)
+{
+  const std::size_t n = ring.size();
+  const ZonePoint& v = ring[k];
+  const ZonePoint& prev = ring[(k + n - 1) % n];
+  const ZonePoint& next = ring[(k + 1) % n];
+  const double l1 = std::hypot(v.x - prev.x, v.y - prev.y), l2 = std::hypot(next.x - v.x, next.y - v.y);
+  if (!(l1 > 0.0) || !(l2 > 0.0)) return {0.0, 1.0};
+  // Counter-clockwise, an edge's outward normal is its direction turned right: (dy, -dx).
+  const double nx = sign * ((v.y - prev.y) / l1 + (next.y - v.y) / l2);
+  const double ny = -sign * ((v.x - prev.x) / l1 + (next.x - v.x) / l2);
+  const double length = std::hypot(nx, ny);
+  if (!(length > 1e-9)) return {0.0, 1.0};
+  return {nx / length, ny / length};
+}
+
+/// Where handle k's label goes, relative to the handle: a polygon vertex's outside the corner (so it
+/// crosses neither edge), a circle's centre's above it, its radius handle's to the right (out of the
+/// circle, whose rightmost point it is). Far enough that the label's box clears the sphere by kLabelGap.
+ZonePoint labelOffset(const costmap_layers::ZoneShape& s, std::size_t k, double sign, const std::string& label)
+{
+  ZonePoint d{0.0, 1.0};
+  if (s.type == ZoneShapeType::Circle)
+    d = k == 0 ? ZonePoint{0.0, 1.0} : ZonePoint{1.0, 0.0};
+  else
+    d = outwardAt(s.points, k, sign);
+  const double half_width = kCharWidth * kLabelHeight * static_cast<double>(label.size()) / 2;
+  const double distance = kHandleSize / 2 + kLabelGap + std::abs(d.x) * half_width + std::abs(d.y) * kLabelHeight / 2;
+  return {d.x * distance, d.y * distance};
+}
+
+/// A handle: a sphere that moves in the ground plane, and its label beside it (in a control of its own
+/// that takes no mouse input, so only the sphere is dragged). The label is the handle's name without the
+/// shape's: RViz would draw a description in white, too small and far above the handle.
+visualization_msgs::InteractiveMarker handleMarker(const std::string& frame, const costmap_layers::ZoneShape& s,
+                                                   std::size_t k, double sign, const ZonePoint& at)
 {
   visualization_msgs::InteractiveMarker im;
   im.header.frame_id = frame;
-  im.name = name;
-  im.description = name;
+  im.name = handleName(s, k);
   im.scale = static_cast<float>(2.0 * kHandleSize);
   im.pose.position = toPoint(at);
   im.pose.orientation.w = 1.0;
@@ -79,6 +157,15 @@ visualization_msgs::InteractiveMarker handleMarker(const std::string& frame, con
   sphere.color.a = 0.9f;
   control.markers.push_back(sphere);
   im.controls.push_back(control);
+
+  const std::string label = im.name.substr(s.name.size() + 1);
+  visualization_msgs::InteractiveMarkerControl text;
+  text.interaction_mode = visualization_msgs::InteractiveMarkerControl::NONE;
+  text.always_visible = true;
+  text.orientation.w = 1.0;
+  const ZonePoint at_label = labelOffset(s, k, sign, label);
+  text.markers.push_back(textMarker(label, at_label.x, at_label.y, kLabelHeight));
+  im.controls.push_back(text);
   return im;
 }
 
@@ -89,33 +176,57 @@ visualization_msgs::InteractiveMarker outlineMarker(const std::string& frame, co
   visualization_msgs::InteractiveMarker im;
   im.header.frame_id = frame;
   im.name = s.name + "/outline";
-  im.description = s.name + " (" + std::to_string(s.value) + ")";
   im.pose.orientation.w = 1.0;
   visualization_msgs::InteractiveMarkerControl control;
   control.interaction_mode = visualization_msgs::InteractiveMarkerControl::NONE;
   control.always_visible = true;
   control.orientation.w = 1.0;
+  // The outline as flat strips (a triangle list), not a LINE_STRIP: RViz 1.14 on OGRE 1.9 draws a line
+  // strip as a camera-facing billboard computed for an earlier camera pose, and in the top-down view
+  // whole edges of it were missing (rviz issue 1287); a flat strip needs no camera. Slightly above the
+  // ground, so the masks (z = 0) do not cover it.
   visualization_msgs::Marker line;
-  line.type = visualization_msgs::Marker::LINE_STRIP;
-  line.scale.x = 0.05;
-  line.color.r = s.value >= 100 ? 0.9f : 0.2f;
-  line.color.g = 0.3f;
-  line.color.b = s.value >= 100 ? 0.2f : 0.9f;
+  line.type = visualization_msgs::Marker::TRIANGLE_LIST;
+  line.scale.x = line.scale.y = line.scale.z = 1.0;
   line.color.a = 1.0f;
   line.pose.orientation.w = 1.0;
+  line.pose.position.z = kOutlineZ;
+  std_msgs::ColorRGBA colour;  // per triangle: RViz then draws the colour as it is, unlit
+  colour.r = s.value >= 100 ? 0.9f : 0.2f;
+  colour.g = 0.3f;
+  colour.b = s.value >= 100 ? 0.2f : 0.9f;
+  colour.a = 1.0f;
+  std::vector<ZonePoint> ring;
   if (s.type == ZoneShapeType::Circle)
-    for (int k = 0; k <= kCircleSegments; ++k)
+    for (int k = 0; k < kCircleSegments; ++k)
     {
       const double a = 2.0 * M_PI * k / kCircleSegments;
-      line.points.push_back(toPoint({s.center.x + s.radius * std::cos(a), s.center.y + s.radius * std::sin(a)}));
+      ring.push_back({s.center.x + s.radius * std::cos(a), s.center.y + s.radius * std::sin(a)});
     }
   else
+    ring = s.points;
+  for (std::size_t k = 0; k < ring.size(); ++k)
   {
-    for (const auto& p : s.points)
-      line.points.push_back(toPoint(p));
-    line.points.push_back(toPoint(s.points.front()));
+    const ZonePoint& p = ring[k];
+    const ZonePoint& q = ring[(k + 1) % ring.size()];
+    const double length = std::hypot(q.x - p.x, q.y - p.y);
+    if (!(length > 0.0)) continue;
+    // Along the edge (ux, uy) and across it (-uy, ux), both half the width long: each strip reaches half
+    // a width past its ends, so the strips of two edges meet at a corner without a notch.
+    const double ux = (q.x - p.x) / length * kOutlineWidth / 2, uy = (q.y - p.y) / length * kOutlineWidth / 2;
+    const ZonePoint c0{p.x - ux + uy, p.y - uy - ux}, c1{q.x + ux + uy, q.y + uy - ux};
+    const ZonePoint c2{q.x + ux - uy, q.y + uy + ux}, c3{p.x - ux - uy, p.y - uy + ux};
+    for (const ZonePoint& c : {c0, c1, c2, c0, c2, c3})
+      line.points.push_back(toPoint(c));
+    line.colors.push_back(colour);
+    line.colors.push_back(colour);
   }
   control.markers.push_back(line);
+  // The name at the shape (the marker's pose is the origin): a polygon's at its centroid, a circle's just
+  // below its centre handle, whose label is above it.
+  const ZonePoint c = costmap_layers::zoneCentroid(s);
+  const double below = s.type == ZoneShapeType::Circle ? kHandleSize / 2 + kLabelGap + kNameHeight / 2 : 0.0;
+  control.markers.push_back(textMarker(s.name + " (" + std::to_string(s.value) + ")", c.x, c.y - below, kNameHeight));
   im.controls.push_back(control);
   return im;
 }
@@ -245,8 +356,9 @@ void ZoneServer::rebuildMarkers(const ZoneLayout& l)
       continue;
     }
     offered += handles.size();
+    const double sign = s.type == ZoneShapeType::Polygon ? winding(s.points) : 1.0;
     for (std::size_t k = 0; k < handles.size(); ++k)
-      markers_->insert(handleMarker(l.frame_id, handleName(s, k), handles[k]),
+      markers_->insert(handleMarker(l.frame_id, s, k, sign, handles[k]),
                        [this](const visualization_msgs::InteractiveMarkerFeedbackConstPtr& f) { onFeedback(f); });
   }
   markers_->applyChanges();
@@ -276,6 +388,7 @@ void ZoneServer::refuse(const std::string& what, const InputError& error)
 
 void ZoneServer::onFeedback(const visualization_msgs::InteractiveMarkerFeedbackConstPtr& f)
 {
+  if (f->event_type == visualization_msgs::InteractiveMarkerFeedback::MOUSE_UP) relabel(f->marker_name);
   if (f->event_type != visualization_msgs::InteractiveMarkerFeedback::POSE_UPDATE) return;
   // Decided under mutex_, drawn after it is released (see redraw()): the handle put back, or this
   // shape's outline and its other handles (a circle's radius handle follows its centre); the dragged
@@ -317,6 +430,30 @@ void ZoneServer::onFeedback(const visualization_msgs::InteractiveMarkerFeedbackC
       p.orientation.w = 1.0;
       markers_->setPose(handleName(*moved, k), p);
     }
+  markers_->applyChanges();
+}
+
+void ZoneServer::relabel(const std::string& marker)
+{
+  std::string name;
+  std::size_t index = 0;
+  visualization_msgs::InteractiveMarker held;
+  // Only a handle that is offered (a shape past kMaxZoneHandles has none).
+  if (!markers_ || !parseHandleName(marker, &name, &index) || !markers_->get(marker, held)) return;
+  costmap_layers::ZoneShape shape;
+  std::string frame;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const costmap_layers::ZoneShape* s = editor_.zones().find(name);
+    if (s == nullptr) return;
+    shape = *s;
+    frame = editor_.zones().layout().frame_id;
+  }
+  const double sign = shape.type == ZoneShapeType::Polygon ? winding(shape.points) : 1.0;
+  const auto handles = costmap_layers::zoneHandles(shape);
+  for (std::size_t k = 0; k < handles.size(); ++k)
+    markers_->insert(handleMarker(frame, shape, k, sign, handles[k]),
+                     [this](const visualization_msgs::InteractiveMarkerFeedbackConstPtr& f) { onFeedback(f); });
   markers_->applyChanges();
 }
 

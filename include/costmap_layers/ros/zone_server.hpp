@@ -87,6 +87,10 @@ private:
   /// answer was set).
   bool redraw(std::unique_lock<std::mutex>& lock);
   void onFeedback(const visualization_msgs::InteractiveMarkerFeedbackConstPtr& feedback);
+  /// Redraws the handles of the shape whose handle `marker` is, at the end of its drag: their labels go
+  /// to the outside of the corners as they now are (not during the drag: that would replace the marker
+  /// the user holds). mutex_ not held.
+  void relabel(const std::string& marker);
   bool onSet(costmap_layers::SetZoneShape::Request& req, costmap_layers::SetZoneShape::Response& res);
   bool onRemove(costmap_layers::RemoveZoneShape::Request& req, costmap_layers::RemoveZoneShape::Response& res);
   bool onSave(costmap_layers::SaveZones::Request& req, costmap_layers::SaveZones::Response& res);

@@ -14,6 +14,33 @@ std::vector<ZonePoint> zoneHandles(const ZoneShape& s)
   return {s.center, {s.center.x + s.radius, s.center.y}};
 }
 
+ZonePoint zoneCentroid(const ZoneShape& s)
+{
+  if (s.type == ZoneShapeType::Circle || s.points.empty()) return s.center;
+  const ZonePoint o = s.points.front();
+  // Fan of triangles from the first vertex: each adds its signed double area and that times the sum of
+  // its corners (the centroid of a triangle is its corners' mean).
+  double area2 = 0.0, cx = 0.0, cy = 0.0, mx = 0.0, my = 0.0;
+  for (std::size_t k = 0; k < s.points.size(); ++k)
+  {
+    const double ax = s.points[k].x - o.x, ay = s.points[k].y - o.y;
+    mx += ax;
+    my += ay;
+    if (k == 0 || k + 1 == s.points.size()) continue;
+    const double bx = s.points[k + 1].x - o.x, by = s.points[k + 1].y - o.y;
+    const double a = ax * by - bx * ay;
+    area2 += a;
+    cx += a * (ax + bx);
+    cy += a * (ay + by);
+  }
+  if (area2 == 0.0)
+  {
+    const double n = static_cast<double>(s.points.size());
+    return {o.x + mx / n, o.y + my / n};
+  }
+  return {o.x + cx / (3.0 * area2), o.y + cy / (3.0 * area2)};
+}
+
 ZoneSet::ZoneSet(ZoneLayout layout)
 {
   const InputError e = validateLayout(layout);

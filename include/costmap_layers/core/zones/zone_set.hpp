@@ -45,4 +45,9 @@ private:
 /// The handle positions of a shape, in the order moveHandle() numbers them: a polygon's vertices; a
 /// circle's centre, then the point at radius along +x from the centre.
 std::vector<ZonePoint> zoneHandles(const ZoneShape& shape);
+
+/// Where a shape's name goes: a polygon's area centroid (inside a convex one, either winding), a
+/// circle's centre. Summed relative to the first vertex, so shapes far from the origin lose no precision;
+/// a polygon of zero area (never a valid one) gives its vertices' mean.
+ZonePoint zoneCentroid(const ZoneShape& shape);
 }  // namespace costmap_layers
