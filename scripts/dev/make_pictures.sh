@@ -42,6 +42,9 @@ picture keepout_escape "$EX/warehouse.yaml" "$PARAMS/keepout_escape.yaml" \
 picture lanes "$EX/warehouse.yaml" "$PARAMS/lanes.yaml" \
   --mask lanes_filter="$EX/lanes_mask.yaml"
 picture speed_mask "$EX/speed_mask.yaml" "$PARAMS/speed_mask_as_map.yaml"
+# The binary mask, as a map; the office labelled (example/binary_mask.pgm: 3-8 x 4.4-5.8 m).
+picture binary_mask "$EX/binary_mask.yaml" "$PARAMS/binary_mask_as_map.yaml" --zoom 2 \
+  --label "5.5,6.3,office: cameras off (mask 100)"
 # The demo's configuration; the robot stands in speed area 1, so the JSON line reports its limit.
 picture all_filters "$EX/warehouse.yaml" "$ROOT/params/costmap_example.yaml" \
   --mask keepout_filter="$EX/keepout_mask.yaml" --mask speed_filter="$EX/speed_mask.yaml" \

@@ -382,7 +382,7 @@ void checkOptions(const std::string& path, unsigned width, unsigned height, cons
 /// place, moved inside the grid's part of the picture when it would stick out.
 void drawLabel(Canvas& canvas, const PngLabel& l, unsigned zoom, unsigned width, unsigned height)
 {
-  const int s = zoom >= 2 ? static_cast<int>((zoom + 1) / 2) : 1;
+  const int s = zoom >= 2 ? static_cast<int>((zoom + 2) / 2) : 1;  // 2x at zoom 2 and 3, 3x at 4 and 5, ...
   const long pad = 2 * s;
   const long text_w = static_cast<long>(l.text.size()) * kAdvance * s - s;
   const long box_w = text_w + 2 * pad + 2;

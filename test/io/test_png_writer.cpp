@@ -316,29 +316,29 @@ TEST_F(PngWriterTest, ZoomDrawsEachCellAsASquareBlock)
 TEST_F(PngWriterTest, ALabelIsCentredOnItsPlaceOnAFramedBox)
 {
   // 40 x 20 free cells at zoom 2: an 80 x 40 picture. "ab" at (20, 10) cells = pixel (40, 20). Font
-  // scale 1 at zoom 2: text 2 * 6 - 1 = 11 px wide, 9 high; padding 2 and a 1 px frame on each side:
-  // a 17 x 15 box from (40 - 8, 20 - 7) = (32, 13) to (48, 27).
+  // scale 2 at zoom 2: text 2 * 12 - 2 = 22 px wide, 18 high; padding 4 and a 1 px frame on each side:
+  // a 32 x 28 box from (40 - 16, 20 - 14) = (24, 6) to (55, 33).
   const std::vector<uint8_t> cells(40 * 20, 0);
   PngOptions o = noLegend(2);
   o.labels.push_back(PngLabel{20.0, 10.0, "ab"});
   writeCostmapPng(tmp("l.png"), cells.data(), 40, 20, o);
   const Picture pic = readRgbPng(tmp("l.png"));
   ASSERT_EQ(pic.width, 80u);
-  EXPECT_EQ(pic.at(32, 13), kFrame);
-  EXPECT_EQ(pic.at(48, 27), kFrame);
-  EXPECT_EQ(pic.at(33, 14), kTan);
-  EXPECT_EQ(pic.at(31, 13), kWhite);
-  EXPECT_EQ(pic.at(49, 27), kWhite);
-  EXPECT_EQ(pic.at(32, 28), kWhite);
+  EXPECT_EQ(pic.at(24, 6), kFrame);
+  EXPECT_EQ(pic.at(55, 33), kFrame);
+  EXPECT_EQ(pic.at(25, 7), kTan);
+  EXPECT_EQ(pic.at(23, 6), kWhite);
+  EXPECT_EQ(pic.at(56, 33), kWhite);
+  EXPECT_EQ(pic.at(24, 34), kWhite);
   size_t ink_inside = 0, not_white_outside = 0;
   for (uint32_t y = 0; y < pic.height; ++y)
     for (uint32_t x = 0; x < pic.width; ++x)
     {
-      const bool inside = x >= 32 && x <= 48 && y >= 13 && y <= 27;
+      const bool inside = x >= 24 && x <= 55 && y >= 6 && y <= 33;
       if (inside && pic.at(x, y) == kInkC) ++ink_inside;
       if (!inside && pic.at(x, y) != kWhite) ++not_white_outside;
     }
-  EXPECT_GT(ink_inside, 10u);  // 'a' and 'b' have 14 and 16 inked pixels
+  EXPECT_EQ(ink_inside, 4u * (14 + 16));  // 'a' and 'b' have 14 and 16 inked font pixels, each 2 x 2
   EXPECT_EQ(not_white_outside, 0u);
 }
 

@@ -24,7 +24,7 @@
 // With PngOptions, each cell may be drawn as zoom x zoom pixels (1..8), and labels may be written on the
 // grid: each label's text (letters, digits, space and - . : / ( ) , _ ?; letters drawn lowercase) on a
 // tan box with a dark frame, centred on its place and kept inside the grid's part of the picture; the
-// font is enlarged with the zoom (2x at zoom 3 and 4).
+// font is enlarged with the zoom (2x at zoom 2 and 3, 3x at 4 and 5, ...).
 //
 // Errors (null data, zero size, file not writable, libpng failure) throw std::runtime_error naming
 // the path.
