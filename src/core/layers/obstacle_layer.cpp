@@ -39,30 +39,6 @@ double lineLength(unsigned int a, unsigned int b)
   return std::hypot(static_cast<double>(a), static_cast<double>(b));
 }
 
-/// The first step k >= 0 whose k * step (in double, as the walk would compute it) is >= bound; step > 0.
-int64_t firstStepAtLeast(double step, double bound)
-{
-  if (!(bound > 0.0)) return 0;
-  int64_t k = static_cast<int64_t>(std::min(std::ceil(bound / step), 4e18));
-  while (k > 0 && static_cast<double>(k - 1) * step >= bound)
-    --k;
-  while (static_cast<double>(k) * step < bound)
-    ++k;
-  return k;
-}
-
-/// The last step k whose k * step is <= bound (-1 for none; a NaN bound has none); step > 0.
-int64_t lastStepAtMost(double step, double bound)
-{
-  if (!(bound >= 0.0)) return -1;
-  int64_t k = static_cast<int64_t>(std::min(std::floor(bound / step), 4e18));
-  while (k >= 0 && static_cast<double>(k) * step > bound)
-    --k;
-  while (static_cast<double>(k + 1) * step <= bound)
-    ++k;
-  return k;
-}
-
 /// The new name when set, else the old one, else the default. Ranges are lengths: kMaxDistance.
 double rangeParam(const ParamReader& p, const std::string& name, const std::string& old_name, double def)
 {

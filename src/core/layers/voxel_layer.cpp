@@ -11,6 +11,60 @@
 
 namespace costmap_layers
 {
+void VoxelLayer::ClearedWalks::begin(std::size_t walks)
+{
+  std::size_t size = 64;
+  while (size < 2 * walks && size < kMaxSlots)
+    size *= 2;
+  if (slots_.size() < size)
+  {
+    slots_.assign(size, Slot{});
+    epoch_ = 0;
+  }
+  mask_ = slots_.size() - 1;
+  used_ = 0;
+  if (++epoch_ == 0)  // wrapped: every slot of an old epoch would look current again
+  {
+    for (Slot& s : slots_)
+      s.epoch = 0;
+    epoch_ = 1;
+  }
+}
+
+bool VoxelLayer::ClearedWalks::covered(uint64_t key, uint32_t lo, uint32_t hi)
+{
+  // Fibonacci hashing, linear probing; the table is kept at most half full, so a free slot exists.
+  std::size_t i = static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 32) & mask_;
+  while (true)
+  {
+    Slot& s = slots_[i];
+    if (s.epoch != epoch_)
+    {
+      // Half full (a cloud of more than kMaxSlots / 2 end voxels): the walks not noted are walked.
+      if (2 * used_ >= slots_.size()) return false;
+      s = Slot{key, lo, hi, epoch_};
+      ++used_;
+      return false;
+    }
+    if (s.key == key)
+    {
+      if (lo >= s.lo && hi <= s.hi) return true;
+      if (lo <= s.hi + 1 && hi + 1 >= s.lo)  // they touch: both runs are cleared, so their union is
+      {
+        s.lo = std::min(s.lo, lo);
+        s.hi = std::max(s.hi, hi);
+      }
+      else if (hi - lo > s.hi - s.lo)
+      {
+        s.lo = lo;
+        s.hi = hi;
+      }
+      return false;
+    }
+    i = (i + 1) & mask_;
+  }
+}
+
 VoxelConfig parseVoxelConfig(const ParamReader& p)
 {
   VoxelConfig c;
@@ -118,26 +172,36 @@ void VoxelLayer::raytraceFreespace(const Observation& obs, double* min_x, double
     // voxels, so a step is length / steps along it (0 for a reading in the sensor's voxel).
     const double length = std::sqrt((ex - sx) * (ex - sx) + (ey - sy) * (ey - sy) + (ez - sz) * (ez - sz));
     const double step = steps == 0 ? 0.0 : length / steps;
-    // The walk needs to go no further than the first step past max_cells.
-    const double bound = step > 0.0 ? std::floor(max_cells / step) + 1.0 : 0.0;
-    const unsigned int last_step =
-        bound < static_cast<double>(steps) ? static_cast<unsigned int>(std::max(0.0, bound)) : steps;
+    // The steps cleared: min_cells <= k * step <= max_cells, k up to the walk's last; a reading in the
+    // sensor's voxel (step 0) clears that voxel when the range allows 0.
+    int64_t lo = 0, hi = -1;
+    if (step == 0.0)
+      hi = 0.0 >= min_cells && 0.0 <= max_cells ? 0 : -1;
+    else
+    {
+      lo = firstStepAtLeast(step, min_cells);
+      hi = std::min<int64_t>(steps, lastStepAtMost(step, max_cells));
+    }
+    if (hi < lo) return;
+    const uint64_t end_voxel = (static_cast<uint64_t>(iy1) * size_x + ix1) * VoxelGrid::kMaxLevels + iz1;
+    if (cleared_walks_.covered(end_voxel, static_cast<uint32_t>(lo), static_cast<uint32_t>(hi))) return;
     bool cleared = false;
     unsigned int last = 0;
     voxels_.traceLine(
         [&](unsigned int index, unsigned int z, unsigned int k)
         {
-          const double along = static_cast<double>(k) * step;
-          if (along < min_cells || along > max_cells) return;
+          if (k < static_cast<uint64_t>(lo)) return;
           clear(index, z);
           last = index;
           cleared = true;
         },
-        ix0, iy0, iz0, ix1, iy1, iz1, last_step);
+        ix0, iy0, iz0, ix1, iy1, iz1, static_cast<unsigned int>(hi));
     // The walk stays in the box of its first and last voxels: the origin's column and the last cleared
-    // one hold every column it changed.
+    // one hold every column it changed. (A walk found covered ends within the box of one that was
+    // walked: each coordinate of a walk moves one way only.)
     if (cleared) visited_cells.add(last % size_x, last / size_x);
   };
+  cleared_walks_.begin(obs.points.size() + obs.clear_only.size());
   for (const Point3f& p : obs.points)
     ray(p);
   for (const Point3f& p : obs.clear_only)

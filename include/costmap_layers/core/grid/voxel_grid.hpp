@@ -102,25 +102,36 @@ void VoxelGrid::traceLine(ActionType&& at, unsigned int x0, unsigned int y0, uns
                             static_cast<int64_t>(z1) - z0};
   const int64_t change[3] = {delta[0] < 0 ? -delta[0] : delta[0], delta[1] < 0 ? -delta[1] : delta[1],
                              delta[2] < 0 ? -delta[2] : delta[2]};
-  const int major = change[0] >= std::max(change[1], change[2]) ? 0 : (change[1] >= change[2] ? 1 : 2);
-  const int64_t steps = change[major];
+  const int64_t steps = std::max(change[0], std::max(change[1], change[2]));
   const int64_t end = std::min<int64_t>(steps, last_step);
-  int64_t pos[3] = {x0, y0, z0};
-  int64_t error[3] = {steps / 2, steps / 2, steps / 2};
+  // Every axis follows its error term, the driving one too: its change is `steps`, so its term moves it
+  // on every step and comes back to where it started: the walk described at the declaration, with no
+  // branch on which axis drives. The column index is carried along instead of recomputed.
+  const int64_t step_x = delta[0] > 0 ? 1 : -1, step_y = (delta[1] > 0 ? 1 : -1) * static_cast<int64_t>(size_x_),
+                step_z = delta[2] > 0 ? 1 : -1;
+  int64_t index = static_cast<int64_t>(y0) * size_x_ + x0, z = z0;
+  int64_t error_x = steps / 2, error_y = steps / 2, error_z = steps / 2;
   for (int64_t k = 0;; ++k)
   {
-    at(static_cast<unsigned int>(pos[1]) * size_x_ + static_cast<unsigned int>(pos[0]),
-       static_cast<unsigned int>(pos[2]), static_cast<unsigned int>(k));
+    at(static_cast<unsigned int>(index), static_cast<unsigned int>(z), static_cast<unsigned int>(k));
     if (k == end) return;
-    for (int axis = 0; axis < 3; ++axis)
+    error_x += change[0];
+    if (error_x >= steps)
     {
-      if (axis != major)
-      {
-        error[axis] += change[axis];
-        if (error[axis] < steps) continue;
-        error[axis] -= steps;
-      }
-      pos[axis] += delta[axis] > 0 ? 1 : -1;
+      error_x -= steps;
+      index += step_x;
+    }
+    error_y += change[1];
+    if (error_y >= steps)
+    {
+      error_y -= steps;
+      index += step_y;
+    }
+    error_z += change[2];
+    if (error_z >= steps)
+    {
+      error_z -= steps;
+      z += step_z;
     }
   }
 }

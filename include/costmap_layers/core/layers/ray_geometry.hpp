@@ -4,7 +4,9 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 
 namespace costmap_layers
@@ -23,6 +25,34 @@ double clipRayToBox(const double (&o)[N], const double (&dir)[N], const double (
     if (o[i] + t * dir[i] > hi[i]) t = (hi[i] - o[i]) / dir[i];
   }
   return std::max(0.0, std::min(1.0, t));
+}
+
+// A walk's step k lies k * step (in cells) along its line; a range keeps the steps whose k * step,
+// computed in double as a step-by-step walk would, lies within it. k * step grows with k, so they are
+// one run of steps, and its two ends are found once per ray instead of tested at every step.
+
+/// The first step k >= 0 whose k * step is >= bound; step > 0.
+inline int64_t firstStepAtLeast(double step, double bound)
+{
+  if (!(bound > 0.0)) return 0;
+  int64_t k = static_cast<int64_t>(std::min(std::ceil(bound / step), 4e18));
+  while (k > 0 && static_cast<double>(k - 1) * step >= bound)
+    --k;
+  while (static_cast<double>(k) * step < bound)
+    ++k;
+  return k;
+}
+
+/// The last step k whose k * step is <= bound (-1 for none; a NaN bound has none); step > 0.
+inline int64_t lastStepAtMost(double step, double bound)
+{
+  if (!(bound >= 0.0)) return -1;
+  int64_t k = static_cast<int64_t>(std::min(std::floor(bound / step), 4e18));
+  while (k >= 0 && static_cast<double>(k) * step > bound)
+    --k;
+  while (static_cast<double>(k + 1) * step <= bound)
+    ++k;
+  return k;
 }
 
 /// The box of the points a pass touched (in cells or in metres): starts empty, or at one point.

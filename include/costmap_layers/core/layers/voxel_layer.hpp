@@ -5,8 +5,12 @@
 // or NO_INFORMATION when more than unknown_threshold of its z_voxels voxels are still unknown.
 #pragma once
 
-#include "costmap_layers/core/layers/obstacle_layer.hpp"
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
 #include "costmap_layers/core/grid/voxel_grid.hpp"
+#include "costmap_layers/core/layers/obstacle_layer.hpp"
 
 namespace costmap_layers
 {
@@ -45,7 +49,37 @@ protected:
                        double* max_y) override;
 
 private:
+  /// The walks one raytraceFreespace call has cleared, by end voxel: every walk of an observation starts
+  /// in the sensor's voxel, so two readings ending in the same voxel walk the same voxels, and the second
+  /// needs no walk when its steps lie within those already cleared (clearing is idempotent and the
+  /// column's cell depends only on the column's bits at the end). An organised depth cloud holds many
+  /// readings per voxel. Open addressing over a table reused from call to call (no allocation once it
+  /// has grown to twice the largest observation, at most kMaxSlots: 1.5 MB), emptied by an epoch count.
+  class ClearedWalks
+  {
+  public:
+    /// A new observation of at most `walks` walks.
+    void begin(std::size_t walks);
+    /// True when the steps lo..hi of the walk to voxel `key` were cleared already in this observation;
+    /// otherwise notes them (merged with the steps noted for that voxel when they touch) and is false.
+    bool covered(uint64_t key, uint32_t lo, uint32_t hi);
+
+  private:
+    static constexpr std::size_t kMaxSlots = std::size_t{1} << 16;
+    struct Slot
+    {
+      uint64_t key = 0;
+      uint32_t lo = 0, hi = 0;
+      uint32_t epoch = 0;  ///< the slot is empty unless this is the current epoch
+    };
+    std::vector<Slot> slots_;
+    std::size_t mask_ = 0;
+    std::size_t used_ = 0;  ///< slots of the current epoch
+    uint32_t epoch_ = 0;
+  };
+
   VoxelConfig voxel_config_;
   VoxelGrid voxels_;
+  ClearedWalks cleared_walks_;
 };
 }  // namespace costmap_layers
