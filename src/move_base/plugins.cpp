@@ -3,6 +3,7 @@
 #include <pluginlib/class_list_macros.hpp>
 
 #include "costmap_layers/core/filters/binary_filter.hpp"
+#include "costmap_layers/core/layers/denoise_layer.hpp"
 #include "costmap_layers/core/layers/gradient_layer.hpp"
 #include "costmap_layers/core/layers/inflation_layer.hpp"
 #include "costmap_layers/core/filters/keepout_filter.hpp"
@@ -43,3 +44,4 @@ COSTMAP_LAYERS_MOVE_BASE_PLUGIN(SpeedFilter, LayerBridge)
 COSTMAP_LAYERS_MOVE_BASE_PLUGIN(LanesFilter, LayerBridge)
 COSTMAP_LAYERS_MOVE_BASE_PLUGIN(ZoneParameterFilter, LayerBridge)
 COSTMAP_LAYERS_MOVE_BASE_PLUGIN(BinaryFilter, LayerBridge)
+COSTMAP_LAYERS_MOVE_BASE_PLUGIN(DenoiseLayer, LayerBridge)

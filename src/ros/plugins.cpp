@@ -2,6 +2,7 @@
 #include <pluginlib/class_list_macros.hpp>
 
 #include "costmap_layers/core/filters/binary_filter.hpp"
+#include "costmap_layers/core/layers/denoise_layer.hpp"
 #include "costmap_layers/core/layers/gradient_layer.hpp"
 #include "costmap_layers/core/layers/inflation_layer.hpp"
 #include "costmap_layers/core/filters/keepout_filter.hpp"
@@ -24,3 +25,4 @@ PLUGINLIB_EXPORT_CLASS(costmap_layers::VoxelLayer, costmap_layers::Layer)
 PLUGINLIB_EXPORT_CLASS(costmap_layers::RangeSensorLayer, costmap_layers::Layer)
 PLUGINLIB_EXPORT_CLASS(costmap_layers::ZoneParameterFilter, costmap_layers::Layer)
 PLUGINLIB_EXPORT_CLASS(costmap_layers::BinaryFilter, costmap_layers::Layer)
+PLUGINLIB_EXPORT_CLASS(costmap_layers::DenoiseLayer, costmap_layers::Layer)

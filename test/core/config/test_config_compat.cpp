@@ -96,6 +96,7 @@ TEST(TypeAliases, EveryForeignNameLoadsOurClass)
       {"nav2_costmap_2d::SpeedFilter", "costmap_layers/SpeedFilter"},
       {"nav2_costmap_2d::ZoneParameterFilter", "costmap_layers/ZoneParameterFilter"},
       {"nav2_costmap_2d::BinaryFilter", "costmap_layers/BinaryFilter"},
+      {"nav2_costmap_2d::DenoiseLayer", "costmap_layers/DenoiseLayer"},
   };
   for (const auto& [written, ours] : expected)
     EXPECT_EQ(resolvePluginType(written), ours) << written;
