@@ -1,6 +1,11 @@
 #include "costmap_layers/ros/costmap_node.hpp"
 #include "costmap_layers/ros/program_main.hpp"
 
+#include <costmap_layers/ClearCostmapAroundPose.h>
+#include <costmap_layers/ClearCostmapExceptRegion.h>
+#include <costmap_layers/ClearEntireCostmap.h>
+#include <costmap_layers/GetCosts.h>
+
 #include <geometry_msgs/PolygonStamped.h>
 #include <map_msgs/OccupancyGridUpdate.h>
 #include <nav_msgs/OccupancyGrid.h>
@@ -12,10 +17,12 @@
 #include <thread>
 
 #include "costmap_layers/core/config/config_compat.hpp"
+#include "costmap_layers/core/costmap/cost_query.hpp"
 #include "costmap_layers/core/costmap/costmap_builder.hpp"
 #include "costmap_layers/core/costmap/costmap_clearing.hpp"
 #include "costmap_layers/core/costmap/layer.hpp"
 #include "costmap_layers/core/costmap/layer_status.hpp"
+#include "costmap_layers/core/grid/cost_values.hpp"
 #include "costmap_layers/io/param_yaml.hpp"
 #include "costmap_layers/ros/conversions.hpp"
 
@@ -31,6 +38,54 @@ namespace
 double steadySeconds()
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+/// A pose of a service request in the global frame, or why not. An empty frame_id means the global
+/// frame (what a ROS 1 user typing `rosservice call` leaves). An all-zero quaternion (the unset
+/// default) is yaw 0, as tf2::getYaw reads it; other orientations go through planarYaw, which names
+/// the field and refuses a non-finite, zero-length or steeply tilted one.
+struct PlacedPose
+{
+  double x = 0, y = 0, yaw = 0;
+};
+std::optional<PlacedPose> placePose(const tf2_ros::Buffer& tf, const std::string& global_frame, double tolerance,
+                                    const geometry_msgs::PoseStamped& pose, const std::string& field,
+                                    std::string& error)
+{
+  const auto& p = pose.pose.position;
+  if (!std::isfinite(p.x) || !std::isfinite(p.y))
+  {
+    error = field + ".pose.position (" + std::to_string(p.x) + ", " + std::to_string(p.y) + ") is not finite";
+    return std::nullopt;
+  }
+  const auto& q = pose.pose.orientation;
+  double yaw = 0.0;
+  if (q.x != 0.0 || q.y != 0.0 || q.z != 0.0 || q.w != 0.0)
+  {
+    try
+    {
+      yaw = planarYaw(q, kMaxPoseTilt, field + ".pose.orientation");
+    }
+    catch (const std::invalid_argument& e)
+    {
+      error = e.what();
+      return std::nullopt;
+    }
+  }
+  const std::string& frame = pose.header.frame_id;
+  if (frame.empty() || frame == global_frame) return PlacedPose{p.x, p.y, yaw};
+  std::string tf_error;
+  const auto t = lookupTransform2D(tf, global_frame, frame, tolerance, &tf_error);
+  if (!t)
+  {
+    error = field + ".header.frame_id '" + frame.substr(0, 64) + "' cannot be transformed to " + global_frame + ": " +
+            tf_error.substr(0, 200);
+    return std::nullopt;
+  }
+  PlacedPose out;
+  t->apply(p.x, p.y, out.x, out.y);
+  out.yaw = yaw + t->yaw;
+  return out;
 }
 
 constexpr const char* kNoClock =
@@ -200,7 +255,117 @@ void CostmapNode::setUp()
         ROS_INFO("costmap: cleared %d clearable layer(s) outside %.2f m around the robot", n, config_.reset_distance);
         return true;
       });
+  advertiseNav2Services();
   setUpDiagnostics(names);
+}
+
+void CostmapNode::advertiseNav2Services()
+{
+  get_cost_srv_ = private_nh_.advertiseService<costmap_layers::GetCosts::Request, costmap_layers::GetCosts::Response>(
+      "get_cost",
+      [this](costmap_layers::GetCosts::Request& req, costmap_layers::GetCosts::Response& res)
+      {
+        res.success = true;
+        if (req.poses.size() > costmap_layers::kMaxCostQueryPoses)
+        {
+          ROS_ERROR("costmap: get_cost refused: poses holds %zu poses, at most %zu", req.poses.size(),
+                    costmap_layers::kMaxCostQueryPoses);
+          res.success = false;
+          return true;
+        }
+        // Placed before the lock: tf look-ups need not hold up the update loop.
+        std::vector<std::optional<PlacedPose>> placed(req.poses.size());
+        std::size_t refused = 0;
+        std::string first_error;
+        for (std::size_t k = 0; k < req.poses.size(); ++k)
+        {
+          std::string error;
+          placed[k] = placePose(tf_, config_.global_frame, config_.transform_tolerance, req.poses[k],
+                                "poses[" + std::to_string(k) + "]", error);
+          if (!placed[k] && refused++ == 0) first_error = error;
+        }
+        if (refused > 0)
+          ROS_ERROR("costmap: get_cost: %zu pose(s) answered 255 (no information): %s%s", refused, first_error.c_str(),
+                    refused > 1 ? " (and others)" : "");
+        std::lock_guard<std::mutex> lock(update_mutex_);
+        const costmap_layers::Costmap2D& grid = costmap_->getCostmap();
+        const costmap_layers::Footprint& footprint = costmap_->getFootprint();
+        res.costs.reserve(placed.size());
+        for (const auto& p : placed)
+        {
+          costmap_layers::CostAnswer a{costmap_layers::NO_INFORMATION, false};
+          if (p)
+            a = req.use_footprint ? costmap_layers::footprintCostAtPose(grid, p->x, p->y, p->yaw, footprint)
+                                  : costmap_layers::pointCost(grid, p->x, p->y);
+          res.costs.push_back(static_cast<float>(a.cost));
+          res.success = res.success && a.ok;
+        }
+        return true;
+      });
+  clear_entirely_srv_ = private_nh_.advertiseService<costmap_layers::ClearEntireCostmap::Request,
+                                                     costmap_layers::ClearEntireCostmap::Response>(
+      "clear_entirely",
+      [this](costmap_layers::ClearEntireCostmap::Request& req, costmap_layers::ClearEntireCostmap::Response& res)
+      {
+        std::lock_guard<std::mutex> lock(update_mutex_);
+        std::string error;
+        const int n = costmap_layers::clearEntirely(*costmap_, req.plugins, error);
+        res.success = n >= 0;
+        if (n < 0)
+          ROS_ERROR("costmap: clear_entirely refused, nothing cleared: %s", error.c_str());
+        else
+          ROS_INFO("costmap: clear_entirely reset %d layer(s)", n);
+        return true;
+      });
+  clear_except_srv_ = private_nh_.advertiseService<costmap_layers::ClearCostmapExceptRegion::Request,
+                                                   costmap_layers::ClearCostmapExceptRegion::Response>(
+      "clear_except_region",
+      [this](costmap_layers::ClearCostmapExceptRegion::Request& req,
+             costmap_layers::ClearCostmapExceptRegion::Response& res)
+      {
+        res.success = false;
+        const auto robot = robotPose();  // the pose now, as Nav2 asks tf for it; logged when missing
+        if (!robot)
+        {
+          ROS_ERROR("costmap: clear_except_region refused: no robot pose (%s in %s)", config_.robot_base_frame.c_str(),
+                    config_.global_frame.c_str());
+          return true;
+        }
+        std::lock_guard<std::mutex> lock(update_mutex_);
+        std::string error;
+        const int n = costmap_layers::clearSquare(*costmap_, robot->x, robot->y, req.reset_distance,
+                                                  costmap_layers::SquareClear::KeepSquare, req.plugins, error);
+        res.success = n >= 0;
+        if (n < 0)
+          ROS_ERROR("costmap: clear_except_region refused, nothing cleared: %s", error.c_str());
+        else
+          ROS_INFO("costmap: cleared %d layer(s) outside %.2f m around the robot", n, req.reset_distance);
+        return true;
+      });
+  clear_around_pose_srv_ = private_nh_.advertiseService<costmap_layers::ClearCostmapAroundPose::Request,
+                                                        costmap_layers::ClearCostmapAroundPose::Response>(
+      "clear_around_pose",
+      [this](costmap_layers::ClearCostmapAroundPose::Request& req,
+             costmap_layers::ClearCostmapAroundPose::Response& res)
+      {
+        res.success = false;
+        std::string error;
+        const auto p = placePose(tf_, config_.global_frame, config_.transform_tolerance, req.pose, "pose", error);
+        if (!p)
+        {
+          ROS_ERROR("costmap: clear_around_pose refused, nothing cleared: %s", error.c_str());
+          return true;
+        }
+        std::lock_guard<std::mutex> lock(update_mutex_);
+        const int n = costmap_layers::clearSquare(*costmap_, p->x, p->y, req.reset_distance,
+                                                  costmap_layers::SquareClear::ClearSquare, req.plugins, error);
+        res.success = n >= 0;
+        if (n < 0)
+          ROS_ERROR("costmap: clear_around_pose refused, nothing cleared: %s", error.c_str());
+        else
+          ROS_INFO("costmap: cleared %d layer(s) within %.2f m around (%.2f, %.2f)", n, req.reset_distance, p->x, p->y);
+        return true;
+      });
 }
 
 void CostmapNode::setUpDiagnostics(const std::vector<std::string>& layer_names)

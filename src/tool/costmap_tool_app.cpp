@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "costmap_layers/core/config/config_compat.hpp"
+#include "costmap_layers/core/costmap/cost_query.hpp"
 #include "costmap_layers/core/costmap/costmap_builder.hpp"
 #include "costmap_layers/core/costmap/costmap_config.hpp"
 #include "costmap_layers/core/costmap/layer.hpp"
@@ -38,9 +39,10 @@ const char* kDescription =
     "costmap_tool: the offline twin of costmap_node. Builds the costmap the params YAML describes, feeds it\n"
     "the map file (and masks and speed-limit files) where the node gets topics, runs an update at --pose\n"
     "and prints one JSON line: width, height, resolution, origin_x, origin_y, update_ms_median,\n"
-    "update_ms_min, repeats, max_speed. On a rolling_window costmap the result is the window of the\n"
-    "configured width/height centred on --pose, as costmap_node publishes it. Each option may be given\n"
-    "once, except --mask, --features and --filter-info (once per plugin name).\n"
+    "update_ms_min, repeats, max_speed (and costs, costs_success with --cost). On a rolling_window costmap\n"
+    "the result is the window of the configured width/height centred on --pose, as costmap_node publishes\n"
+    "it. Each option may be given once, except --mask, --features, --filter-info (once per plugin name),\n"
+    "--label and --cost.\n"
     "costmap_tool --describe-params [--markdown] prints every parameter, topic and service of every plugin\n"
     "(docs/parameters.md is that output).";
 
@@ -58,6 +60,12 @@ struct ToolArgs
     std::string text;
   };
   std::vector<Label> labels;
+  struct CostPose
+  {
+    double x = 0, y = 0, yaw = 0;  // in the global frame [m, m, rad]
+  };
+  std::vector<CostPose> costs;  // --cost, answered as costmap_node's ~get_cost
+  bool cost_footprint = false;
 };
 
 struct UsageError : std::runtime_error
@@ -170,6 +178,27 @@ ToolArgs::Label parseLabel(const std::string& v)
   return l;
 }
 
+/// X,Y or X,Y,YAW: finite, within the limits every coordinate is held to.
+ToolArgs::CostPose parseCostPose(const std::string& v)
+{
+  double p[3] = {0, 0, 0};
+  std::istringstream in(v);
+  char c1 = 0, c2 = 0;
+  bool ok = static_cast<bool>(in >> p[0] >> c1 >> p[1]) && c1 == ',';
+  if (ok && !in.eof()) ok = static_cast<bool>(in >> c2 >> p[2]) && c2 == ',' && in.eof();
+  // NaN fails every comparison below, so it is refused with the infinities.
+  if (!ok || !(std::fabs(p[0]) <= limits::kMaxCoordinate) || !(std::fabs(p[1]) <= limits::kMaxCoordinate) ||
+      !(std::fabs(p[2]) <= limits::kMaxYaw))
+  {
+    std::ostringstream msg;
+    msg << "--cost expects X,Y or X,Y,YAW as finite numbers, |X| and |Y| at most " << limits::kMaxCoordinate
+        << " m and |YAW| at most " << limits::kMaxYaw << " rad (got \"" << v.substr(0, 80)
+        << (v.size() > 80 ? "..." : "") << "\")";
+    throw UsageError(msg.str());
+  }
+  return {p[0], p[1], p[2]};
+}
+
 /// The command line. Each single-valued option may appear once (CLI11's Throw policy: a second one is
 /// an error naming the option); --mask and --features repeat, once per plugin name.
 class ToolCommandLine
@@ -205,6 +234,11 @@ public:
     app_.add_option("--label", labels_, "--out-png: write TEXT centred on (X, Y) [m, global frame] (repeatable)")
         ->allow_extra_args(false)
         ->type_name("X,Y,TEXT");
+    app_.add_option("--cost", costs_, "add the cost at (X, Y) [m, global frame] to the output's costs (repeatable)")
+        ->allow_extra_args(false)
+        ->type_name("X,Y[,YAW]");
+    app_.add_flag("--cost-footprint", cost_footprint_,
+                  "--cost: the highest cost on the footprint's outline placed at X,Y,YAW (Nav2's use_footprint)");
     app_.allow_extras(true);  // reported below as unknown options, in the tool's own words
   }
 
@@ -249,6 +283,14 @@ public:
     if (app_.count("--zoom")) a.zoom = parseZoom(zoom_);
     for (const auto& l : labels_)
       a.labels.push_back(parseLabel(l));
+    if (costs_.size() > kMaxCostQueryPoses)
+      throw UsageError("--cost is given " + std::to_string(costs_.size()) + " times, at most " +
+                       std::to_string(kMaxCostQueryPoses));
+    for (const auto& c : costs_)
+      a.costs.push_back(parseCostPose(c));
+    a.cost_footprint = cost_footprint_;
+    if (a.cost_footprint && a.costs.empty())
+      throw UsageError("--cost-footprint shapes the --cost answers: give --cost too");
     if ((app_.count("--zoom") || !a.labels.empty()) && a.out_png.empty())
       throw UsageError("--zoom and --label shape the --out-png picture: give --out-png FILE too");
     return a;
@@ -257,7 +299,8 @@ public:
 private:
   CLI::App app_;
   std::string map_, params_, ns_, out_raw_, out_png_, pose_, repeat_, zoom_;
-  std::vector<std::string> masks_, features_, infos_, labels_;
+  std::vector<std::string> masks_, features_, infos_, labels_, costs_;
+  bool cost_footprint_ = false;
 };
 
 /// The tool's LayerContext: no tf (every frame is the global frame), reports to stderr. The tool itself
@@ -547,6 +590,20 @@ int run(const ToolArgs& a, std::ostream& out, std::ostream& err)
       const auto it = max_speeds.find(spec.name);
       if (it != max_speeds.end()) json["max_speed"][spec.name] = it->second;  // a non-finite number is null
     }
+  if (!a.costs.empty())
+  {
+    // As costmap_node's ~get_cost answers them (cost_query.hpp): 254 off the map, success false then.
+    json["costs"] = nlohmann::ordered_json::array();
+    bool success = true;
+    for (const auto& c : a.costs)
+    {
+      const CostAnswer answer =
+          a.cost_footprint ? footprintCostAtPose(grid, c.x, c.y, c.yaw, footprint) : pointCost(grid, c.x, c.y);
+      json["costs"].push_back(answer.cost);
+      success = success && answer.ok;
+    }
+    json["costs_success"] = success;
+  }
   err.flush();
   out << json.dump() << std::endl;
   return 0;

@@ -658,3 +658,66 @@ inflation:
   EXPECT_LE(cells[10 * 21 + 14], 48);
   EXPECT_EQ(cells[10 * 21 + 16], 0);  // 0.6 m: beyond
 }
+
+TEST(CostmapTool, CostQueriesAnswerAsTheNodesGetCost)
+{
+  TempDir dir;
+  // The gradient on 57 x 31 cells of 0.1 m from (-1, 2): column i holds 254 - 10 * (i % 22) (see
+  // expectedGradient), the same in every row.
+  const std::string map = writeMap(dir, "map", 57, 31, std::vector<uint8_t>(57 * 31, 254), 0.1, -1.0, 2.0);
+  const std::string params = dir.write("params.yaml", kGradientParams + R"(
+footprint: [[0.1, 0.1], [-0.1, 0.1], [-0.1, -0.1], [0.1, -0.1]]
+footprint_padding: 0.0
+)");
+  const std::vector<std::string> base = {"--map", map, "--params", params};
+  auto with = [&](std::vector<std::string> extra)
+  {
+    std::vector<std::string> args = base;
+    args.insert(args.end(), extra.begin(), extra.end());
+    return args;
+  };
+  // (-0.95, 2.05): column 0 -> 254; (-0.85, 2.05, yaw 1): column 1 -> 244; (-0.45, 3.05): column 5 -> 204.
+  ToolResult r = runTool(with({"--cost", "-0.95,2.05", "--cost", "-0.85,2.05,1", "--cost", "-0.45,3.05"}), dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  nlohmann::json j = jsonOf(r);
+  EXPECT_EQ(j["costs"], nlohmann::json::parse("[254.0, 244.0, 204.0]")) << j;
+  EXPECT_EQ(j["costs_success"], true);
+  // The footprint (+-0.1 m) at (-0.45, 3.05) spans x -0.55..-0.35: columns 4..6 -> max(214, 204, 194).
+  r = runTool(with({"--cost", "-0.45,3.05,0", "--cost-footprint"}), dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(jsonOf(r)["costs"], nlohmann::json::parse("[214.0]"));
+  // Off the map (x < -1, or y >= 5.1; y 5.1 itself is row 30.99.. in floating point, on the map): 254 and
+  // success false, as Nav2's GetCosts; a footprint with a vertex off the map is 254 with success still
+  // true. (0.05, 3): column 10 -> 254 - 100.
+  r = runTool(with({"--cost", "-1.01,3", "--cost", "0,5.15", "--cost", "0.05,3"}), dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  j = jsonOf(r);
+  EXPECT_EQ(j["costs"], nlohmann::json::parse("[254.0, 254.0, 154.0]")) << j;
+  EXPECT_EQ(j["costs_success"], false);
+  r = runTool(with({"--cost", "-0.95,3", "--cost-footprint"}), dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(jsonOf(r)["costs"], nlohmann::json::parse("[254.0]"));
+  EXPECT_EQ(jsonOf(r)["costs_success"], true);
+  // Without --cost the output has no costs.
+  r = runTool(base, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_FALSE(jsonOf(r).contains("costs"));
+
+  const std::vector<std::pair<std::vector<std::string>, std::string>> bad = {
+      {{"--cost", "nan,1"}, "--cost expects X,Y or X,Y,YAW"},
+      {{"--cost", "1,inf"}, "--cost expects X,Y or X,Y,YAW"},
+      {{"--cost", "1"}, "--cost expects X,Y or X,Y,YAW"},
+      {{"--cost", "1,2,3,4"}, "--cost expects X,Y or X,Y,YAW"},
+      {{"--cost", "1,2,"}, "--cost expects X,Y or X,Y,YAW"},
+      {{"--cost", "1e8,0"}, "(got \"1e8,0\")"},
+      {{"--cost", "0,0,1e4"}, "|YAW| at most 1000 rad"},
+      {{"--cost-footprint"}, "--cost-footprint shapes the --cost answers: give --cost too"},
+  };
+  for (const auto& [extra, needle] : bad)
+  {
+    r = runTool(with(extra), dir);
+    EXPECT_EQ(r.exit_code, 2) << needle;
+    EXPECT_NE(r.err.find(needle), std::string::npos) << "stderr was: " << r.err;
+    EXPECT_EQ(r.out, "") << needle;
+  }
+}

@@ -90,6 +90,9 @@ private:
   std::vector<std::unique_ptr<LayerReconfigure>> reconfigure_;  ///< one dynamic_reconfigure server per layer
   ros::ServiceServer clear_srv_;
   ros::ServiceServer clear_around_srv_;
+  // Nav2's costmap services: ~get_cost, ~clear_entirely, ~clear_except_region, ~clear_around_pose.
+  ros::ServiceServer get_cost_srv_, clear_entirely_srv_, clear_except_srv_, clear_around_pose_srv_;
+  void advertiseNav2Services();
   std::mutex update_mutex_;                                    ///< one update cycle or one clear request at a time
   double last_x_ = 0, last_y_ = 0;                             ///< the robot position of the last update [m]
   bool cycled_once_ = false;                                   ///< a whole update cycle ran: the grid is worth sending
