@@ -11,6 +11,7 @@
 #include <std_msgs/UInt8.h>
 #include <std_srvs/SetBool.h>
 
+#include <atomic>
 #include <deque>
 #include <mutex>
 
@@ -21,6 +22,7 @@
 #include "costmap_layers/core/filters/costmap_filter.hpp"
 #include "costmap_layers/ros/port_dispatch.hpp"
 #include "costmap_layers/ros/tf_gate.hpp"
+#include "costmap_layers/ros/voxel_output.hpp"
 
 namespace costmap_layers_ros
 {
@@ -70,6 +72,12 @@ std::string portMessageType(OutputKind kind)
       return ros::message_traits::datatype<std_msgs::Bool>();
     case OutputKind::Setpoints:
       return "";
+    case OutputKind::VoxelGrid:
+      return ros::message_traits::datatype<costmap_layers::VoxelMap>();
+    case OutputKind::VoxelMarkers:
+      return ros::message_traits::datatype<visualization_msgs::Marker>();
+    case OutputKind::VoxelCloud:
+      return ros::message_traits::datatype<sensor_msgs::PointCloud2>();
   }
   return "";
 }
@@ -189,6 +197,8 @@ LayerPorts::LayerPorts(ros::NodeHandle public_nh, ros::NodeHandle private_nh, co
       setpoints_ = std::make_unique<SetpointApplier>(public_nh_, private_nh_.getNamespace(), out.timeout, log_);
     else if (out.kind == costmap_layers::OutputKind::BinaryState)
       publishers_[{out.kind, out.topic}] = public_nh_.advertise<std_msgs::Bool>(topic, 1, true);
+    else if (out.on_demand)
+      publishers_[{out.kind, out.topic}] = advertiseOnDemand(out);
   }
   if (!publishers_.empty() || setpoints_)
     layer.setOutputListener([this](const costmap_layers::OutputEvent& e) { publish(e); });
@@ -207,6 +217,30 @@ LayerPorts::LayerPorts(ros::NodeHandle public_nh, ros::NodeHandle private_nh, co
       toggles_.push_back(
           private_nh_.advertiseService<std_srvs::SetBool::Request, std_srvs::SetBool::Response>(name, toggle));
   }
+}
+
+ros::Publisher LayerPorts::advertiseOnDemand(const costmap_layers::OutputPort& out)
+{
+  // The layer builds the output only while someone subscribes: connections are counted as roscpp
+  // reports them (on its callback threads; not after this object is gone: tracked by alive_).
+  auto readers = std::make_shared<std::atomic<int>>(0);
+  costmap_layers::Layer* layer = &layer_;
+  const std::string key = out.topic;
+  const auto connect = [readers, layer, key](const ros::SingleSubscriberPublisher&)
+  { layer->setOutputWanted(key, ++*readers > 0); };
+  const auto disconnect = [readers, layer, key](const ros::SingleSubscriberPublisher&)
+  { layer->setOutputWanted(key, --*readers > 0); };
+  ros::NodeHandle& nh = out.layer_namespace ? private_nh_ : public_nh_;
+  const std::string topic = out.layer_namespace ? out.topic : resolveTopic(out.topic);
+  ros::AdvertiseOptions options;
+  if (out.kind == costmap_layers::OutputKind::VoxelGrid)
+    options.init<costmap_layers::VoxelMap>(topic, 1, connect, disconnect);
+  else if (out.kind == costmap_layers::OutputKind::VoxelMarkers)
+    options.init<visualization_msgs::Marker>(topic, 1, connect, disconnect);
+  else
+    options.init<sensor_msgs::PointCloud2>(topic, 1, connect, disconnect);
+  options.tracked_object = alive_;
+  return nh.advertise(options);
 }
 
 std::string LayerPorts::resolveTopic(const std::string& topic) const
@@ -241,6 +275,8 @@ LayerPorts::~LayerPorts()
 {
   layer_.setInputListener({});
   if (!publishers_.empty() || setpoints_) layer_.setOutputListener({});
+  for (const costmap_layers::OutputPort& out : layer_.outputs())
+    if (out.on_demand) layer_.setOutputWanted(out.topic, false);
 }
 
 void LayerPorts::publish(const costmap_layers::OutputEvent& e)
@@ -253,6 +289,11 @@ void LayerPorts::publish(const costmap_layers::OutputEvent& e)
   }
   const auto it = publishers_.find({e.kind, e.topic});
   if (it == publishers_.end()) return;
+  if (e.voxels)
+  {
+    publishVoxels(e, it->second);
+    return;
+  }
   if (e.kind == costmap_layers::OutputKind::ZoneState)
   {
     std_msgs::UInt8 msg;
@@ -282,6 +323,32 @@ void LayerPorts::publish(const costmap_layers::OutputEvent& e)
   msg.header.stamp = ros::Time::now();
   msg.max_speed = e.value;
   it->second.publish(msg);
+}
+
+void LayerPorts::publishVoxels(const costmap_layers::OutputEvent& e, ros::Publisher& pub)
+{
+  if (pub.getNumSubscribers() == 0) return;  // the last reader left since the layer asked
+  const ros::Time stamp = ros::Time::now();
+  std::size_t left_out = 0;
+  if (e.kind == costmap_layers::OutputKind::VoxelGrid)
+    pub.publish(toVoxelGridMsg(*e.voxels, global_frame_, stamp));
+  else if (e.kind == costmap_layers::OutputKind::VoxelMarkers)
+  {
+    visualization_msgs::Marker marker;
+    left_out = toVoxelMarker(*e.voxels, global_frame_, stamp, layer_.getName(), marker);
+    pub.publish(marker);
+  }
+  else if (e.kind == costmap_layers::OutputKind::VoxelCloud)
+  {
+    sensor_msgs::PointCloud2 cloud;
+    left_out = toVoxelCloud(*e.voxels, global_frame_, stamp, cloud);
+    pub.publish(cloud);
+  }
+  if (left_out > 0)
+    log_->log(costmap_layers::Severity::Warn, private_nh_.getNamespace() + "/" + e.topic,
+              private_nh_.resolveName(e.topic) + ": " + std::to_string(left_out) +
+                  " marked voxels left out: at most " + std::to_string(costmap_layers::kMaxVoxelPoints) +
+                  " are drawn (voxel_grid carries them all)");
 }
 
 ros::Subscriber LayerPorts::subscribe(const costmap_layers::InputPort& in)

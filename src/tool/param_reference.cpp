@@ -56,6 +56,8 @@ ParamValue sampleParams(const std::string& type)
   ParamValue p = ParamValue::makeMap();
   if (type == "costmap_layers/ObstacleLayer" || type == "costmap_layers/VoxelLayer")
     p.set("observation_sources", ParamValue::makeString(kSampleSource));
+  // Its voxel outputs exist only when asked for: describe them.
+  if (type == "costmap_layers/VoxelLayer") p.set("publish_voxel_map", ParamValue::makeBool(true));
   return p;
 }
 
@@ -202,6 +204,12 @@ const char* outputKindName(OutputKind kind)
       return "parameters of other nodes (dynamic_reconfigure)";
     case OutputKind::BinaryState:
       return "binary state";
+    case OutputKind::VoxelGrid:
+      return "voxel grid (while subscribed)";
+    case OutputKind::VoxelMarkers:
+      return "marked voxels as cubes (while subscribed)";
+    case OutputKind::VoxelCloud:
+      return "marked voxels' centres (while subscribed)";
   }
   return "";
 }
@@ -247,7 +255,10 @@ ParamReference describeParameters(PluginFactory& factory)
       plugin.ports.push_back({false, inputKindName(in.kind), in.topic == kSampleSource ? "<source>/topic" : in.topic,
                               portMessageType(in.kind)});
     for (const OutputPort& out : layer->outputs())
-      plugin.ports.push_back({true, outputKindName(out.kind), out.kind == OutputKind::Setpoints ? "" : out.topic,
+      plugin.ports.push_back({true, outputKindName(out.kind),
+                              out.kind == OutputKind::Setpoints ? ""
+                              : out.layer_namespace           ? "~<name>/" + out.topic
+                                                              : out.topic,
                               portMessageType(out.kind)});
     plugin.services = layerServices(*layer);
     ref.plugins.push_back(std::move(plugin));

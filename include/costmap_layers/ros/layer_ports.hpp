@@ -7,6 +7,7 @@
 // plain functions and classes a test can feed without a master.
 #pragma once
 
+#include <boost/make_shared.hpp>
 #include <ros/ros.h>
 #include <tf2_ros/buffer.h>
 
@@ -70,6 +71,10 @@ private:
   void subscribeSensor(const std::string& topic, const std::string& sensor_frame,
                        costmap_layers::SensorCallback<Reading> cb);
   void publish(const costmap_layers::OutputEvent& event);
+  /// An on-demand output's publisher: its readers coming and going set Layer::setOutputWanted().
+  ros::Publisher advertiseOnDemand(const costmap_layers::OutputPort& out);
+  /// A voxel snapshot as the message of its port, when the port still has a reader.
+  void publishVoxels(const costmap_layers::OutputEvent& event, ros::Publisher& pub);
   /// The receipt counter of a topic (created on first use).
   std::shared_ptr<Receipts> receiptsFor(const std::string& topic);
 
@@ -88,6 +93,8 @@ private:
   std::vector<std::shared_ptr<void>> sensor_inputs_;  ///< tf gates with their subscribers and timers
   std::map<std::pair<costmap_layers::OutputKind, std::string>, ros::Publisher> publishers_;  ///< by kind, topic
   std::vector<ros::ServiceServer> toggles_;     ///< a filter's switch: `toggle` and Nav2's `toggle_filter`
+  /// Tracked by the on-demand publishers' connection callbacks: none runs once this object is gone.
+  ros::VoidConstPtr alive_ = boost::make_shared<int>(0);
   std::unique_ptr<SetpointApplier> setpoints_;  ///< the Setpoints output's worker (ZoneParameterFilter)
   /// By resolved topic, in order. Guarded by receipts_mutex_: a port replaced at run time adds a topic
   /// on a callback thread while the diagnostics read them on another.

@@ -50,6 +50,24 @@ void Layer::setOutputListener(OutputListener listener)
       listener_(e);
 }
 
+void Layer::setOutputWanted(const std::string& topic, bool wanted)
+{
+  std::lock_guard<std::mutex> lock(wanted_mutex_);
+  const auto it = std::find(wanted_.begin(), wanted_.end(), topic);
+  if (wanted && it == wanted_.end())
+    wanted_.push_back(topic);
+  else if (!wanted && it != wanted_.end())
+    wanted_.erase(it);
+  wanted_count_ = wanted_.size();
+}
+
+bool Layer::outputWanted(const std::string& topic) const
+{
+  if (wanted_count_.load() == 0) return false;
+  std::lock_guard<std::mutex> lock(wanted_mutex_);
+  return std::find(wanted_.begin(), wanted_.end(), topic) != wanted_.end();
+}
+
 void Layer::setInputListener(InputListener listener)
 {
   std::lock_guard<std::mutex> lock(input_mutex_);
@@ -86,12 +104,18 @@ void Layer::emit(const OutputEvent& event)
   std::lock_guard<std::mutex> lock(output_mutex_);
   const OutputKind kind = event.kind;
   const std::string& topic = event.topic;
-  auto it = std::find_if(latest_.begin(), latest_.end(),
-                         [&](const OutputEvent& e) { return e.kind == kind && e.topic == topic; });
-  if (it == latest_.end())
-    latest_.push_back(event);
-  else
-    *it = event;
+  // An on-demand output is not latched: a listener set later gets the next one, not an old snapshot.
+  const bool on_demand = std::any_of(outputs_.begin(), outputs_.end(), [&](const OutputPort& p)
+                                     { return p.on_demand && p.kind == kind && p.topic == topic; });
+  if (!on_demand)
+  {
+    auto it = std::find_if(latest_.begin(), latest_.end(),
+                           [&](const OutputEvent& e) { return e.kind == kind && e.topic == topic; });
+    if (it == latest_.end())
+      latest_.push_back(event);
+    else
+      *it = event;
+  }
   if (listener_) listener_(event);
 }
 

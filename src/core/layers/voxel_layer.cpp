@@ -81,6 +81,57 @@ void VoxelLayer::onInitialize()
 {
   voxel_config_ = parseVoxelConfig(ParamReader(context_->params(), name_));
   ObstacleLayer::onInitialize();  // calls matchSize(), which sizes the voxels with the config above
+  if (!voxel_config_.publish_voxel_map) return;
+  // costmap_2d publishes voxel_grid in the layer's namespace; RViz reads the cube list or the cloud.
+  for (const auto& [kind, topic] : {std::pair{OutputKind::VoxelGrid, kVoxelGridTopic},
+                                    std::pair{OutputKind::VoxelMarkers, kVoxelMarkersTopic},
+                                    std::pair{OutputKind::VoxelCloud, kVoxelCloudTopic}})
+  {
+    OutputPort port;
+    port.kind = kind;
+    port.topic = topic;
+    port.layer_namespace = true;
+    port.on_demand = true;
+    addOutput(port);
+  }
+}
+
+void VoxelLayer::updateBounds(double robot_x, double robot_y, double robot_yaw, double* min_x, double* min_y,
+                              double* max_x, double* max_y)
+{
+  ObstacleLayer::updateBounds(robot_x, robot_y, robot_yaw, min_x, min_y, max_x, max_y);
+  if (voxel_config_.publish_voxel_map) publishVoxels();
+}
+
+void VoxelLayer::publishVoxels()
+{
+  // One copy per cycle, shared by every output someone reads; none when nobody does.
+  std::shared_ptr<const VoxelGridData> snapshot;
+  for (const auto& [kind, topic] : {std::pair{OutputKind::VoxelGrid, kVoxelGridTopic},
+                                    std::pair{OutputKind::VoxelMarkers, kVoxelMarkersTopic},
+                                    std::pair{OutputKind::VoxelCloud, kVoxelCloudTopic}})
+  {
+    if (!outputWanted(topic)) continue;
+    if (!snapshot)
+    {
+      auto grid = std::make_shared<VoxelGridData>();
+      grid->size_x = voxels_.sizeX();
+      grid->size_y = voxels_.sizeY();
+      grid->size_z = voxels_.sizeZ();
+      grid->origin_x = costmap_.getOriginX();
+      grid->origin_y = costmap_.getOriginY();
+      grid->origin_z = voxel_config_.origin_z;
+      grid->resolution = costmap_.getResolution();
+      grid->z_resolution = voxel_config_.z_resolution;
+      grid->data.assign(voxels_.data(), voxels_.data() + std::size_t{voxels_.sizeX()} * voxels_.sizeY());
+      snapshot = std::move(grid);
+    }
+    OutputEvent event;
+    event.kind = kind;
+    event.topic = topic;
+    event.voxels = snapshot;
+    emit(event);
+  }
 }
 
 void VoxelLayer::matchSize()

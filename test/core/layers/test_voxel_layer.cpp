@@ -550,3 +550,121 @@ TEST(VoxelLayer, ClearingRaysFollowTheBeamPropertyTest)
   }
   EXPECT_EQ(failures, 0) << "of " << beams << " beams";
 }
+
+// publish_voxel_map: the voxel outputs (costmap_2d's voxel_grid, and a cube list and a cloud for RViz)
+// exist only when asked for, and a snapshot is built only while the host says someone reads one.
+TEST(VoxelOutputs, NoneWithoutPublishVoxelMap)
+{
+  Rig rig(voxelParams());
+  EXPECT_TRUE(rig.layer->outputs().empty());
+}
+
+TEST(VoxelOutputs, SnapshotOnlyWhileWanted)
+{
+  Rig rig(voxelParams({{"publish_voxel_map", B(true)}}), true);
+  const auto& outs = rig.layer->outputs();
+  ASSERT_EQ(outs.size(), 3u);
+  const std::array<std::pair<OutputKind, const char*>, 3> expected{
+      {{OutputKind::VoxelGrid, "voxel_grid"}, {OutputKind::VoxelMarkers, "voxel_markers"},
+       {OutputKind::VoxelCloud, "voxel_cloud"}}};
+  for (std::size_t i = 0; i < 3; ++i)
+  {
+    EXPECT_EQ(outs[i].kind, expected[i].first);
+    EXPECT_EQ(outs[i].topic, expected[i].second);
+    EXPECT_TRUE(outs[i].on_demand);
+    EXPECT_TRUE(outs[i].layer_namespace);
+  }
+  std::vector<OutputEvent> events;
+  rig.layer->setOutputListener([&](const OutputEvent& e) { events.push_back(e); });
+  // A hit at (5.5, 2.5, 0.5) m: column (5, 2), level 2 of 0.2 m voxels.
+  rig.cloud({{5.5, 2.5, 0.5}}, {0.5, 2.5, 0.5});
+  rig.update();
+  EXPECT_TRUE(events.empty()) << "nobody reads: nothing is built";
+
+  rig.layer->setOutputWanted("voxel_cloud", true);
+  rig.layer->setOutputWanted("voxel_grid", true);
+  rig.update();
+  ASSERT_EQ(events.size(), 2u);
+  EXPECT_EQ(events[0].kind, OutputKind::VoxelGrid);
+  EXPECT_EQ(events[1].kind, OutputKind::VoxelCloud);
+  ASSERT_TRUE(events[0].voxels);
+  EXPECT_EQ(events[0].voxels.get(), events[1].voxels.get()) << "one copy per cycle, shared";
+  const VoxelGridData& g = *events[0].voxels;
+  EXPECT_EQ(g.size_x, 10u);
+  EXPECT_EQ(g.size_y, 10u);
+  EXPECT_EQ(g.size_z, 10u);
+  EXPECT_DOUBLE_EQ(g.origin_x, 0.0);
+  EXPECT_DOUBLE_EQ(g.origin_y, 0.0);
+  EXPECT_DOUBLE_EQ(g.origin_z, 0.0);
+  EXPECT_DOUBLE_EQ(g.resolution, 1.0);
+  EXPECT_DOUBLE_EQ(g.z_resolution, 0.2);
+  ASSERT_EQ(g.data.size(), 100u);
+  const uint32_t hit = g.data[2 * 10 + 5];
+  EXPECT_EQ(hit & ((1u << 18) | (1u << 2)), (1u << 18) | (1u << 2)) << std::hex << hit;
+  std::vector<VoxelPoint> marked;
+  EXPECT_EQ(voxelCentres(g, VoxelStatus::Marked, marked), 1u);
+  ASSERT_EQ(marked.size(), 1u);
+  EXPECT_FLOAT_EQ(marked[0].x, 5.5f);
+  EXPECT_FLOAT_EQ(marked[0].y, 2.5f);
+  EXPECT_FLOAT_EQ(marked[0].z, 0.5f);
+  EXPECT_EQ(marked[0].level, 2u);
+
+  // Readers gone: nothing more is built; a listener set later gets no old snapshot (not latched).
+  rig.layer->setOutputWanted("voxel_cloud", false);
+  rig.layer->setOutputWanted("voxel_grid", false);
+  events.clear();
+  rig.update();
+  EXPECT_TRUE(events.empty());
+  std::vector<OutputEvent> late;
+  rig.layer->setOutputListener([&](const OutputEvent& e) { late.push_back(e); });
+  EXPECT_TRUE(late.empty());
+  // A topic the layer does not have is never wanted by mistake.
+  rig.layer->setOutputWanted("max_speed", true);
+  rig.update();
+  EXPECT_TRUE(late.empty());
+}
+
+TEST(VoxelOutputs, CentresByStateLevelsInUseOnlyAndCut)
+{
+  VoxelGridData g;
+  g.size_x = 2;
+  g.size_y = 1;
+  g.size_z = 3;
+  g.origin_x = 1.0;
+  g.origin_y = 2.0;
+  g.origin_z = 0.5;
+  g.resolution = 0.5;
+  g.z_resolution = 0.1;
+  // Column 0: level 0 marked, level 1 unknown, level 2 free. Column 1: level 2 marked, and a marked
+  // level 5 above size_z, which is not part of the grid.
+  g.data = {(1u << 16) | 1u | (1u << 1), (1u << 18) | (1u << 2) | (1u << 21) | (1u << 5)};
+  std::vector<VoxelPoint> p;
+  ASSERT_EQ(voxelCentres(g, VoxelStatus::Marked, p), 2u);
+  ASSERT_EQ(p.size(), 2u);
+  EXPECT_FLOAT_EQ(p[0].x, 1.25f);
+  EXPECT_FLOAT_EQ(p[0].y, 2.25f);
+  EXPECT_FLOAT_EQ(p[0].z, 0.55f);
+  EXPECT_FLOAT_EQ(p[1].x, 1.75f);
+  EXPECT_FLOAT_EQ(p[1].z, 0.75f);
+  EXPECT_EQ(p[1].level, 2u);
+  ASSERT_EQ(voxelCentres(g, VoxelStatus::Unknown, p), 1u);
+  EXPECT_FLOAT_EQ(p[0].x, 1.25f);
+  EXPECT_FLOAT_EQ(p[0].z, 0.65f);
+  ASSERT_EQ(voxelCentres(g, VoxelStatus::Free, p), 3u);
+  EXPECT_FLOAT_EQ(p[0].z, 0.75f);  // column 0, level 2
+  EXPECT_FLOAT_EQ(p[1].x, 1.75f);  // column 1, levels 0 and 1
+  EXPECT_FLOAT_EQ(p[2].z, 0.65f);
+  // At most max_points are kept; the count says how many there were.
+  EXPECT_EQ(voxelCentres(g, VoxelStatus::Marked, p, 1), 2u);
+  EXPECT_EQ(p.size(), 1u);
+  // A grid whose data is shorter than its size, or with no columns, is read as far as it goes.
+  g.data.resize(1);
+  EXPECT_EQ(voxelCentres(g, VoxelStatus::Marked, p), 1u);
+  g.size_x = 0;
+  EXPECT_EQ(voxelCentres(g, VoxelStatus::Marked, p), 0u);
+  // More than 16 levels cannot be in a column: the levels above 16 are not read.
+  g.size_x = 2;
+  g.size_z = 40;
+  g.data = {0xFFFFFFFFu, 0u};
+  EXPECT_EQ(voxelCentres(g, VoxelStatus::Marked, p), 16u);
+}

@@ -127,6 +127,7 @@ class SensorsTest(unittest.TestCase):
         cls.cloud_pub = rospy.Publisher("/cloud", PointCloud2, queue_size=5)
         cls.old_cloud_pub = rospy.Publisher("/old_cloud", PointCloud, queue_size=5)
         cls.sonar_pub = rospy.Publisher("/sonar", Range, queue_size=5)
+        cls.vcloud_pub = rospy.Publisher("/vcloud", PointCloud2, queue_size=5)
         cls.tf_buffer = tf2_ros.Buffer()
         tf2_ros.TransformListener(cls.tf_buffer)
         cls.tf_buffer.lookup_transform("map", "laser", rospy.Time(0), rospy.Duration(20.0))
@@ -276,6 +277,60 @@ class SensorsTest(unittest.TestCase):
         # Everything the sensor layers held is gone until new readings come.
         self.assertTrue(self.grid.wait_until(lambda g: g.data.count(100) == 0, 10.0),
                         "lethal after ~clear: %s" % self.lethal())
+
+    def test_voxels_reach_rviz_topics_while_subscribed(self):
+        # publish_voxel_map: the voxel layer offers ~voxel_layer/voxel_grid, voxel_markers (a cube list)
+        # and voxel_cloud, built only while someone subscribes. Camera 0.5 m up at (2, 5): a point
+        # (2.05, 0.05, -0.15) from it is at (4.05, 5.05, 0.35) in the map: column (40, 50), level 3 of
+        # 0.1 m voxels, whose centre is (4.05, 5.05, 0.35).
+        from costmap_layers.msg import VoxelMap
+        from visualization_msgs.msg import Marker
+        got = {"grid": None, "marker": None, "cloud": None}
+
+        def keep(key):
+            return lambda m: got.__setitem__(key, m)
+
+        ns = "/costmap_node/voxel_layer/"
+        subs = [rospy.Subscriber(ns + "voxel_grid", VoxelMap, keep("grid")),
+                rospy.Subscriber(ns + "voxel_markers", Marker, keep("marker")),
+                rospy.Subscriber(ns + "voxel_cloud", PointCloud2, keep("cloud"))]
+        try:
+            self.publish_for(self.vcloud_pub, lambda st: cloud([(2.05, 0.05, -0.15)], "camera", st), 1.0)
+            deadline = rospy.Time.now() + rospy.Duration(10.0)
+            marked = (1 << 19) | (1 << 3)
+            while rospy.Time.now() < deadline and not (
+                    got["marker"] and got["marker"].points and got["cloud"] and got["cloud"].width and got["grid"]
+                    and got["grid"].data[50 * 100 + 40] & marked == marked):
+                rospy.sleep(0.1)
+            g, m, c = got["grid"], got["marker"], got["cloud"]
+            self.assertTrue(g and m and m.points and c and c.width, "no voxels on the three topics: %s" % got)
+            self.assertEqual((g.size_x, g.size_y, g.size_z), (100, 100, 10))
+            self.assertEqual(g.header.frame_id, "map")
+            self.assertAlmostEqual(g.resolutions.z, 0.1)
+            self.assertEqual(len(g.data), 100 * 100)
+            col = g.data[50 * 100 + 40]
+            self.assertEqual(col & ((1 << 19) | (1 << 3)), (1 << 19) | (1 << 3), "column %x" % col)
+            self.assertEqual(m.type, Marker.CUBE_LIST)
+            self.assertEqual(m.header.frame_id, "map")
+            self.assertEqual(len(m.points), 1, [(p.x, p.y, p.z) for p in m.points])
+            p = m.points[0]
+            self.assertAlmostEqual(p.x, 4.05, places=4)
+            self.assertAlmostEqual(p.y, 5.05, places=4)
+            self.assertAlmostEqual(p.z, 0.35, places=4)
+            self.assertAlmostEqual(m.scale.z, 0.1, places=6)
+            self.assertEqual(c.width, 1)
+            self.assertEqual(c.header.frame_id, "map")
+            x, y, z = struct.unpack_from("<fff", bytes(c.data), 0)
+            self.assertAlmostEqual(x, 4.05, places=4)
+            self.assertAlmostEqual(z, 0.35, places=4)
+            # The obstacle layer was not asked to publish voxels: it offers no such topic.
+            topics = [t for t, _ in rospy.get_published_topics()]
+            self.assertIn(ns + "voxel_grid", topics)
+            self.assertNotIn("/costmap_node/obstacle_layer/voxel_grid", topics)
+        finally:
+            for s in subs:
+                s.unregister()
+
 
 if __name__ == "__main__":
     rostest.rosrun("costmap_layers", "sensors", SensorsTest)

@@ -50,6 +50,9 @@ public:
   /// Where emitted events go. The latest event of each port emitted before a listener is set is
   /// delivered to it at once (outputs are latched).
   void setOutputListener(OutputListener listener);
+  /// Whether anyone reads the on-demand output (OutputPort::on_demand) on `topic`: the host says so as
+  /// readers come and go, and the layer builds that output only while it is true. Any thread.
+  void setOutputWanted(const std::string& topic, bool wanted);
 
   /// Grows the window [m] this layer wants updated; the robot pose is in the global frame [m, rad].
   virtual void updateBounds(double robot_x, double robot_y, double robot_yaw, double* min_x, double* min_y,
@@ -135,6 +138,9 @@ protected:
   /// Emits an event on an output port (any thread); the host publishes it.
   void emit(OutputKind kind, const std::string& topic, double value);
   void emit(const OutputEvent& event);
+  /// Whether the host said someone reads the on-demand output on `topic` (setOutputWanted()). Cheap
+  /// when nothing is wanted (one atomic load), so that a layer may ask every cycle.
+  bool outputWanted(const std::string& topic) const;
 
   LayeredCostmap* layered_costmap_ = nullptr;
   std::shared_ptr<LayerContext> context_;
@@ -150,6 +156,9 @@ private:
   std::mutex output_mutex_;
   OutputListener listener_;
   std::vector<OutputEvent> latest_;  ///< the latest event of each port, for a listener set later
+  mutable std::mutex wanted_mutex_;
+  std::vector<std::string> wanted_;         ///< on-demand outputs someone reads (wanted_mutex_)
+  std::atomic<std::size_t> wanted_count_{0};  ///< wanted_.size(), read without the lock
   std::mutex input_mutex_;
   InputListener input_listener_;
   std::vector<std::pair<std::size_t, InputPort>> replaced_;  ///< the latest replacement of each port

@@ -14,6 +14,7 @@
 #include "costmap_layers/core/config/param_value.hpp"
 #include "costmap_layers/core/data/path_data.hpp"
 #include "costmap_layers/core/data/sensor_data.hpp"
+#include "costmap_layers/core/data/voxel_grid_data.hpp"
 
 namespace costmap_layers
 {
@@ -94,7 +95,10 @@ enum class OutputKind
   SpeedLimit,  ///< costmap_layers/Nav2SpeedLimit (Nav2's SpeedLimit fields): percentage + speed_limit
   ZoneState,   ///< std_msgs/UInt8, latched: the id of the zone state in force (Nav2's state event)
   Setpoints,   ///< parameters of other nodes to set through their dynamic_reconfigure servers (no topic)
-  BinaryState  ///< std_msgs/Bool, latched: a BinaryFilter's state (OutputEvent::state)
+  BinaryState,   ///< std_msgs/Bool, latched: a BinaryFilter's state (OutputEvent::state)
+  VoxelGrid,     ///< costmap_layers/VoxelMap: a VoxelLayer's voxels (OutputEvent::voxels), on demand
+  VoxelMarkers,  ///< visualization_msgs/Marker: its marked voxels as a cube list, on demand
+  VoxelCloud     ///< sensor_msgs/PointCloud2: the centres of its marked voxels, on demand
 };
 
 /// One parameter of another node, set through that node's dynamic_reconfigure server
@@ -113,6 +117,11 @@ struct OutputPort
   OutputKind kind = OutputKind::MaxSpeed;
   std::string topic;     ///< Setpoints: a name for the port (the host sets parameters, it publishes nothing)
   double timeout = 0.0;  ///< Setpoints: how long the host waits for each server [s]
+  /// The topic resolves in the layer's own namespace (~<name>/topic), as costmap_2d's voxel_grid does.
+  bool layer_namespace = false;
+  /// Costly to build: the host tells the layer whether anyone reads it (Layer::setOutputWanted()), and
+  /// the layer emits it only while someone does. Not latched.
+  bool on_demand = false;
 };
 
 /// An event on an output port, emitted by the layer (on the update thread) for the host to publish.
@@ -128,6 +137,7 @@ struct OutputEvent
   std::vector<Setpoint> setpoints;
   std::string label;
   bool state = false;  ///< BinaryState only
+  std::shared_ptr<const VoxelGridData> voxels;  ///< VoxelGrid, VoxelMarkers, VoxelCloud (one snapshot shared)
 };
 using OutputListener = std::function<void(const OutputEvent&)>;
 }  // namespace costmap_layers

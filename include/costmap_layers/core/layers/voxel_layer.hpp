@@ -21,7 +21,9 @@ struct VoxelConfig
   int z_voxels = 10;               ///< levels per column, 1..16
   int unknown_threshold = 15;      ///< 0..16: more unknown voxels than this make a cleared cell unknown
   int mark_threshold = 0;          ///< 0..16: more marked voxels than this make the cell lethal
-  bool publish_voxel_map = false;  ///< accepted for configuration compatibility; nothing is published yet
+  /// Offer the voxels on ~<name>/voxel_grid (costmap_layers/VoxelMap), voxel_markers (a cube list) and
+  /// voxel_cloud (PointCloud2 of the marked voxels' centres), each built only while someone subscribes.
+  bool publish_voxel_map = false;
 };
 
 /// Reads origin_z, z_resolution, z_voxels, unknown_threshold, mark_threshold and publish_voxel_map.
@@ -31,6 +33,13 @@ VoxelConfig parseVoxelConfig(const ParamReader& params);
 class VoxelLayer : public ObstacleLayer
 {
 public:
+  static constexpr const char* kVoxelGridTopic = "voxel_grid";
+  static constexpr const char* kVoxelMarkersTopic = "voxel_markers";
+  static constexpr const char* kVoxelCloudTopic = "voxel_cloud";
+
+  /// The ObstacleLayer's, then the voxel outputs someone reads (publish_voxel_map).
+  void updateBounds(double robot_x, double robot_y, double robot_yaw, double* min_x, double* min_y, double* max_x,
+                    double* max_y) override;
   void matchSize() override;
   void reset() override;
   /// The cells and their columns: a cleared cell keeps no marked voxel that would make it lethal again
@@ -49,6 +58,9 @@ protected:
                        double* max_y) override;
 
 private:
+  /// Emits a snapshot of the voxels on each voxel output the host says someone reads.
+  void publishVoxels();
+
   /// The walks one raytraceFreespace call has cleared, by end voxel: every walk of an observation starts
   /// in the sensor's voxel, so two readings ending in the same voxel walk the same voxels, and the second
   /// needs no walk when its steps lie within those already cleared (clearing is idempotent and the
