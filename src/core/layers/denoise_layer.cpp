@@ -4,16 +4,54 @@
 #include <cstring>
 #include <limits>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 #include "costmap_layers/core/config/param_reader.hpp"
 #include "costmap_layers/core/grid/cost_values.hpp"
 #include "costmap_layers/core/grid/costmap_2d.hpp"
 
+// Which cells of a row are obstacles, as bits: written once with Highway (foreach_target.h compiles it
+// per target; HWY_DYNAMIC_DISPATCH picks one at run time), as the distance engine's kernels are.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "src/core/layers/denoise_layer.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
+
+HWY_BEFORE_NAMESPACE();
 namespace costmap_layers
 {
+namespace HWY_NAMESPACE
+{
+namespace hn = hwy::HWY_NAMESPACE;
+
+/// Bit k % 8 of bits[k / 8] set when p[k] is an obstacle code (253, 254 and, with span 3, 255), for
+/// k < n; the other bits of the last byte are zero. bits has room for (n + 7) / 8 bytes.
+void ObstacleBits(const uint8_t* HWY_RESTRICT p, std::size_t n, uint8_t span, uint8_t* HWY_RESTRICT bits)
+{
+  const hn::ScalableTag<uint8_t> d;
+  const std::size_t N = hn::Lanes(d);
+  std::size_t k = 0;
+  if (N % 8 == 0)  // whole bytes of mask bits per vector (not the one-lane scalar target)
+  {
+    // x = v + 3 wraps 253, 254, 255 to 0, 1, 2: an obstacle is x <= span - 1, i.e. min(x, span - 1) == x.
+    const auto three = hn::Set(d, 3), top = hn::Set(d, static_cast<uint8_t>(span - 1));
+    for (; k + N <= n; k += N)
+    {
+      const auto x = hn::Add(hn::LoadU(d, p + k), three);
+      hn::StoreMaskBits(d, hn::Eq(hn::Min(x, top), x), bits + k / 8);
+    }
+  }
+  if (k < n) std::memset(bits + k / 8, 0, (n + 7) / 8 - k / 8);
+  for (; k < n; ++k)
+    bits[k / 8] |= static_cast<uint8_t>((static_cast<uint8_t>(p[k] - INSCRIBED_INFLATED_OBSTACLE) < span) << (k % 8));
+}
+}  // namespace HWY_NAMESPACE
+}  // namespace costmap_layers
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace costmap_layers
+{
+HWY_EXPORT(ObstacleBits);
+
 DenoiseConfig parseDenoiseConfig(const ParamReader& params)
 {
   DenoiseConfig cfg;
@@ -65,43 +103,26 @@ inline bool isObstacle(uint8_t v, unsigned span)
   return static_cast<uint8_t>(v - INSCRIBED_INFLATED_OBSTACLE) < span;
 }
 
-/// Bit k set when cell p[k] is an obstacle, for the n <= 64 cells from p. Runs are then read from the
-/// mask's transitions, so that a random grid costs no mispredicted branch per cell.
-inline uint64_t obstacleMask(const uint8_t* p, int n, unsigned span)
-{
-  uint64_t m = 0;
-#if defined(__SSE2__)
-  if (n == 64)
-  {
-    // x = v + 3 wraps 253, 254, 255 to 0, 1, 2: an obstacle is x <= span - 1, i.e. min(x, span - 1) == x.
-    const __m128i three = _mm_set1_epi8(3);
-    const __m128i top = _mm_set1_epi8(static_cast<char>(span - 1));
-    for (int q = 0; q < 4; ++q)
-    {
-      const __m128i x = _mm_add_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p + 16 * q)), three);
-      const __m128i hit = _mm_cmpeq_epi8(_mm_min_epu8(x, top), x);
-      m |= static_cast<uint64_t>(static_cast<uint16_t>(_mm_movemask_epi8(hit))) << (16 * q);
-    }
-    return m;
-  }
-#endif
-  for (int k = 0; k < n; ++k)
-    m |= static_cast<uint64_t>(isObstacle(p[k], span)) << k;
-  return m;
-}
-
 /// Writes where the runs of obstacle cells of row[min_i, max_i) begin and end (alternately, in column
 /// order; a run reaching max_i ends there) and returns one past the last edge written. `edge` has room
-/// for max_i - min_i + 1 edges.
-int32_t* scanRow(const uint8_t* row, int min_i, int max_i, unsigned span, int32_t* edge)
+/// for max_i - min_i + 1 edges; `bits` for the row's obstacle bits, whole 64-bit words. Runs are read
+/// from the bits' transitions, so that a random grid costs no mispredicted branch per cell.
+int32_t* scanRow(const uint8_t* row, int min_i, int max_i, unsigned span, int32_t* edge, uint8_t* bits)
 {
   int32_t* const first = edge;
+  const auto n = static_cast<std::size_t>(max_i - min_i);
+  HWY_DYNAMIC_DISPATCH(ObstacleBits)(row + min_i, n, static_cast<uint8_t>(span), bits);
   uint64_t carry = 0;  // whether the cell before this word is an obstacle
-  for (int i0 = min_i; i0 < max_i; i0 += 64)
+  for (std::size_t w = 0; 64 * w < n; ++w)
   {
-    const uint64_t m = obstacleMask(row + i0, std::min(64, max_i - i0), span);
+    // Bytes in little-endian order, as the bits were stored (no unaligned or type-punned load).
+    uint64_t m = 0;
+    const std::size_t bytes = std::min<std::size_t>(8, (n - 64 * w + 7) / 8);
+    for (std::size_t b = 0; b < bytes; ++b)
+      m |= static_cast<uint64_t>(bits[8 * w + b]) << (8 * b);
     uint64_t flips = m ^ ((m << 1) | carry);  // a set bit: a run begins or ends there
     carry = m >> 63;
+    const int i0 = min_i + static_cast<int>(64 * w);
     while (flips != 0)
     {
       *edge++ = i0 + __builtin_ctzll(flips);
@@ -144,11 +165,12 @@ std::size_t ObstacleGroupRemover::removeSingles(uint8_t* cells, std::size_t stri
   // neighbour, so it is nobody's neighbour.
   const std::size_t row_edges_max = static_cast<std::size_t>(max_i - min_i) + 1;
   if (edges_.size() < row_edges_max) edges_.resize(row_edges_max);
+  if (bits_.size() < row_edges_max / 8 + 8) bits_.resize(row_edges_max / 8 + 8);
   std::size_t cleared = 0;
   for (int j = min_j; j < max_j; ++j)
   {
     uint8_t* row = cells + static_cast<std::size_t>(j) * stride;
-    const int32_t* const end = scanRow(row, min_i, max_i, span, edges_.data());
+    const int32_t* const end = scanRow(row, min_i, max_i, span, edges_.data(), bits_.data());
     for (const int32_t* e = edges_.data(); e != end; e += 2)
     {
       if (e[1] - e[0] != 1) continue;
@@ -176,6 +198,7 @@ std::size_t ObstacleGroupRemover::remove(uint8_t* cells, std::size_t stride, int
   const int32_t reach = rule.eight_connected ? 1 : 0;  // runs touching at a corner join under 8
   const std::size_t row_edges_max = static_cast<std::size_t>(max_i - min_i) + 1;
   if (cap == 2) return removeSingles(cells, stride, min_i, min_j, max_i, max_j, span, reach);
+  if (bits_.size() < row_edges_max / 8 + 8) bits_.resize(row_edges_max / 8 + 8);
   row_first_.clear();
   std::size_t runs = 0;  // runs found so far; run r is [edges_[2r], edges_[2r + 1])
 
@@ -193,7 +216,7 @@ std::size_t ObstacleGroupRemover::remove(uint8_t* cells, std::size_t stride, int
       parent_.resize(edges_.size() / 2 + 1);
     }
     int32_t* const row_edges = edges_.data() + 2 * runs;
-    const int32_t* const edge = scanRow(row, min_i, max_i, span, row_edges);
+    const int32_t* const edge = scanRow(row, min_i, max_i, span, row_edges, bits_.data());
     runs += static_cast<std::size_t>(edge - row_edges) / 2;
     for (std::size_t r = first; r < runs; ++r)
       parent_[r] = -std::min<int32_t>(edges_[2 * r + 1] - edges_[2 * r], cap);
@@ -230,3 +253,4 @@ std::size_t ObstacleGroupRemover::remove(uint8_t* cells, std::size_t stride, int
   return cleared;
 }
 }  // namespace costmap_layers
+#endif  // HWY_ONCE

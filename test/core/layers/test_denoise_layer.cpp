@@ -20,6 +20,7 @@
 #include "costmap_layers/core/costmap/layered_costmap.hpp"
 #include "costmap_layers/core/grid/cost_values.hpp"
 #include "costmap_layers/core/grid/costmap_2d.hpp"
+#include "costmap_layers/core/kernels/simd_targets.hpp"
 #include "costmap_layers/core/layers/denoise_layer.hpp"
 #include "fake_context.hpp"
 
@@ -339,6 +340,46 @@ TEST(DenoiseExact, RandomGridsMatchFloodFill)
             }
     }
   EXPECT_EQ(cases, 4 * 40 * 4 * 2 * 6 * 2);
+}
+
+// The row scan's obstacle bits come from one Highway kernel compiled per target: each target this CPU
+// runs (down to the scalar one, whose vectors are one lane) against the flood fill, on rows longer
+// than several vectors of the widest and of lengths that are no multiple of any.
+TEST(DenoiseExact, EveryKernelTargetMatchesFloodFill)
+{
+  const std::vector<std::string> targets = simdTargets();
+  ASSERT_FALSE(targets.empty());
+  int cases = 0;
+  for (const std::string& target : targets)
+  {
+    ASSERT_TRUE(setSimdTarget(target)) << target;
+    std::mt19937 rng(4242);
+    ObstacleGroupRemover remover;
+    for (double density : {0.1, 0.5, 0.9})
+      for (int round = 0; round < 6; ++round)
+      {
+        std::uniform_int_distribution<int> width(1, 300), height(1, 12);
+        const int w = width(rng), h = height(rng);
+        const Grid g = randomGrid(rng, w, h, density);
+        std::uniform_int_distribution<int> xs(0, w);
+        int a = xs(rng), b = xs(rng);
+        for (const std::array<int, 4>& win : {std::array<int, 4>{0, 0, w, h}, {std::min(a, b), 0, std::max(a, b), h}})
+          for (int minimal : {2, 3})
+            for (bool unknown : {false, true})
+            {
+              Grid expected = g;
+              referenceDenoise(expected, win[0], win[1], win[2], win[3], minimal, true, unknown);
+              Grid actual = g;
+              remover.remove(actual.cells.data(), static_cast<std::size_t>(w), win[0], win[1], win[2], win[3],
+                             rule(minimal, 8, unknown));
+              ASSERT_EQ(actual.cells, expected.cells) << target << " " << w << "x" << h << " window " << win[0]
+                                                      << " - " << win[2] << " size " << minimal;
+              ++cases;
+            }
+      }
+  }
+  setSimdTarget("");
+  EXPECT_EQ(cases, static_cast<int>(targets.size()) * 3 * 6 * 2 * 2 * 2);
 }
 
 TEST(DenoiseExact, LongRunsAcrossTheWordBoundaries)

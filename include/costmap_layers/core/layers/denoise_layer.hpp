@@ -51,6 +51,7 @@ private:
   std::vector<int32_t> edges_;  ///< run r covers columns [edges_[2r], edges_[2r + 1])
   /// Per run: the parent run, or for a root minus the group's cell count (capped at the minimal size).
   std::vector<int32_t> parent_;
+  std::vector<uint8_t> bits_;  ///< one row's obstacle cells as bits (scanRow())
   std::vector<std::size_t> row_first_;  ///< index of the first run of each window row, and one past the end
 };
 
