@@ -1,13 +1,29 @@
 #!/usr/bin/env python3
 """Watches the demo: prints every /max_speed change and every binary state change (/camera_off) with
-the robot's position, and when the robot has finished its route prints a summary and exits (which
-ends the demo launch)."""
+the robot's position, counts the lone obstacle cells in each local costmap (/local_costmap/costmap,
+where the DenoiseLayer should have left none of the lidar's false returns), and when the robot has
+finished its route prints a summary and exits (which ends the demo launch)."""
 import math
 
 import rospy
 import tf2_ros
 from costmap_layers.msg import MaxSpeed
+from nav_msgs.msg import OccupancyGrid
 from std_msgs.msg import Bool
+
+
+def lone_cells(msg):
+    """(obstacle cells, those with no obstacle among their 8 neighbours) of an OccupancyGrid."""
+    w, h, d = msg.info.width, msg.info.height, msg.data
+    lethal = [i for i, v in enumerate(d) if v == 100]
+    lone = 0
+    for i in lethal:
+        x, y = i % w, i // w
+        if not any(d[(y + dy) * w + x + dx] == 100
+                   for dy in (-1, 0, 1) for dx in (-1, 0, 1)
+                   if (dx or dy) and 0 <= x + dx < w and 0 <= y + dy < h):
+            lone += 1
+    return len(lethal), lone
 
 
 def main():
@@ -43,6 +59,15 @@ def main():
         print("demo: camera_off -> %-5s at robot position (%.2f, %.2f)" % (msg.data, x, y), flush=True)
 
     rospy.Subscriber(rospy.get_param("~binary_state_topic", "/camera_off"), Bool, on_state)
+    local = {"maps": 0, "lone": 0, "obstacles": 0}
+
+    def on_local(msg):
+        obstacles, lone = lone_cells(msg)
+        local["maps"] += 1
+        local["lone"] = max(local["lone"], lone)
+        local["obstacles"] = obstacles
+
+    rospy.Subscriber(rospy.get_param("~local_costmap_topic", "/local_costmap/costmap"), OccupancyGrid, on_local)
     start = rospy.Time.now()
     at_goal_since = None
     goal = route[-1]
@@ -60,6 +85,10 @@ def main():
         len(route), len(changes), " -> ".join("%.2f" % c[0] for c in changes)), flush=True)
     print("demo: summary: /camera_off changed %d times: %s" % (
         len(states), " -> ".join(str(s) for s in states)), flush=True)
+    print("demo: summary: the lidar sent %d false returns; the local costmap had at most %d lone obstacle "
+          "cells in %d maps (its denoise_layer removes them; %d obstacle cells, walls, in the last)" % (
+              int(rospy.get_param("/fake_scan/speckles_sent", 0)), local["lone"], local["maps"],
+              local["obstacles"]), flush=True)
     if pictures:
         print("demo: pictures of the published costmap: %s" % pictures, flush=True)
 
