@@ -3,7 +3,8 @@
 - navfn's plan (move_base's make_plan) goes around the keepout band, and straight through it once the
   bridged KeepoutFilter is switched off with its toggle service;
 - the bridged SpeedFilter publishes the speed zone's limit on /max_speed from move_base's costmap;
-- the bridged GradientLayer's ramps appear in move_base's published local costmap;
+- the bridged GradientLayer's ramps appear in move_base's published local costmap, and the bridged
+  DenoiseLayer after it clears the ramps' lethal columns (groups smaller than its minimal_group_size);
 - move_base's global costmap equals costmap_node's with the same layers on the same inputs, cell by cell.
 Each case waits on arrivals with a deadline, never on a fixed sleep."""
 import math
@@ -151,10 +152,12 @@ class MoveBaseTest(unittest.TestCase):
             rospy.wait_for_message("/move_base/DWAPlannerROS/parameter_updates", rospy.AnyMsg, timeout=5.0)
         self.assertAlmostEqual(value, 0.3, places=9)
 
-    def test_gradient_pattern_in_the_local_costmap(self):
-        # Along every row from the window's first column: cost (254 - k * 10) % 255, k = i mod 22.
+    def test_gradient_pattern_denoised_in_the_local_costmap(self):
+        # Along every row from the window's first column: cost (254 - k * 10) % 255, k = i mod 22, from the
+        # bridged GradientLayer; then the bridged DenoiseLayer clears each lethal column (k = 0: a group
+        # of 19 or 20 cells, fewer than its minimal_group_size 25) to free space.
         def expected(i):
-            return translate((254 - (i % 22) * 10) % 255)
+            return 0 if i % 22 == 0 else translate((254 - (i % 22) * 10) % 255)
 
         def matches(g):
             # 2.0 m x 1.0 m at 0.05 m (costmap_2d truncates width / resolution)
