@@ -2,7 +2,8 @@
 // machines are shared: compare ratios). A rolling local costmap cycle as move_base runs it: a 360-beam
 // LaserScan delivered to the ObstacleLayer (parsed, projected, buffered), then updateMap (raytrace,
 // mark, footprint clearing, merge, InflationLayer at 0.55 m). costmap_2d needs about 0.9 ms (200x200)
-// and 2.4 ms (400x400) for that cycle. And a 640x480 PointCloud2 into the VoxelLayer.
+// and 2.4 ms (400x400) for that cycle. And a 640x480 PointCloud2 into the VoxelLayer, and what its
+// voxel outputs (publish_voxel_map) cost when nobody reads them and when someone does.
 #include <benchmark/benchmark.h>
 
 #include "bench_stats.hpp"
@@ -15,6 +16,7 @@
 #include "costmap_layers/core/grid/cost_values.hpp"
 #include "costmap_layers/core/layers/inflation_layer.hpp"
 #include "costmap_layers/core/costmap/layered_costmap.hpp"
+#include "costmap_layers/core/data/voxel_grid_data.hpp"
 #include "costmap_layers/core/layers/obstacle_layer.hpp"
 #include "costmap_layers/core/layers/voxel_layer.hpp"
 #include "fake_context.hpp"
@@ -144,6 +146,44 @@ void BM_VoxelLayerCameraCloud(benchmark::State& state)
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * 640 * 480);
 }
 COSTMAP_BENCH(BM_VoxelLayerCameraCloud)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+/// One rolling 200x200 voxel cycle on the camera cloud. Arg 0: publish_voxel_map false; 1: true, nobody
+/// subscribed (the outputs must cost nothing); 2: true and the cube list wanted, its centres listed as
+/// the host does for RViz.
+void BM_VoxelOutputsOnDemand(benchmark::State& state)
+{
+  const int mode = static_cast<int>(state.range(0));
+  LayeredCostmap lc("odom", true, false);
+  lc.resizeMap(200, 200, 0.05, 0, 0);
+  ParamValue p = paramMap({{"observation_sources", S("camera")},
+                           {"z_voxels", I(16)},
+                           {"z_resolution", D(0.1)},
+                           {"publish_voxel_map", B(mode > 0)}});
+  p.set("camera", paramMap({{"data_type", S("PointCloud2")},
+                            {"clearing", B(true)},
+                            {"marking", B(true)},
+                            {"min_obstacle_height", D(-1.0)}}));
+  auto ctx = std::make_shared<FakeContext>(p);
+  auto voxels = std::make_shared<VoxelLayer>();
+  voxels->initialize(&lc, "voxels", ctx);
+  ctx->bind(*voxels);
+  lc.addPlugin(voxels);
+  std::vector<VoxelPoint> points;
+  std::size_t drawn = 0;
+  voxels->setOutputListener([&](const OutputEvent& e) {
+    if (e.voxels) drawn += voxelCentres(*e.voxels, VoxelStatus::Marked, points);
+  });
+  if (mode == 2) voxels->setOutputWanted(VoxelLayer::kVoxelMarkersTopic, true);
+  const PointCloud2Data cloud = cameraCloud();
+  for (auto _ : state)
+  {
+    ctx->publishCloud("camera", cloud, poseAt(0.0, 0.0, 0.5));
+    lc.updateMap(0.0, 0.0, 0.0);
+    benchmark::ClobberMemory();
+  }
+  state.SetLabel(mode == 0 ? "no voxel outputs" : mode == 1 ? "outputs, nobody reads" : "cube list read");
+  state.counters["voxels_drawn"] = static_cast<double>(drawn) / std::max<double>(1.0, state.iterations());
+}
+COSTMAP_BENCH(BM_VoxelOutputsOnDemand)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 }  // namespace
 
 BENCHMARK_MAIN();
