@@ -15,11 +15,15 @@
 #include "costmap_layers/core/costmap/costmap_layer.hpp"
 #include "costmap_layers/core/grid/footprint.hpp"
 #include "costmap_layers/core/costmap/layered_costmap.hpp"
+#include "costmap_layers/core/layers/plugin_container_layer.hpp"
 #include "costmap_layers/core/layers/static_layer.hpp"
+#include "costmap_layers/core/config/plugin_types.hpp"
+#include "costmap_layers/core/config/unknown_keys.hpp"
 #include "costmap_layers/ros/conversions.hpp"
 #include "costmap_layers/ros/costmap_node.hpp"
 #include "costmap_layers/ros/layer_ports.hpp"
 #include "costmap_layers/ros/layer_reconfigure.hpp"
+#include "costmap_layers/ros/plugin_factory.hpp"
 #include "costmap_layers/ros/ros_layer_context.hpp"
 
 namespace costmap_layers
@@ -28,6 +32,14 @@ namespace move_base
 {
 namespace
 {
+/// The factory of a PluginContainerLayer's plugins: costmap_node's (this package's layers, by pluginlib).
+/// One for the library's life, so that its plugin library outlives every layer it made.
+costmap_layers_ros::PluginFactory& heldLayerFactory()
+{
+  static costmap_layers_ros::PluginFactory factory;
+  return factory;
+}
+
 /// costmap_2d's Costmap2DROS default; its layers are not told the costmap's value.
 constexpr double kDefaultTransformTolerance = 0.3;
 
@@ -58,6 +70,8 @@ LayerBridgeOn<Base>::LayerBridgeOn(std::shared_ptr<costmap_layers::Layer> core, 
 template <class Base>
 LayerBridgeOn<Base>::~LayerBridgeOn()
 {
+  held_reconfigure_.clear();
+  held_ports_.clear();
   reconfigure_.reset();
   ports_.reset();
 }
@@ -98,28 +112,73 @@ void LayerBridgeOn<Base>::setUp()
   readCostmap2dStaticLayers(nh);
   viewMaster();
   host_->addPlugin(core_);
+  // A container's plugins: this package's layers, made by costmap_node's factory (pluginlib), each with
+  // its namespace below the container's, ~/<costmap>/<container>/<plugin>.
+  std::vector<std::pair<costmap_layers::PluginSpec, std::shared_ptr<costmap_layers_ros::RosLayerContext>>> held;
+  if (auto* container = dynamic_cast<costmap_layers::PluginContainerLayer*>(core_.get()))
+  {
+    costmap_layers::LayerMaker maker;
+    maker.layers = [](const std::string& type) { return heldLayerFactory().create(type); };
+    maker.contexts = [&, this](const costmap_layers::PluginSpec& spec)
+    {
+      const costmap_layers::ParamValue* sub =
+          costmap_layers::pluginParams(context_->params(), spec.name.substr(this->name_.size() + 1));
+      auto ctx = std::make_shared<costmap_layers_ros::RosLayerContext>(
+          ros::NodeHandle("~/" + spec.name), sub != nullptr ? *sub : costmap_layers::ParamValue::makeMap(),
+          global_frame, transformTolerance(nh), *this->tf_, log_);
+      held.emplace_back(spec, ctx);
+      return ctx;
+    };
+    container->setMaker(std::move(maker), 1);
+  }
   {
     costmap_layers::ParamReadLog read_log;
     core_->initialize(host_.get(), this->name_, context_);
     std::vector<std::string> known = {"plugin"};
     known.insert(known.end(), consumed_keys_.begin(), consumed_keys_.end());
-    for (const auto& u : costmap_layers::unknownKeys(context_->params(), read_log, class_name_, known))
+    // A container's plugin namespaces are walked as the plugins' own, below.
+    std::vector<std::string> skip;
+    for (const auto& layer : core_->heldLayers())
+      skip.push_back(layer->getName().substr(this->name_.size() + 1));
+    for (const auto& u : costmap_layers::unknownKeys(context_->params(), read_log, class_name_, known, skip))
       ROS_WARN("%s", costmap_layers::describeUnknownKey(u, nh.getNamespace()).c_str());
+    for (const auto& [spec, ctx] : held)
+    {
+      std::vector<std::string> held_skip;
+      for (const auto& layer : host_->findLayer(spec.name)->heldLayers())
+        held_skip.push_back(layer->getName().substr(spec.name.size() + 1));
+      const std::string scope = costmap_layers::pluginClassName(costmap_layers::resolvePluginType(spec.type));
+      for (const auto& u : costmap_layers::unknownKeys(ctx->params(), read_log, scope, {"plugin"}, held_skip))
+        ROS_WARN(
+            "%s",
+            costmap_layers::describeUnknownKey(u, ros::NodeHandle("~/" + spec.name).getNamespace(), {}, scope).c_str());
+    }
   }
   onFootprintChanged();
   ports_ =
       std::make_unique<costmap_layers_ros::LayerPorts>(ros::NodeHandle(), nh, *core_, global_frame, *this->tf_, log_);
-  reconfigure_ = std::make_unique<costmap_layers_ros::LayerReconfigure>(
-      nh, core_, params,
-      [this](const std::function<void()>& fn)
-      {
-        boost::unique_lock<costmap_2d::Costmap2D::mutex_t> lock(*this->layered_costmap_->getCostmap()->getMutex());
-        const auto own = lockOwnGrid();
-        fn();
-        full_update_ = true;
-      });
+  const costmap_layers_ros::LayerReconfigure::RunLocked run_locked = [this](const std::function<void()>& fn)
+  {
+    boost::unique_lock<costmap_2d::Costmap2D::mutex_t> lock(*this->layered_costmap_->getCostmap()->getMutex());
+    const auto own = lockOwnGrid();
+    fn();
+    full_update_ = true;
+  };
+  reconfigure_ = std::make_unique<costmap_layers_ros::LayerReconfigure>(nh, core_, params, run_locked);
+  for (const auto& [spec, ctx] : held)
+  {
+    const ros::NodeHandle held_nh("~/" + spec.name);
+    const auto layer = host_->findLayer(spec.name);
+    held_ports_.push_back(std::make_unique<costmap_layers_ros::LayerPorts>(ros::NodeHandle(), held_nh, *layer,
+                                                                           global_frame, *this->tf_, log_));
+    held_reconfigure_.push_back(
+        std::make_unique<costmap_layers_ros::LayerReconfigure>(held_nh, layer, ctx->params(), run_locked));
+  }
   if (const auto* static_layer = dynamic_cast<const costmap_layers::StaticLayer*>(core_.get()))
     waitForMap(*static_layer, nh);
+  for (const auto& [spec, ctx] : held)
+    if (const auto* static_layer = dynamic_cast<const costmap_layers::StaticLayer*>(host_->findLayer(spec.name).get()))
+      waitForMap(*static_layer, ros::NodeHandle("~/" + spec.name));
   this->enabled_ = true;  // costmap_2d skips disabled plugins; the core layer's own switch is honoured below
   this->current_ = core_->isCurrent();
   ROS_INFO("%s: costmap_layers %s hosted in costmap_2d", nh.getNamespace().c_str(), class_name_.c_str());

@@ -9,6 +9,7 @@
 #include "costmap_layers/core/filters/keepout_filter.hpp"
 #include "costmap_layers/core/filters/lanes_filter.hpp"
 #include "costmap_layers/core/layers/obstacle_layer.hpp"
+#include "costmap_layers/core/layers/plugin_container_layer.hpp"
 #include "costmap_layers/core/layers/range_sensor_layer.hpp"
 #include "costmap_layers/core/filters/speed_filter.hpp"
 #include "costmap_layers/core/layers/static_layer.hpp"
@@ -45,3 +46,5 @@ COSTMAP_LAYERS_MOVE_BASE_PLUGIN(LanesFilter, LayerBridge)
 COSTMAP_LAYERS_MOVE_BASE_PLUGIN(ZoneParameterFilter, LayerBridge)
 COSTMAP_LAYERS_MOVE_BASE_PLUGIN(BinaryFilter, LayerBridge)
 COSTMAP_LAYERS_MOVE_BASE_PLUGIN(DenoiseLayer, LayerBridge)
+// Clearable as its plugins are: clear_costmap_recovery clears the container's clearable plugins.
+COSTMAP_LAYERS_MOVE_BASE_PLUGIN(PluginContainerLayer, ClearableLayerBridge)

@@ -173,7 +173,7 @@ void CostmapNode::setUp()
   std::vector<std::pair<costmap_layers::PluginSpec, std::shared_ptr<RosLayerContext>>> made;
   auto contexts = [&](const costmap_layers::PluginSpec& spec)
   {
-    const ParamValue* sub = params.find(spec.name);
+    const ParamValue* sub = costmap_layers::pluginParams(params, spec.name);
     auto context = std::make_shared<RosLayerContext>(ros::NodeHandle(private_nh_, spec.name),
                                                      sub != nullptr ? *sub : ParamValue::makeMap(),
                                                      config_.global_frame, config_.transform_tolerance, tf_, log_);
@@ -182,19 +182,20 @@ void CostmapNode::setUp()
   };
   costmap_layers::loadPlugins(
       *costmap_, lists, [this](const std::string& type) { return factory_.create(type); }, contexts);
-  // The node owns every subscription and publication: each layer's ports, wired here.
-  for (const auto* list : {&lists.plugins, &lists.filters})
-    for (const auto& spec : *list)
-    {
-      const std::string ours = costmap_layers::resolvePluginType(spec.type);
-      if (ours != spec.type)
-        ROS_INFO("costmap: using plugin \"%s\" (%s, loaded as %s)", spec.name.c_str(), spec.type.c_str(), ours.c_str());
-      else
-        ROS_INFO("costmap: using plugin \"%s\" (%s)", spec.name.c_str(), spec.type.c_str());
-      ports_.push_back(std::make_unique<LayerPorts>(nh_, ros::NodeHandle(private_nh_, spec.name),
-                                                    *costmap_->findLayer(spec.name), config_.global_frame, tf_, log_,
-                                                    topic_ns_));
-    }
+  // The node owns every subscription and publication: each layer's ports, wired here, in the order the
+  // layers were made (a container's plugins right after it), the order of the diagnostics' names.
+  for (const auto& made_layer : made)
+  {
+    const costmap_layers::PluginSpec& spec = made_layer.first;
+    const std::string ours = costmap_layers::resolvePluginType(spec.type);
+    if (ours != spec.type)
+      ROS_INFO("costmap: using plugin \"%s\" (%s, loaded as %s)", spec.name.c_str(), spec.type.c_str(), ours.c_str());
+    else
+      ROS_INFO("costmap: using plugin \"%s\" (%s)", spec.name.c_str(), spec.type.c_str());
+    ports_.push_back(std::make_unique<LayerPorts>(nh_, ros::NodeHandle(private_nh_, spec.name),
+                                                  *costmap_->findLayer(spec.name), config_.global_frame, tf_, log_,
+                                                  topic_ns_));
+  }
 
   // One warning per key that no parse asked for, in the costmap's namespace and in each layer's.
   std::vector<std::pair<costmap_layers::PluginSpec, const ParamValue*>> layer_params;
@@ -213,14 +214,9 @@ void CostmapNode::setUp()
     fn();
     costmap_->requestFullUpdate();
   };
-  for (const auto* list : {&lists.plugins, &lists.filters})
-    for (const auto& spec : *list)
-    {
-      const ParamValue* sub = params.find(spec.name);
-      reconfigure_.push_back(
-          std::make_unique<LayerReconfigure>(ros::NodeHandle(private_nh_, spec.name), costmap_->findLayer(spec.name),
-                                             sub != nullptr ? *sub : ParamValue::makeMap(), run_locked));
-    }
+  for (const auto& [spec, context] : made)
+    reconfigure_.push_back(std::make_unique<LayerReconfigure>(
+        ros::NodeHandle(private_nh_, spec.name), costmap_->findLayer(spec.name), context->params(), run_locked));
 
   pacer_ = std::make_unique<costmap_layers::LoopPacer>(1.0 / config_.update_frequency);
   schedule_ =

@@ -8,6 +8,7 @@
 #include "costmap_layers/core/filters/keepout_filter.hpp"
 #include "costmap_layers/core/filters/lanes_filter.hpp"
 #include "costmap_layers/core/layers/obstacle_layer.hpp"
+#include "costmap_layers/core/layers/plugin_container_layer.hpp"
 #include "costmap_layers/core/layers/range_sensor_layer.hpp"
 #include "costmap_layers/core/filters/speed_filter.hpp"
 #include "costmap_layers/core/layers/static_layer.hpp"
@@ -26,3 +27,4 @@ PLUGINLIB_EXPORT_CLASS(costmap_layers::RangeSensorLayer, costmap_layers::Layer)
 PLUGINLIB_EXPORT_CLASS(costmap_layers::ZoneParameterFilter, costmap_layers::Layer)
 PLUGINLIB_EXPORT_CLASS(costmap_layers::BinaryFilter, costmap_layers::Layer)
 PLUGINLIB_EXPORT_CLASS(costmap_layers::DenoiseLayer, costmap_layers::Layer)
+PLUGINLIB_EXPORT_CLASS(costmap_layers::PluginContainerLayer, costmap_layers::Layer)

@@ -391,6 +391,7 @@ int run(const ToolArgs& a, std::ostream& out, std::ostream& err)
 
   PluginFactory factory;
   std::map<std::string, std::shared_ptr<FileContext>> contexts;
+  std::vector<PluginSpec> made;
   auto costmap =
       std::make_unique<LayeredCostmap>(config.global_frame, config.rolling_window, config.track_unknown_space);
   // Declared after the factory and destroyed first, while the plugin library is loaded.
@@ -412,16 +413,16 @@ int run(const ToolArgs& a, std::ostream& out, std::ostream& err)
       *costmap, lists, [&factory](const std::string& type) { return factory.create(type); },
       [&](const PluginSpec& spec)
       {
-        const ParamValue* sub = ns->find(spec.name);
+        const ParamValue* sub = pluginParams(*ns, spec.name);
         auto ctx = std::make_shared<FileContext>(spec.name, sub ? *sub : ParamValue::makeMap(), config.global_frame,
                                                  config.transform_tolerance, err, error_count);
         contexts[spec.name] = ctx;
+        made.push_back(spec);  // a container's plugins too ("<container>/<plugin>")
         return ctx;
       });
   std::vector<std::pair<PluginSpec, const ParamValue*>> layer_params;
-  for (const auto* list : {&lists.plugins, &lists.filters})
-    for (const auto& spec : *list)
-      layer_params.emplace_back(spec, &contexts.at(spec.name)->params());
+  for (const auto& spec : made)
+    layer_params.emplace_back(spec, &contexts.at(spec.name)->params());
   for (const auto& line : unusedParameterLines(compat, read_log, layer_params, a.ns.empty() ? "/" : a.ns))
     err << "costmap_tool: warning: " << line << "\n";
   const Footprint footprint = config.footprint.padded();

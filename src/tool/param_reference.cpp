@@ -58,6 +58,12 @@ ParamValue sampleParams(const std::string& type)
     p.set("observation_sources", ParamValue::makeString(kSampleSource));
   // Its voxel outputs exist only when asked for: describe them.
   if (type == "costmap_layers/VoxelLayer") p.set("publish_voxel_map", ParamValue::makeBool(true));
+  // A container needs a plugin to start: an inflation layer (no inputs), described under its own type.
+  if (type == "costmap_layers/PluginContainerLayer")
+  {
+    p.set("plugins", ParamValue::makeList({ParamValue::makeString("inflation")}));
+    p.set("inflation", ParamValue::makeMap()).set("plugin", ParamValue::makeString("costmap_layers/InflationLayer"));
+  }
   return p;
 }
 

@@ -93,6 +93,9 @@ private:
   std::shared_ptr<costmap_layers_ros::RosLayerContext> context_;
   std::unique_ptr<costmap_layers_ros::LayerPorts> ports_;
   std::unique_ptr<costmap_layers_ros::LayerReconfigure> reconfigure_;
+  /// The same for the layers the core layer holds (a PluginContainerLayer's plugins).
+  std::vector<std::unique_ptr<costmap_layers_ros::LayerPorts>> held_ports_;
+  std::vector<std::unique_ptr<costmap_layers_ros::LayerReconfigure>> held_reconfigure_;
   std::atomic<bool> full_update_{true};     ///< redraw the whole map next cycle (start, reconfigure, reset)
   std::vector<std::string> consumed_keys_;  ///< layer keys costmap_2d's rules used up (not "unknown")
   std::string order_problem_;               ///< see orderProblem()

@@ -214,7 +214,14 @@ std::vector<std::string> unusedParameterLines(const CompatResult& compat, const 
     if (consumed != compat.layer_consumed.end())
       known.insert(known.end(), consumed->second.begin(), consumed->second.end());
     const std::string scope = pluginClassName(resolvePluginType(spec.type));
-    for (const auto& u : unknownKeys(*params, log, scope, known))
+    // A container's plugins ("<container>/<plugin>") read their namespaces themselves: walked as theirs.
+    std::vector<std::string> held;
+    for (const auto& other : layers)
+      if (other.first.name.size() > spec.name.size() + 1 &&
+          other.first.name.compare(0, spec.name.size() + 1, spec.name + "/") == 0 &&
+          other.first.name.find('/', spec.name.size() + 1) == std::string::npos)
+        held.push_back(other.first.name.substr(spec.name.size() + 1));
+    for (const auto& u : unknownKeys(*params, log, scope, known, held))
       lines.push_back(describeUnknownKey(u, prefix + spec.name, {}, scope));
   }
   return lines;

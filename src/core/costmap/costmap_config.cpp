@@ -73,26 +73,27 @@ CostmapConfig parseCostmapConfig(const ParamValue& ns)
 
 namespace
 {
-std::string typeOfNamed(const ParamValue& ns, const std::string& list_key, const std::string& name)
+std::string typeOfNamed(const ParamValue& ns, const std::string& list_key, const std::string& name,
+                        const std::string& owner)
 {
   const ParamValue* sub = ns.find(name);
   const ParamValue* type = sub != nullptr ? sub->find("plugin") : nullptr;
   if (type == nullptr && sub != nullptr) type = sub->find("type");
   if (type == nullptr || type->type() != ParamValue::Type::String)
-    throw std::invalid_argument("costmap: " + list_key + " names '" + shownText(name) + "' but '" + shownText(name) +
+    throw std::invalid_argument(owner + ": " + list_key + " names '" + shownText(name) + "' but '" + shownText(name) +
                                 "/plugin' (its type) is not set");
   return type->asString();
 }
 
-void checkPluginCount(const std::string& key, std::size_t count)
+void checkPluginCount(const std::string& key, std::size_t count, const std::string& owner = "costmap")
 {
   if (count > limits::kMaxPlugins)
-    throw std::invalid_argument("costmap: '" + key + "' lists " + std::to_string(count) + " plugins, more than " +
+    throw std::invalid_argument(owner + ": '" + key + "' lists " + std::to_string(count) + " plugins, more than " +
                                 std::to_string(limits::kMaxPlugins) +
                                 ": a costmap has a handful (a repeated YAML alias or a generated list?)");
 }
 
-std::vector<PluginSpec> parseOneList(const ParamValue& ns, const std::string& key)
+std::vector<PluginSpec> parseOneList(const ParamValue& ns, const std::string& key, const std::string& owner = "costmap")
 {
   std::vector<PluginSpec> specs;
   const ParamValue* list = ns.find(key);
@@ -103,9 +104,9 @@ std::vector<PluginSpec> parseOneList(const ParamValue& ns, const std::string& ke
   if (list != nullptr && !list->isNull())
   {
     if (!list->isList())
-      throw std::invalid_argument("costmap: parameter '" + key + "' must be a list (got " +
+      throw std::invalid_argument(owner + ": parameter '" + key + "' must be a list (got " +
                                   shownText(list->toString(), 200) + ")");
-    checkPluginCount(key, list->asList().size());
+    checkPluginCount(key, list->asList().size(), owner);
     for (const auto& item : list->asList())
     {
       if (item.isMap())
@@ -115,17 +116,17 @@ std::vector<PluginSpec> parseOneList(const ParamValue& ns, const std::string& ke
         if (type == nullptr) type = item.find("plugin");
         if (name == nullptr || name->type() != ParamValue::Type::String || type == nullptr ||
             type->type() != ParamValue::Type::String)
-          throw std::invalid_argument("costmap: each entry of '" + key + "' needs string fields name and type (got " +
+          throw std::invalid_argument(owner + ": each entry of '" + key + "' needs string fields name and type (got " +
                                       item.toString() + ")");
         specs.push_back({name->asString(), type->asString()});
       }
       else if (item.type() == ParamValue::Type::String)
       {
-        specs.push_back({item.asString(), typeOfNamed(ns, key, item.asString())});
+        specs.push_back({item.asString(), typeOfNamed(ns, key, item.asString(), owner)});
       }
       else
       {
-        throw std::invalid_argument("costmap: entries of '" + key + "' must be {name, type} maps or names (got " +
+        throw std::invalid_argument(owner + ": entries of '" + key + "' must be {name, type} maps or names (got " +
                                     shownText(item.toString(), 200) + ")");
       }
     }
@@ -133,17 +134,17 @@ std::vector<PluginSpec> parseOneList(const ParamValue& ns, const std::string& ke
   else if (names != nullptr || types != nullptr)
   {
     if (names == nullptr || types == nullptr || !names->isList() || !types->isList())
-      throw std::invalid_argument("costmap: '" + names_key + "' and '" + types_key + "' must both be lists");
-    checkPluginCount(names_key, names->asList().size());
+      throw std::invalid_argument(owner + ": '" + names_key + "' and '" + types_key + "' must both be lists");
+    checkPluginCount(names_key, names->asList().size(), owner);
     if (names->asList().size() != types->asList().size())
-      throw std::invalid_argument("costmap: '" + names_key + "' has " + std::to_string(names->asList().size()) +
+      throw std::invalid_argument(owner + ": '" + names_key + "' has " + std::to_string(names->asList().size()) +
                                   " entries but '" + types_key + "' has " + std::to_string(types->asList().size()));
     for (std::size_t k = 0; k < names->asList().size(); ++k)
     {
       const ParamValue& n = names->asList()[k];
       const ParamValue& t = types->asList()[k];
       if (n.type() != ParamValue::Type::String || t.type() != ParamValue::Type::String)
-        throw std::invalid_argument("costmap: '" + names_key + "' and '" + types_key + "' must hold strings");
+        throw std::invalid_argument(owner + ": '" + names_key + "' and '" + types_key + "' must hold strings");
       specs.push_back({n.asString(), t.asString()});
     }
   }
@@ -152,8 +153,8 @@ std::vector<PluginSpec> parseOneList(const ParamValue& ns, const std::string& ke
     // The rule costmap_node's NodeHandles and costmap_2d apply to a plugin's namespace, here where
     // costmap_tool reads the same list: a name one of them refuses is refused by both.
     if (const std::string problem = pluginNameProblem(s.name); !problem.empty())
-      throw std::invalid_argument("costmap: a plugin in '" + key + "' has a bad name: " + problem);
-    if (s.type.empty()) throw std::invalid_argument("costmap: plugin '" + s.name + "' has an empty type");
+      throw std::invalid_argument(owner + ": a plugin in '" + key + "' has a bad name: " + problem);
+    if (s.type.empty()) throw std::invalid_argument(owner + ": plugin '" + s.name + "' has an empty type");
   }
   return specs;
 }
@@ -181,5 +182,23 @@ PluginLists parsePluginLists(const ParamValue& ns)
     }
   }
   return lists;
+}
+
+std::vector<PluginSpec> parsePluginList(const ParamValue& ns, const std::string& owner)
+{
+  const ParamReader p(ns, owner);
+  p.declare("plugins", "[names] with <name>: {plugin: <type>} (or the other forms of the costmap's list)", "none");
+  std::vector<PluginSpec> specs = parseOneList(ns, "plugins", owner);
+  std::set<std::string> seen;
+  for (const auto& s : specs)
+    if (!seen.insert(s.name).second)
+      throw std::invalid_argument(owner + ": plugin name '" + shownText(s.name) + "' is used twice in 'plugins'");
+  return specs;
+}
+
+const ParamValue* pluginParams(const ParamValue& ns, const std::string& name)
+{
+  const ParamValue* own = ns.find(name);
+  return own != nullptr ? own : ns.findPath(name);
 }
 }  // namespace costmap_layers

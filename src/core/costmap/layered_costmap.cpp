@@ -45,7 +45,27 @@ std::shared_ptr<Layer> LayeredCostmap::findLayer(const std::string& name) const
       if (layer->getName() == name) return layer;
     }
   }
+  for (const auto& layer : nestedLayers())
+    if (layer->getName() == name) return layer;
   return nullptr;
+}
+
+std::vector<std::shared_ptr<Layer>> LayeredCostmap::nestedLayers() const
+{
+  std::vector<std::shared_ptr<Layer>> out;
+  // Depth first: each holder's layers right after it. The nesting is bounded by the holders themselves.
+  const std::function<void(const Layer&)> walk = [&](const Layer& holder)
+  {
+    for (const auto& held : holder.heldLayers())
+    {
+      out.push_back(held);
+      walk(*held);
+    }
+  };
+  for (const auto* list : {&plugins_, &filters_})
+    for (const auto& layer : *list)
+      walk(*layer);
+  return out;
 }
 
 void LayeredCostmap::resizeMap(unsigned int size_x, unsigned int size_y, double resolution, double origin_x,

@@ -20,6 +20,7 @@
 #include "costmap_layers/core/layers/inflation_layer.hpp"
 #include "costmap_layers/core/filters/keepout_filter.hpp"
 #include "costmap_layers/core/layers/obstacle_layer.hpp"
+#include "costmap_layers/core/layers/plugin_container_layer.hpp"
 #include "costmap_layers/core/layers/static_layer.hpp"
 #include "costmap_layers/move_base/layer_bridge.hpp"
 
@@ -171,6 +172,56 @@ TEST(Bridge, RollingObstacleMarksStayOnTheirCells)
         lethal += master.getCost(i, j) == costmap_2d::LETHAL_OBSTACLE;
     EXPECT_EQ(lethal, expected) << "robot " << p[0] << ", " << p[1];
   }
+}
+
+// A PluginContainerLayer inside costmap_2d: its plugins, this package's layers made by name from the
+// container's own list (a Nav2 type name among them), read their parameters in
+// ~/<costmap>/<container>/<plugin> and draw through the container: the obstacle at (1.52, 1.02) is
+// lethal, the cell next to it (0.05 m) inscribed with the 0.1 m circle, one 0.3 m away between, one
+// 0.5 m away (beyond the container's inflation radius 0.35 m) free. costmap_2d's clear reaches the
+// obstacle layer inside.
+TEST(Bridge, AContainersPluginsAreMadeByNameAndDrawThroughIt)
+{
+  ros::NodeHandle pn("~");
+  XmlRpc::XmlRpcValue list;
+  list[0] = "obstacles";
+  list[1] = "inflation";
+  pn.setParam("contain/group/plugins", list);
+  pn.setParam("contain/group/obstacles/plugin", "nav2_costmap_2d::ObstacleLayer");
+  pn.setParam("contain/group/inflation/plugin", "costmap_layers/InflationLayer");
+  pn.setParam("contain/group/inflation/inflation_radius", 0.35);
+  tf2_ros::Buffer tf;
+  costmap_2d::LayeredCostmap lc("map", false, false);
+  lc.resizeMap(40, 40, 0.05, 0.0, 0.0);
+  auto core = std::make_shared<costmap_layers::PluginContainerLayer>();
+  boost::shared_ptr<costmap_2d::Layer> plugin(
+      new costmap_layers::move_base::ClearableLayerBridge(core, "PluginContainerLayer"));
+  lc.addPlugin(plugin);
+  plugin->initialize(&lc, "contain/group", &tf);
+  const auto held = core->heldLayers();
+  ASSERT_EQ(held.size(), 2u);
+  EXPECT_EQ(held[0]->getName(), "contain/group/obstacles");
+  const auto obstacles = std::dynamic_pointer_cast<costmap_layers::ObstacleLayer>(held[0]);
+  const auto inflation = std::dynamic_pointer_cast<costmap_layers::InflationLayer>(held[1]);
+  ASSERT_TRUE(obstacles && inflation);
+  EXPECT_DOUBLE_EQ(inflation->config().inflation_radius, 0.35);
+  lc.setFootprint(circle(0.1, 16));
+  obstacles->addStaticObservation(pointsSeenFrom(1.0, 1.0, {{1.52f, 1.02f}}), true, false);
+  lc.updateMap(1.0, 1.0, 0.0);
+  const costmap_2d::Costmap2D& master = *lc.getCostmap();
+  unsigned mx, my;
+  ASSERT_TRUE(master.worldToMap(1.52, 1.02, mx, my));
+  EXPECT_EQ(master.getCost(mx, my), costmap_2d::LETHAL_OBSTACLE);
+  EXPECT_EQ(master.getCost(mx - 1, my), costmap_2d::INSCRIBED_INFLATED_OBSTACLE);
+  EXPECT_GT(master.getCost(mx - 6, my), costmap_2d::FREE_SPACE);
+  EXPECT_LT(master.getCost(mx - 6, my), costmap_2d::INSCRIBED_INFLATED_OBSTACLE);
+  EXPECT_EQ(master.getCost(mx - 10, my), costmap_2d::FREE_SPACE);
+  obstacles->clearStaticObservations(true, true);
+  auto* clearable = dynamic_cast<costmap_2d::CostmapLayer*>(plugin.get());
+  ASSERT_NE(clearable, nullptr);
+  clearable->clearArea(-1, -1, 40, 40, true);  // costmap_2d: inverted, the cells strictly inside
+  lc.updateMap(1.0, 1.0, 0.0);
+  EXPECT_EQ(master.getCost(mx, my), costmap_2d::FREE_SPACE);
 }
 
 // Costmap2DROS::reconfigureCB resizes the master on every reconfigure while its size is not locked, to

@@ -162,14 +162,47 @@ class StartupErrorsTest(unittest.TestCase):
         self.check("costmap_node", {"plugins": plugins, "global_frame": "map odom"}, ["global_frame", "map odom"])
         self.check("costmap_node", {"plugins": plugins, "width": "wide"}, ["width", "wide"])
 
+    # --- costmap_node with a PluginContainerLayer: its own plugin list, refused as the costmap's is.
+    def test_costmap_node_container(self):
+        group = [{"name": "group", "type": "costmap_layers/PluginContainerLayer"}]
+        inflation = {"plugin": "costmap_layers/InflationLayer"}
+
+        def nested(levels):
+            inner = {"plugins": ["inflation"], "inflation": inflation}
+            for k in range(levels, 1, -1):
+                inner = {"plugins": ["c%d" % k], "c%d" % k: dict(inner, plugin="costmap_layers/PluginContainerLayer")}
+            return inner
+
+        self.check("costmap_node", {"plugins": group, "group": {"plugins": ["bogus"],
+                                                                "bogus": {"plugin": "costmap_layers/NoSuchLayer"}}},
+                   ["group/bogus", "costmap_layers/NoSuchLayer"])
+        self.check("costmap_node", {"plugins": group, "group": {"plugins": ["a", "a"], "a": inflation}},
+                   ["group", "'a'", "twice"])
+        self.check("costmap_node", {"plugins": group, "group": {"plugins": []}}, ["group", "'plugins'", "[]"])
+        self.check("costmap_node", {"plugins": group, "group": {"plugins": ["9lives"], "9lives": inflation}},
+                   ["group", "'plugins'", "9lives"])
+        self.check("costmap_node", {"plugins": group,
+                                    "group": {"plugins": ["group"],
+                                              "group": dict(nested(1), plugin="costmap_layers/PluginContainerLayer")}},
+                   ["group", "'plugins'", "itself"])
+        self.check("costmap_node", {"plugins": group, "group": nested(5)},
+                   ["group/c2/c3/c4/c5", "nested 5 deep, at most 4"])
+        self.check("costmap_node", {"plugins": group, "group": dict(nested(1), combination_method=7)},
+                   ["group", "'combination_method'", "7"])
+
     # --- costmap_tool: no master; one error line and exit code 1.
     def test_costmap_tool(self):
         params = os.path.join(self.tmp.name, "bad_name.yaml")
         with open(params, "w") as f:
             f.write("plugins:\n  - {name: 'static layer', type: 'costmap_layers/StaticLayer'}\n")
+        container = os.path.join(self.tmp.name, "container.yaml")
+        with open(container, "w") as f:
+            f.write("plugins: [group]\ngroup:\n  plugin: costmap_layers/PluginContainerLayer\n  plugins: [bogus]\n"
+                    "  bogus: {plugin: costmap_layers/NoSuchLayer}\n")
         cases = [
             (["--map", self.mask_yaml, "--params", os.path.join(self.tmp.name, "none.yaml")], ["none.yaml"]),
             (["--map", self.mask_yaml, "--params", params], ["static layer"]),
+            (["--map", self.mask_yaml, "--params", container], ["group/bogus", "costmap_layers/NoSuchLayer"]),
         ]
         for args, needles in cases:
             proc = subprocess.run([program("costmap_tool")] + args, stdout=subprocess.PIPE, stderr=subprocess.PIPE,

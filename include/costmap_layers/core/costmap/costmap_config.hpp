@@ -55,4 +55,11 @@ struct PluginLists
 /// and the same for an optional `filters` list. Throws std::invalid_argument on a malformed list,
 /// a missing type or a name used twice.
 PluginLists parsePluginLists(const ParamValue& ns);
+
+/// The `plugins` list of a layer that holds layers (PluginContainerLayer), in any of the forms above,
+/// under the same rules (names, count, a name used twice); errors start with `owner`.
+std::vector<PluginSpec> parsePluginList(const ParamValue& ns, const std::string& owner);
+/// The parameters of plugin `name` in the costmap's namespace ns: the key `name`, or for a container's
+/// plugin ("<container>/<plugin>") the nested map; nullptr when there is none.
+const ParamValue* pluginParams(const ParamValue& ns, const std::string& name);
 }  // namespace costmap_layers

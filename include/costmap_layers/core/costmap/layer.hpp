@@ -79,6 +79,9 @@ public:
   virtual void deactivate() {}
   /// Whether a "clear costmaps" request should reset this layer.
   virtual bool isClearable() { return false; }
+  /// The layers this one holds and runs itself (a PluginContainerLayer's plugins), for the host to wire
+  /// their ports as it does its own plugins'. The default: none.
+  virtual std::vector<std::shared_ptr<Layer>> heldLayers() const { return {}; }
 
   /// Run-time reconfiguration (dynamic_reconfigure in the node): `params` is the layer's whole
   /// namespace with the changes applied. Reads `enabled`, lets the layer validate and apply the rest

@@ -38,8 +38,12 @@ public:
   void addFilter(std::shared_ptr<Layer> filter);
   const std::vector<std::shared_ptr<Layer>>& getPlugins() const { return plugins_; }
   const std::vector<std::shared_ptr<Layer>>& getFilters() const { return filters_; }
-  /// The plugin or filter with that name, or nullptr.
+  /// The plugin or filter with that name, or a layer one of them holds (Layer::heldLayers(), named
+  /// "<container>/<plugin>"), or nullptr.
   std::shared_ptr<Layer> findLayer(const std::string& name) const;
+  /// The layers the plugins and filters hold, and those these hold, depth first: the host wires their
+  /// ports, reconfiguration and diagnostics as its plugins'.
+  std::vector<std::shared_ptr<Layer>> nestedLayers() const;
 
   /// One update cycle at the robot pose (global frame) [m, rad].
   void updateMap(double robot_x, double robot_y, double robot_yaw);
