@@ -108,9 +108,12 @@ costmap_layers::PathData fromMsg(const nav_msgs::Path& msg)
   costmap_layers::PathData d;
   d.frame_id = msg.header.frame_id;
   d.stamp_ns = msg.header.stamp.toNSec();
-  d.poses.reserve(msg.poses.size());
-  for (const auto& p : msg.poses)
-    d.poses.push_back({p.pose.position.x, p.pose.position.y});
+  // A sender may put millions of poses here: copy no more than the core can refuse the path by.
+  const std::size_t n = std::min(msg.poses.size(), costmap_layers::limits::kMaxPathPoses + 1);
+  d.message_poses = msg.poses.size();
+  d.poses.reserve(n);
+  for (std::size_t i = 0; i < n; ++i)
+    d.poses.push_back({msg.poses[i].pose.position.x, msg.poses[i].pose.position.y});
   return d;
 }
 

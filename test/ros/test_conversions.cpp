@@ -270,3 +270,25 @@ TEST(Conversions, OlderPointCloudReadsAsItsPoints)
   costmap_layers::pointCloud2ToPoints(empty, points);
   EXPECT_TRUE(points.empty());
 }
+
+// The worst a sender can put in a nav_msgs/Path: far more poses than a path may have. The conversion
+// copies no more than the core needs to refuse it, and the refusal names the message's true count.
+TEST(Conversions, AHugePathIsCutBeforeTheCopyAndRefusedByItsTrueSize)
+{
+  nav_msgs::Path msg;
+  msg.header.frame_id = "map";
+  const std::size_t limit = costmap_layers::limits::kMaxPathPoses;
+  msg.poses.resize(limit + 1000);
+  const costmap_layers::PathData d = costmap_layers_ros::fromMsg(msg);
+  EXPECT_EQ(d.poses.size(), limit + 1);
+  EXPECT_EQ(d.message_poses, limit + 1000);
+  const costmap_layers::InputError e = costmap_layers::validatePath(d);
+  ASSERT_FALSE(e.ok());
+  EXPECT_EQ(e.field, "poses");
+  EXPECT_NE(e.message.find(std::to_string(limit + 1000)), std::string::npos) << e.message;
+  // At the limit: copied whole and accepted.
+  msg.poses.resize(limit);
+  const costmap_layers::PathData at = costmap_layers_ros::fromMsg(msg);
+  EXPECT_EQ(at.poses.size(), limit);
+  EXPECT_TRUE(costmap_layers::validatePath(at).ok());
+}

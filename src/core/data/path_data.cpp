@@ -11,8 +11,9 @@ namespace costmap_layers
 {
 InputError validatePath(const PathData& path)
 {
-  if (path.poses.size() > limits::kMaxPathPoses)
-    return InputError::of("poses", "poses has " + std::to_string(path.poses.size()) + " entries, more than the " +
+  const std::size_t poses = std::max(path.poses.size(), path.message_poses);
+  if (poses > limits::kMaxPathPoses)
+    return InputError::of("poses", "poses has " + std::to_string(poses) + " entries, more than the " +
                                        std::to_string(limits::kMaxPathPoses) + " a path may have");
   if (!path.poses.empty() && path.frame_id.empty())
     return InputError::of("header.frame_id", "header.frame_id is empty: the poses cannot be placed");

@@ -23,6 +23,9 @@ struct PathData
     double x = 0.0, y = 0.0;
   };
   std::vector<Point> poses;
+  /// How many poses the message held, when more than poses keeps: a host copies at most
+  /// limits::kMaxPathPoses + 1 of them, enough for validatePath() to refuse the path by its true size.
+  std::size_t message_poses = 0;
 };
 
 /// nav_msgs/Odometry: the twist the robot reports, in child_frame_id (the robot's base frame).
