@@ -2,6 +2,7 @@
 // base class costmap_2d::Layer (move_base_plugins.xml), built only when costmap_2d is found.
 #include <pluginlib/class_list_macros.hpp>
 
+#include "costmap_layers/core/layers/asymmetric_inflation_layer.hpp"
 #include "costmap_layers/core/filters/binary_filter.hpp"
 #include "costmap_layers/core/layers/denoise_layer.hpp"
 #include "costmap_layers/core/layers/gradient_layer.hpp"
@@ -46,5 +47,6 @@ COSTMAP_LAYERS_MOVE_BASE_PLUGIN(LanesFilter, LayerBridge)
 COSTMAP_LAYERS_MOVE_BASE_PLUGIN(ZoneParameterFilter, LayerBridge)
 COSTMAP_LAYERS_MOVE_BASE_PLUGIN(BinaryFilter, LayerBridge)
 COSTMAP_LAYERS_MOVE_BASE_PLUGIN(DenoiseLayer, LayerBridge)
+COSTMAP_LAYERS_MOVE_BASE_PLUGIN(AsymmetricInflationLayer, LayerBridge)
 // Clearable as its plugins are: clear_costmap_recovery clears the container's clearable plugins.
 COSTMAP_LAYERS_MOVE_BASE_PLUGIN(PluginContainerLayer, ClearableLayerBridge)

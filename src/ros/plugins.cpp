@@ -1,6 +1,7 @@
 // Every pluginlib export of the package, in one file built into its own library.
 #include <pluginlib/class_list_macros.hpp>
 
+#include "costmap_layers/core/layers/asymmetric_inflation_layer.hpp"
 #include "costmap_layers/core/filters/binary_filter.hpp"
 #include "costmap_layers/core/layers/denoise_layer.hpp"
 #include "costmap_layers/core/layers/gradient_layer.hpp"
@@ -27,4 +28,5 @@ PLUGINLIB_EXPORT_CLASS(costmap_layers::RangeSensorLayer, costmap_layers::Layer)
 PLUGINLIB_EXPORT_CLASS(costmap_layers::ZoneParameterFilter, costmap_layers::Layer)
 PLUGINLIB_EXPORT_CLASS(costmap_layers::BinaryFilter, costmap_layers::Layer)
 PLUGINLIB_EXPORT_CLASS(costmap_layers::DenoiseLayer, costmap_layers::Layer)
+PLUGINLIB_EXPORT_CLASS(costmap_layers::AsymmetricInflationLayer, costmap_layers::Layer)
 PLUGINLIB_EXPORT_CLASS(costmap_layers::PluginContainerLayer, costmap_layers::Layer)

@@ -41,7 +41,7 @@ const char* kDescription =
     "and prints one JSON line: width, height, resolution, origin_x, origin_y, update_ms_median,\n"
     "update_ms_min, repeats, max_speed (and costs, costs_success with --cost). On a rolling_window costmap\n"
     "the result is the window of the configured width/height centred on --pose, as costmap_node publishes\n"
-    "it. Each option may be given once, except --mask, --features, --filter-info (once per plugin name),\n"
+    "it. Each option may be given once, except --mask, --features, --filter-info, --plan (once per plugin name),\n"
     "--label and --cost.\n"
     "costmap_tool --describe-params [--markdown] prints every parameter, topic and service of every plugin\n"
     "(docs/parameters.md is that output).";
@@ -49,7 +49,7 @@ const char* kDescription =
 struct ToolArgs
 {
   std::string map, params, ns, out_raw, out_png;
-  std::vector<std::pair<std::string, std::string>> masks, features, infos;
+  std::vector<std::pair<std::string, std::string>> masks, features, infos, plans;
   bool has_pose = false;
   double x = 0, y = 0, yaw = 0;
   int repeat = 0;
@@ -224,6 +224,9 @@ public:
                     "the filter info of a filter configured Nav2's way (filter_info_topic), repeatable")
         ->allow_extra_args(false)
         ->type_name("PLUGIN_NAME=TYPE,BASE,MULTIPLIER");
+    app_.add_option("--plan", plans_, "a planned path for the named plugin's plan input, global frame (repeatable)")
+        ->allow_extra_args(false)
+        ->type_name("PLUGIN_NAME=X1,Y1,X2,Y2[,...]");
     app_.add_option("--pose", pose_, "robot pose in the global frame [m, m, rad]; default: the map's centre, yaw 0")
         ->type_name("X,Y,YAW");
     app_.add_option("--repeat", repeat_, "time N full updates (after one warm-up) and report median and min")
@@ -278,6 +281,7 @@ public:
     a.masks = assignments("--mask", masks_);
     a.features = assignments("--features", features_);
     a.infos = assignments("--filter-info", infos_);
+    a.plans = assignments("--plan", plans_);
     if (app_.count("--repeat")) a.repeat = parseRepeat(repeat_);
     if (app_.count("--pose")) parsePose(pose_, a);
     if (app_.count("--zoom")) a.zoom = parseZoom(zoom_);
@@ -299,7 +303,7 @@ public:
 private:
   CLI::App app_;
   std::string map_, params_, ns_, out_raw_, out_png_, pose_, repeat_, zoom_;
-  std::vector<std::string> masks_, features_, infos_, labels_, costs_;
+  std::vector<std::string> masks_, features_, infos_, plans_, labels_, costs_;
   bool cost_footprint_ = false;
 };
 
@@ -501,6 +505,42 @@ int run(const ToolArgs& a, std::ostream& out, std::ostream& err)
     limits->frame_id = config.global_frame;
     for (const InputPort* port : ports)
       port->on_limits(limits);
+  }
+  for (const auto& [name, spec] : a.plans)
+  {
+    const auto ports = portsOf(*layerNamed(name, "--plan"), InputKind::Path);
+    if (ports.empty()) throw std::runtime_error("--plan names plugin '" + name + "', which takes no plan");
+    // X1,Y1,X2,Y2,...: the layer checks the poses themselves (finite, how many) as it checks a message.
+    auto plan = std::make_shared<PathData>();
+    plan->frame_id = config.global_frame;
+    std::istringstream in(spec);
+    std::string item;
+    std::vector<double> values;
+    while (std::getline(in, item, ','))
+    {
+      std::size_t used = 0;
+      double v = 0.0;
+      try
+      {
+        v = std::stod(item, &used);
+      }
+      catch (const std::exception&)
+      {
+        used = 0;
+      }
+      if (used == 0 || used != item.size() || values.size() > 2 * limits::kMaxPathPoses)
+        throw std::runtime_error("--plan expects PLUGIN_NAME=X1,Y1,X2,Y2[,...] with at most " +
+                                 std::to_string(limits::kMaxPathPoses) + " poses (got \"" + name + "=" +
+                                 shownText(spec, 80) + "\")");
+      values.push_back(v);
+    }
+    if (values.size() % 2 != 0)
+      throw std::runtime_error("--plan for '" + name + "' has an odd count of numbers (" +
+                               std::to_string(values.size()) + "): X and Y of each pose");
+    for (std::size_t k = 0; k + 1 < values.size(); k += 2)
+      plan->poses.push_back({values[k], values[k + 1]});
+    for (const InputPort* port : ports)
+      port->on_path(plan);
   }
   auto deliverMasks = [&]
   {

@@ -721,3 +721,58 @@ footprint_padding: 0.0
     EXPECT_EQ(r.out, "") << needle;
   }
 }
+
+// The AsymmetricInflationLayer offline: without --plan symmetric with the larger factor (10), with
+// --plan along y = 2.0 the obstacle left of it (disfavoured, factor 1) costs more; a bad plan is refused
+// naming the field and nothing is written. Lethal cells (20, 24) and (20, 16); costs read 0.4 m beyond
+// each: floor(252 exp(-f (0.4 - 0.1))) = 186 for f = 1, 12 for f = 10.
+TEST(CostmapTool, PlanFeedsTheAsymmetricInflationLayer)
+{
+  TempDir dir;
+  std::vector<uint8_t> pixels(1600, 254);
+  pixels[(39 - 24) * 40 + 20] = 0;  // image rows run from the highest y
+  pixels[(39 - 16) * 40 + 20] = 0;
+  const std::string map = writeMap(dir, "map", 40, 40, pixels, 0.1, 0.0, 0.0);
+  const std::string params = dir.write("params.yaml", R"(
+footprint: [[-0.1, -0.1], [0.1, -0.1], [0.1, 0.1], [-0.1, 0.1]]
+footprint_padding: 0.0
+plugins:
+  - {name: static_layer, type: costmap_layers/StaticLayer}
+  - {name: inflation, type: nav2_costmap_2d::AsymmetricInflationLayer}
+inflation: {inflation_radius: 0.55, cost_scaling_factor_left: 1.0, cost_scaling_factor_right: 10.0}
+)");
+  const std::vector<std::string> base{"--map", map, "--params", params, "--pose", "0,0,0", "--out-raw",
+                                      dir.file("out.raw")};
+  const ToolResult none = runTool(base, dir);
+  ASSERT_EQ(none.exit_code, 0) << none.err;
+  auto cells = rawCells(dir.file("out.raw"));
+  ASSERT_EQ(cells.size(), 1600u);
+  EXPECT_EQ(cells[28 * 40 + 20], 12);
+  EXPECT_EQ(cells[12 * 40 + 20], 12);
+  EXPECT_NE(none.err.find("no plan"), std::string::npos) << none.err;
+
+  auto with = base;
+  with.insert(with.end(), {"--plan", "inflation=0.5,2,1.5,2,2.5,2,3.5,2"});
+  const ToolResult planned = runTool(with, dir);
+  ASSERT_EQ(planned.exit_code, 0) << planned.err;
+  cells = rawCells(dir.file("out.raw"));
+  EXPECT_EQ(cells[28 * 40 + 20], 186);
+  EXPECT_EQ(cells[12 * 40 + 20], 12);
+
+  for (const std::string& bad : {"inflation=0.5,2,nan,2", "inflation=0.5,2,1e8,2", "inflation=0.5,2"})
+  {
+    auto args = base;
+    args.insert(args.end(), {"--plan", bad});
+    const ToolResult r = runTool(args, dir);
+    EXPECT_NE(r.exit_code, 0) << bad;
+    EXPECT_NE(r.err.find("poses"), std::string::npos) << bad << ": " << r.err;
+  }
+  for (const std::string& bad : {"inflation=0.5,2,1", "inflation=0.5,x", "static_layer=0,0,1,1"})
+  {
+    auto args = base;
+    args.insert(args.end(), {"--plan", bad});
+    const ToolResult r = runTool(args, dir);
+    EXPECT_NE(r.exit_code, 0) << bad;
+    EXPECT_NE(r.err.find("--plan"), std::string::npos) << bad << ": " << r.err;
+  }
+}

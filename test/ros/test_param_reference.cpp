@@ -66,7 +66,7 @@ TEST(ParamReference, RowsComeFromTheParseFunctions)
     EXPECT_NE(r.out.find(row), std::string::npos) << "missing row: " << row;
   // Every plugin of the plugin description file has its section, and every filter its switch.
   for (const char* type :
-       {"BinaryFilter", "DenoiseLayer", "GradientLayer", "InflationLayer", "KeepoutFilter", "LanesFilter", "ObstacleLayer", "PluginContainerLayer",
+       {"AsymmetricInflationLayer", "BinaryFilter", "DenoiseLayer", "GradientLayer", "InflationLayer", "KeepoutFilter", "LanesFilter", "ObstacleLayer", "PluginContainerLayer",
         "RangeSensorLayer", "SpeedFilter", "StaticLayer", "VoxelLayer", "ZoneParameterFilter"})
     EXPECT_NE(r.out.find(std::string("\n## costmap_layers/") + type + "\n"), std::string::npos) << type;
   std::size_t toggles = 0;

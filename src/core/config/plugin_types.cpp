@@ -22,6 +22,7 @@ const std::vector<PluginTypeAlias>& pluginTypeAliases()
       {"nav2_costmap_2d::ZoneParameterFilter", "costmap_layers/ZoneParameterFilter", TypeDialect::Nav2},
       {"nav2_costmap_2d::BinaryFilter", "costmap_layers/BinaryFilter", TypeDialect::Nav2},
       {"nav2_costmap_2d::DenoiseLayer", "costmap_layers/DenoiseLayer", TypeDialect::Nav2},
+      {"nav2_costmap_2d::AsymmetricInflationLayer", "costmap_layers/AsymmetricInflationLayer", TypeDialect::Nav2},
       {"nav2_costmap_2d::PluginContainerLayer", "costmap_layers/PluginContainerLayer", TypeDialect::Nav2},
   };
   return table;

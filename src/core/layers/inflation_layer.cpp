@@ -25,16 +25,26 @@ InflationConfig parseInflationConfig(const ParamReader& params)
   // tests >= 0 only, so -2 works there too).
   cfg.custom_inscribed_radius = params.getDouble("custom_inscribed_radius", cfg.custom_inscribed_radius,
                                                  -limits::kMaxDistance, limits::kMaxDistance);
-  // Nav2's InflationLayer takes 0 or less (its default, -1) as "half the cores, at least one".
-  cfg.num_threads = params.getInt("num_threads", cfg.num_threads, -1, 64);
-  if (cfg.num_threads <= 0)
-    cfg.num_threads = std::max(1, static_cast<int>(std::min(128u, std::thread::hardware_concurrency())) / 2);
+  cfg.num_threads = parseInflationThreads(params, cfg.num_threads);
   return cfg;
+}
+
+int parseInflationThreads(const ParamReader& params, int def)
+{
+  // Nav2's InflationLayer takes 0 or less (its default, -1) as "half the cores, at least one".
+  const int n = params.getInt("num_threads", def, -1, 64);
+  if (n > 0) return n;
+  return std::max(1, static_cast<int>(std::min(128u, std::thread::hardware_concurrency())) / 2);
 }
 
 void InflationLayer::onInitialize()
 {
-  config_ = parseInflationConfig(ParamReader(context_->params(), name_));
+  initializeWith(parseInflationConfig(ParamReader(context_->params(), name_)));
+}
+
+void InflationLayer::initializeWith(const InflationConfig& config)
+{
+  config_ = config;
   updateInscribedRadius();
   resolution_ = layered_costmap_->getCostmap().getResolution();
   rebuildTable();
@@ -161,14 +171,23 @@ void InflationLayer::updateCosts(Costmap2D& master_grid, int min_i, int min_j, i
   win.y1 = std::min(max_j, height);
   if (win.x0 >= win.x1 || win.y0 >= win.y1) return;
 
-  const SourceRange sources = config_.inflate_around_unknown ? SourceRange{LETHAL_OBSTACLE, NO_INFORMATION}
-                                                             : SourceRange{LETHAL_OBSTACLE, LETHAL_OBSTACLE};
   // The engine reads the sources of a row (and of the rows after it) before it writes that row; writing
   // never adds or removes a source (a source's cost is 254 and stays so).
+  distanceCostMerge(master_grid.data(), width, height, width, sourceRange(), costs_, win, mergeRule(), scratch_,
+                    config_.num_threads);
+}
+
+SourceRange InflationLayer::sourceRange() const
+{
+  return config_.inflate_around_unknown ? SourceRange{LETHAL_OBSTACLE, NO_INFORMATION}
+                                        : SourceRange{LETHAL_OBSTACLE, LETHAL_OBSTACLE};
+}
+
+CostMergeRule InflationLayer::mergeRule() const
+{
   CostMergeRule rule;
   rule.special = NO_INFORMATION;
   rule.special_threshold = config_.inflate_unknown ? uint8_t{1} : INSCRIBED_INFLATED_OBSTACLE;
-  distanceCostMerge(master_grid.data(), width, height, width, sources, costs_, win, rule, scratch_,
-                    config_.num_threads);
+  return rule;
 }
 }  // namespace costmap_layers

@@ -97,6 +97,7 @@ TEST(TypeAliases, EveryForeignNameLoadsOurClass)
       {"nav2_costmap_2d::ZoneParameterFilter", "costmap_layers/ZoneParameterFilter"},
       {"nav2_costmap_2d::BinaryFilter", "costmap_layers/BinaryFilter"},
       {"nav2_costmap_2d::DenoiseLayer", "costmap_layers/DenoiseLayer"},
+      {"nav2_costmap_2d::AsymmetricInflationLayer", "costmap_layers/AsymmetricInflationLayer"},
       {"nav2_costmap_2d::PluginContainerLayer", "costmap_layers/PluginContainerLayer"},
   };
   for (const auto& [written, ours] : expected)

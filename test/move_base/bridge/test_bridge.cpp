@@ -9,6 +9,7 @@
 #include <costmap_2d/footprint.h>
 #include <costmap_2d/layered_costmap.h>
 #include <nav_msgs/OccupancyGrid.h>
+#include <nav_msgs/Path.h>
 #include <xmlrpcpp/XmlRpcValue.h>
 #include <atomic>
 #include <cmath>
@@ -17,6 +18,7 @@
 #include <thread>
 #include <vector>
 
+#include "costmap_layers/core/layers/asymmetric_inflation_layer.hpp"
 #include "costmap_layers/core/layers/inflation_layer.hpp"
 #include "costmap_layers/core/filters/keepout_filter.hpp"
 #include "costmap_layers/core/layers/obstacle_layer.hpp"
@@ -222,6 +224,60 @@ TEST(Bridge, AContainersPluginsAreMadeByNameAndDrawThroughIt)
   clearable->clearArea(-1, -1, 40, 40, true);  // costmap_2d: inverted, the cells strictly inside
   lc.updateMap(1.0, 1.0, 0.0);
   EXPECT_EQ(master.getCost(mx, my), costmap_2d::FREE_SPACE);
+}
+
+// The AsymmetricInflationLayer inside costmap_2d takes its plan from a nav_msgs/Path topic, as move_base's
+// global planner publishes it. Obstacles (20, 24) and (20, 16) of a 0.1 m grid, 0.45 m north and 0.35 m
+// south of the plan y = 2.0; costs 0.4 m beyond each: floor(252 exp(-f (0.4 - 0.1))) = 12 with the larger
+// factor 10 (no plan, or the favoured right), 186 with factor 1 (the disfavoured left, once the plan came).
+TEST(Bridge, TheAsymmetricInflationLayerTakesItsPlanFromATopic)
+{
+  ros::NodeHandle pn("~");
+  pn.setParam("asym/inflation/inflation_radius", 0.55);
+  pn.setParam("asym/inflation/cost_scaling_factor_left", 1.0);
+  pn.setParam("asym/inflation/cost_scaling_factor_right", 10.0);
+  pn.setParam("asym/inflation/plan_topic", "/bridge_asym_plan");
+  tf2_ros::Buffer tf;
+  costmap_2d::LayeredCostmap lc("map", false, false);
+  lc.resizeMap(40, 40, 0.1, 0.0, 0.0);
+  auto obstacles = addBridged<costmap_layers::ObstacleLayer>(lc, tf, "asym/obstacles", "ObstacleLayer");
+  addBridged<costmap_layers::AsymmetricInflationLayer>(lc, tf, "asym/inflation", "AsymmetricInflationLayer");
+  std::vector<geometry_msgs::Point> square(4);
+  square[0].x = square[1].x = 0.1;
+  square[2].x = square[3].x = -0.1;
+  square[0].y = square[3].y = 0.1;
+  square[1].y = square[2].y = -0.1;
+  lc.setFootprint(square);
+  obstacles->addStaticObservation(pointsSeenFrom(3.0, 3.0, {{2.05f, 2.45f}, {2.05f, 1.65f}}), true, false);
+  lc.updateMap(0.0, 0.0, 0.0);
+  const costmap_2d::Costmap2D& master = *lc.getCostmap();
+  ASSERT_EQ(master.getCost(20, 24), costmap_2d::LETHAL_OBSTACLE);
+  EXPECT_EQ(master.getCost(20, 28), 12);
+  EXPECT_EQ(master.getCost(20, 12), 12);
+
+  ros::NodeHandle nh;
+  ros::Publisher pub = nh.advertise<nav_msgs::Path>("/bridge_asym_plan", 1, true);
+  nav_msgs::Path plan;
+  plan.header.frame_id = "map";
+  for (double x : {0.5, 1.5, 2.5, 3.5})
+  {
+    geometry_msgs::PoseStamped p;
+    p.header.frame_id = "map";
+    p.pose.position.x = x;
+    p.pose.position.y = 2.0;
+    p.pose.orientation.w = 1.0;
+    plan.poses.push_back(p);
+  }
+  pub.publish(plan);
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(20.0);
+  while (master.getCost(20, 28) != 186 && ros::WallTime::now() < deadline)
+  {
+    ros::spinOnce();
+    ros::WallDuration(0.01).sleep();  // polling for the message's arrival, bounded by the deadline
+    lc.updateMap(0.0, 0.0, 0.0);
+  }
+  EXPECT_EQ(master.getCost(20, 28), 186);
+  EXPECT_EQ(master.getCost(20, 12), 12);
 }
 
 // Costmap2DROS::reconfigureCB resizes the master on every reconfigure while its size is not locked, to

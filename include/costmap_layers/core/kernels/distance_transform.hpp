@@ -105,6 +105,12 @@ struct CostMergeRule
 {
   uint8_t special = 255;
   uint8_t special_threshold = 253;
+  /// The rule for one cell (the engine applies it many cells at a time).
+  uint8_t apply(uint8_t old, uint8_t c) const
+  {
+    if (old == special) return c >= special_threshold ? c : special;
+    return old > c ? old : c;
+  }
 };
 
 /// Buffers reused across calls (they grow to the largest size used, then nothing is allocated).

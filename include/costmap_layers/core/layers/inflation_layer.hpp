@@ -33,6 +33,8 @@ struct InflationConfig
 /// num_threads (1..64; 0 or -1: half the cores, at least one, as Nav2's -1) and custom_inscribed_radius
 /// (-1 or [0, limit]). Throws std::invalid_argument naming the parameter.
 InflationConfig parseInflationConfig(const ParamReader& params);
+/// num_threads (1..64; 0 or -1: half the cores, at least one), for every layer that inflates.
+int parseInflationThreads(const ParamReader& params, int def);
 
 class InflationLayer : public Layer
 {
@@ -65,6 +67,13 @@ public:
 
 protected:
   void onInitialize() override;
+  /// onInitialize() with a configuration already parsed (a layer built on this one reads its own).
+  void initializeWith(const InflationConfig& config);
+  /// The cells distances are measured from (lethal; unknown too with inflate_around_unknown), and how a
+  /// cost is written into a cell (unknown cells take only costs from the threshold inflate_unknown sets):
+  /// for a layer that merges further distance costs the same way.
+  SourceRange sourceRange() const;
+  CostMergeRule mergeRule() const;
 
 private:
   /// Rebuilds the cost table when the radius, factor, resolution or inscribed radius changed.
