@@ -120,26 +120,40 @@ PointCloud2Data cameraCloud()
   return c;
 }
 
+/// A 200x200 rolling costmap at 5 cm with one VoxelLayer (16 levels of 0.1 m) reading a camera cloud.
+struct CameraVoxelRig
+{
+  explicit CameraVoxelRig(bool publish_voxel_map = false) : lc("odom", true, false)
+  {
+    lc.resizeMap(200, 200, 0.05, 0, 0);
+    ParamValue p = paramMap({{"observation_sources", S("camera")},
+                             {"z_voxels", I(16)},
+                             {"z_resolution", D(0.1)},
+                             {"publish_voxel_map", B(publish_voxel_map)}});
+    p.set("camera", paramMap({{"data_type", S("PointCloud2")},
+                              {"clearing", B(true)},
+                              {"marking", B(true)},
+                              {"min_obstacle_height", D(-1.0)}}));
+    ctx = std::make_shared<FakeContext>(p);
+    voxels = std::make_shared<VoxelLayer>();
+    voxels->initialize(&lc, "voxels", ctx);
+    ctx->bind(*voxels);
+    lc.addPlugin(voxels);
+  }
+  LayeredCostmap lc;
+  std::shared_ptr<FakeContext> ctx;
+  std::shared_ptr<VoxelLayer> voxels;
+};
+
 void BM_VoxelLayerCameraCloud(benchmark::State& state)
 {
   const bool parse_only = state.range(0) == 0;
-  LayeredCostmap lc("odom", true, false);
-  lc.resizeMap(200, 200, 0.05, 0, 0);
-  ParamValue p = paramMap({{"observation_sources", S("camera")}, {"z_voxels", I(16)}, {"z_resolution", D(0.1)}});
-  p.set("camera", paramMap({{"data_type", S("PointCloud2")},
-                            {"clearing", B(true)},
-                            {"marking", B(true)},
-                            {"min_obstacle_height", D(-1.0)}}));
-  auto ctx = std::make_shared<FakeContext>(p);
-  auto voxels = std::make_shared<VoxelLayer>();
-  voxels->initialize(&lc, "voxels", ctx);
-  ctx->bind(*voxels);
-  lc.addPlugin(voxels);
+  CameraVoxelRig rig;
   const PointCloud2Data cloud = cameraCloud();
   for (auto _ : state)
   {
-    ctx->publishCloud("camera", cloud, poseAt(0.0, 0.0, 0.5));
-    if (!parse_only) lc.updateMap(0.0, 0.0, 0.0);
+    rig.ctx->publishCloud("camera", cloud, poseAt(0.0, 0.0, 0.5));
+    if (!parse_only) rig.lc.updateMap(0.0, 0.0, 0.0);
     benchmark::ClobberMemory();
   }
   state.SetLabel(parse_only ? "parse+project+buffer" : "parse+project+buffer+raytrace+mark+merge");
@@ -152,21 +166,8 @@ COSTMAP_BENCH(BM_VoxelLayerCameraCloud)->Arg(0)->Arg(1)->Unit(benchmark::kMillis
 void BM_VoxelOutputsOnDemand(benchmark::State& state)
 {
   const int mode = static_cast<int>(state.range(0));
-  LayeredCostmap lc("odom", true, false);
-  lc.resizeMap(200, 200, 0.05, 0, 0);
-  ParamValue p = paramMap({{"observation_sources", S("camera")},
-                           {"z_voxels", I(16)},
-                           {"z_resolution", D(0.1)},
-                           {"publish_voxel_map", B(mode > 0)}});
-  p.set("camera", paramMap({{"data_type", S("PointCloud2")},
-                            {"clearing", B(true)},
-                            {"marking", B(true)},
-                            {"min_obstacle_height", D(-1.0)}}));
-  auto ctx = std::make_shared<FakeContext>(p);
-  auto voxels = std::make_shared<VoxelLayer>();
-  voxels->initialize(&lc, "voxels", ctx);
-  ctx->bind(*voxels);
-  lc.addPlugin(voxels);
+  CameraVoxelRig rig(mode > 0);
+  auto& voxels = rig.voxels;
   std::vector<VoxelPoint> points;
   std::size_t drawn = 0;
   voxels->setOutputListener([&](const OutputEvent& e) {
@@ -176,8 +177,8 @@ void BM_VoxelOutputsOnDemand(benchmark::State& state)
   const PointCloud2Data cloud = cameraCloud();
   for (auto _ : state)
   {
-    ctx->publishCloud("camera", cloud, poseAt(0.0, 0.0, 0.5));
-    lc.updateMap(0.0, 0.0, 0.0);
+    rig.ctx->publishCloud("camera", cloud, poseAt(0.0, 0.0, 0.5));
+    rig.lc.updateMap(0.0, 0.0, 0.0);
     benchmark::ClobberMemory();
   }
   state.SetLabel(mode == 0 ? "no voxel outputs" : mode == 1 ? "outputs, nobody reads" : "cube list read");

@@ -325,7 +325,7 @@ void AsymmetricInflationLayer::rebuildSideTable(double resolution)
 {
   const int cells = cellInflationRadius();
   const double factor = std::min(config_.cost_scaling_factor_left, config_.cost_scaling_factor_right);
-  const SideKey key{cells, factor, resolution, inscribedRadius()};
+  const TableKey key{cells, factor, resolution, inscribedRadius()};
   if (key == side_key_) return;
   const uint64_t cap_sq = static_cast<uint64_t>(cells) * static_cast<uint64_t>(cells);
   const double inscribed = key.inscribed;

@@ -146,16 +146,7 @@ private:
   bool index_ok_ = false;
   std::vector<PathSegment> segments_;
   PathSideIndex index_;
-  struct SideKey
-  {
-    int cells = -1;
-    double factor = 0, resolution = 0, inscribed = 0;
-    bool operator==(const SideKey& o) const
-    {
-      return cells == o.cells && factor == o.factor && resolution == o.resolution && inscribed == o.inscribed;
-    }
-  };
-  SideKey side_key_;
+  TableKey side_key_;  ///< what side_costs_ was built for (the InflationLayer's key)
   DistanceCosts side_costs_;
   DistanceTransformScratch side_scratch_;
   std::vector<uint8_t> seeds_;  ///< 1 where a disfavoured-side boundary obstacle cell is, over the padded window

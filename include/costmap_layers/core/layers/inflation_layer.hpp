@@ -74,6 +74,16 @@ protected:
   /// for a layer that merges further distance costs the same way.
   SourceRange sourceRange() const;
   CostMergeRule mergeRule() const;
+  /// What a cost table was built for: radius [cells], factor, resolution, inscribed radius.
+  struct TableKey
+  {
+    int cells = -1;
+    double factor = 0, resolution = 0, inscribed = 0;
+    bool operator==(const TableKey& o) const
+    {
+      return cells == o.cells && factor == o.factor && resolution == o.resolution && inscribed == o.inscribed;
+    }
+  };
 
 private:
   /// Rebuilds the cost table when the radius, factor, resolution or inscribed radius changed.
@@ -86,16 +96,6 @@ private:
   double inscribed_radius_ = 0.0;
   int cell_inflation_radius_ = 0;
   bool need_reinflation_ = true;
-  /// What the table was built for: radius [cells], factor, resolution, inscribed radius.
-  struct TableKey
-  {
-    int cells = -1;
-    double factor = 0, resolution = 0, inscribed = 0;
-    bool operator==(const TableKey& o) const
-    {
-      return cells == o.cells && factor == o.factor && resolution == o.resolution && inscribed == o.inscribed;
-    }
-  };
   TableKey table_key_;
   DistanceCosts costs_;
   DistanceTransformScratch scratch_;
