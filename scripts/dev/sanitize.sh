@@ -7,6 +7,7 @@ source "$(dirname "$0")/../lib/common.sh"
 bash "$ROOT/scripts/lib/install_deps.sh"
 SAN="${SANITIZE:-address,undefined}"
 BUILD="$ROOT/build/sanitize-${SAN//,/-}"
+mkdir -p "$ROOT/build"
 cmake -S "$ROOT/test/sanitize" -B "$BUILD" -DSANITIZE="$SAN" -DCMAKE_BUILD_TYPE=RelWithDebInfo > "$BUILD.configure.log" 2>&1 \
   || { cat "$BUILD.configure.log"; exit 1; }
 cmake --build "$BUILD" -j2

@@ -102,7 +102,7 @@ bool clipSegment(PathSegment& s, double x0, double y0, double x1, double y1)
 bool PathSideIndex::build(const std::vector<PathSegment>& segments, double radius, double x0, double y0, double x1,
                           double y1, std::size_t max_entries)
 {
-  segments_ = &segments;
+  segments_.assign(segments.begin(), segments.end());
   radius_ = radius;
   x0_ = x0;
   y0_ = y0;
@@ -178,11 +178,11 @@ bool PathSideIndex::build(const std::vector<PathSegment>& segments, double radiu
 
 PathSide PathSideIndex::side(double x, double y) const
 {
-  if (!segments_ || nx_ <= 0 || ny_ <= 0) return PathSide::None;
+  if (segments_.empty() || nx_ <= 0 || ny_ <= 0) return PathSide::None;
   const int bx = std::clamp(static_cast<int>(std::floor((x - x0_) / size_)), 0, nx_ - 1);
   const int by = std::clamp(static_cast<int>(std::floor((y - y0_) / size_)), 0, ny_ - 1);
   const std::size_t b = static_cast<std::size_t>(by) * static_cast<std::size_t>(nx_) + bx;
-  return sideOfSegments(segments_->data(), indices_.data() + first_[b], first_[b + 1] - first_[b], radius_, x, y);
+  return sideOfSegments(segments_.data(), indices_.data() + first_[b], first_[b + 1] - first_[b], radius_, x, y);
 }
 
 void AsymmetricInflationLayer::onInitialize()

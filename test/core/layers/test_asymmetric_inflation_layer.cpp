@@ -185,6 +185,22 @@ TEST(AsymmetricInflationNav2, EmptyIndexGivesNoSide)
   EXPECT_EQ(index.side(2.0, 2.0), PathSide::None);
 }
 
+// The index keeps what it was built from: the caller's vector may go away (a temporary) or be
+// changed after build() without changing the answers (the sanitizer build checks the first).
+TEST(AsymmetricInflationNav2, IndexOutlivesTheSegmentsItWasBuiltFrom)
+{
+  PathSideIndex index;
+  EXPECT_TRUE(index.build(std::vector<PathSegment>{{0.0, 2.0, 4.0, 2.0}}, 1.0, 0.0, 0.0, 4.0, 4.0, 100));
+  EXPECT_EQ(index.side(1.0, 2.5), PathSide::Left);
+  EXPECT_EQ(index.side(1.0, 1.5), PathSide::Right);
+
+  std::vector<PathSegment> segs{{0.0, 2.0, 4.0, 2.0}};
+  ASSERT_TRUE(index.build(segs, 1.0, 0.0, 0.0, 4.0, 4.0, 100));
+  segs.assign(1000, PathSegment{4.0, 2.0, 0.0, 2.0});  // reversed and reallocated: the sides would swap
+  EXPECT_EQ(index.side(1.0, 2.5), PathSide::Left);
+  EXPECT_EQ(index.side(1.0, 1.5), PathSide::Right);
+}
+
 // long_segment_appears_in_all_covered_buckets: every bucket along a 3 m segment finds it.
 TEST(AsymmetricInflationNav2, LongSegmentIsFoundAlongItsWholeLength)
 {

@@ -64,7 +64,8 @@ PathSide sideOfSegments(const PathSegment* segments, const uint32_t* indices, st
 
 /// The segments near each part of a rectangle, so that sideOfSegments() looks at a few of them only:
 /// square buckets at least `radius` wide, each listing (in path order) every segment that comes within
-/// `radius` of it. Buffers are kept between builds.
+/// `radius` of it. The index holds its own copy of the segments (a caller's vector may go away or change
+/// after build()); buffers are kept between builds.
 class PathSideIndex
 {
 public:
@@ -78,7 +79,7 @@ public:
   std::size_t entries() const { return indices_.size(); }
 
 private:
-  const std::vector<PathSegment>* segments_ = nullptr;
+  std::vector<PathSegment> segments_;  ///< the segments of the last build, indices_ point into them
   double radius_ = 0, x0_ = 0, y0_ = 0, size_ = 1;
   int nx_ = 0, ny_ = 0;
   std::vector<uint32_t> first_;    ///< per bucket, where its list starts in indices_ (and one past the end)
