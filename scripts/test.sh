@@ -61,15 +61,17 @@ def cases(pattern):
     return sum(sum(1 for _ in ET.parse(f).getroot().iter("testcase"))
                for f in glob.glob(sys.argv[1] + "/**/" + pattern, recursive=True))
 n = cases("rosunit-move_base_integration.xml")
-# move_base beside costmap_2d's own plugins in every order, and launch/move_base.launch
-m = cases("rosunit-move_base_mixed_*.xml") + cases("rosunit-move_base_launch_file.xml")
+# move_base beside costmap_2d's own plugins in every order, the asymmetric inflation on navfn's plans,
+# and launch/move_base.launch
+m = cases("rosunit-move_base_mixed_*.xml") + cases("rosunit-move_base_asymmetric.xml") \
+    + cases("rosunit-move_base_launch_file.xml")
 b = cases("rosunit-bridge.xml")  # LayerBridge in costmap_2d's own LayeredCostmap (test/move_base/bridge)
 print(n, m, b)
 PY
 )
     read -r n m b <<< "$n"
     if [ "$n" -gt 0 ] && [ "$m" -gt 0 ] && [ "$b" -gt 0 ]; then
-      echo "move_base integration: $n test cases run, $m in the mixed-order and launch-file scenarios, and $b of" \
+      echo "move_base integration: $n test cases run, $m in the mixed-order, asymmetric-inflation and launch-file scenarios, and $b of" \
         "LayerBridge in costmap_2d's LayeredCostmap (costmap_2d from $costmap_2d_at)"
     else
       echo "move_base integration: FAILED to run: costmap_2d and move_base are there but no move_base test result" >&2
