@@ -20,7 +20,10 @@
 # underlay scripts/build_navigation.sh made. Its own ROS master on a free port.
 #   BENCH_PAIRS=3            rounds of A, B (and C)
 #   BENCH_SIDES="A B C"      what each round runs, in this order; N: move_base with costmap_2d's static
-#                            and inflation layers and no sensor layer (move_base's own share)
+#                            and inflation layers and no sensor layer (move_base's own share); R: no
+#                            move_base, a process that only receives the scan and the cloud
+#                            (bench_receive_only: what any sensor layer pays before it reads a point);
+#                            I: that process subscribed to nothing (its own idle cost)
 #   BENCH_SECONDS=60         the measured window of each run [s]
 #   BENCH_WARMUP=20          from move_base's start to the window [s]
 #   BENCH_AGREE_SECONDS=40   both at once: this long with the world moving, then 15 s paused; 0 = skip
@@ -54,6 +57,7 @@ MOVE_BASE="$(find_exe move_base move_base)"
 WORLD="$(find_exe costmap_layers bench_cpu_world)"
 MASK_SERVER="$(find_exe costmap_layers mask_server)"
 COSTMAP_NODE="$(find_exe costmap_layers costmap_node)"
+RECEIVE_ONLY="$(find_exe costmap_layers bench_receive_only)"
 MONITOR="$ROOT/bench/move_base/cpu_monitor.py"
 PARAMS="$ROOT/bench/move_base/move_base_cpu.yaml"
 TICKS="$(getconf CLK_TCK)"
@@ -194,6 +198,12 @@ run() { # run PAIR A|B|C|N: one run (move_base, or C's costmap_node), one result
     log="$OUT/costmap_node_${pair}.log"
     start "$log" "$COSTMAP_NODE" __ns:=/c __name:=local_costmap
     pids=("$STARTED")
+  elif [ "$side" = R ] || [ "$side" = I ]; then
+    what="receive_only"
+    ns=/receive_only
+    log="$OUT/receive_only_${pair}_${side}.log"
+    start "$log" "$RECEIVE_ONLY" __name:=receive_only _subscribe:="$([ "$side" = R ] && echo true || echo false)"
+    pids=("$STARTED")
   else
     what="move_base"
     ns=/move_base
@@ -236,7 +246,10 @@ run() { # run PAIR A|B|C|N: one run (move_base, or C's costmap_node), one result
   # cycles of each costmap that took longer than their period (costmap_2d warns of every one, naming the
   # rate; costmap_node's warning is throttled, its diagnostics give the longest cycle instead).
   cycles=$(sed -n 's/^monitor: .*local costmap update cycles in the window: \([0-9]*\).*/\1/p' "$OUT/monitor_${pair}_${side}.log")
-  if [ "$side" = C ]; then
+  if [ "$side" = R ] || [ "$side" = I ]; then
+    missed_local="-"
+    missed_global="-"
+  elif [ "$side" = C ]; then
     missed_local=$(sed -n 's/^monitor: .*longest cycle: \([0-9.]*\) s.*/\1 s longest/p' "$OUT/monitor_${pair}_${side}.log")
     missed_global="-"
   else
@@ -266,17 +279,26 @@ for p, s, c in rows:
 def span(v):
     return "mean %.2f, min %.2f, max %.2f" % (sum(v) / len(v), min(v), max(v)) if v else "none"
 names = {"A": "A (move_base, costmap_2d's layers):    ", "B": "B (move_base, costmap_layers bridged):",
-         "C": "C (costmap_node, costmap_layers):      ", "N": "N (move_base, no sensor layer):        "}
+         "C": "C (costmap_node, costmap_layers):      ", "N": "N (move_base, no sensor layer):        ",
+         "R": "R (a process receiving scan + cloud):  ", "I": "I (that process, subscribed to nothing):"}
 for s in sorted(cpu):
     print("%s CPU s per %s s: %s (%s)" % (names.get(s, s), sys.argv[2], span(list(cpu[s].values())),
                                           " ".join("%.2f" % cpu[s][p] for p in sorted(cpu[s]))))
-for s in ("B", "C", "N"):
+for s in ("B", "C", "N", "R", "I"):
     if s not in cpu or "A" not in cpu:
         continue
     rounds = sorted(set(cpu["A"]) & set(cpu[s]))
     ratios = [cpu[s][p] / cpu["A"][p] for p in rounds]
     if ratios:
         print("%s / A per round: %s; %s" % (s, " ".join("%.3f" % r for r in ratios), span(ratios)))
+# The least any move_base with sensor layers can take: its own share (N) and the receiving of the
+# sensor data (R less the receiving process's idle cost I), whatever its layers do with the data.
+if all(k in cpu for k in ("A", "N", "R")):
+    rounds = sorted(set(cpu["A"]) & set(cpu["N"]) & set(cpu["R"]))
+    floor = [(cpu["N"][p] + cpu["R"][p] - cpu.get("I", {}).get(p, 0.0)) / cpu["A"][p] for p in rounds]
+    if floor:
+        print("(N + R%s) / A per round, the floor of B / A: %s; %s" % (
+            " - I" if "I" in cpu else "", " ".join("%.3f" % r for r in floor), span(floor)))
 PY
 
 if [ "$AGREE" -gt 0 ]; then
