@@ -21,8 +21,8 @@ int main(int argc, char** argv)
   ros::Subscriber scan_sub, cloud_sub;
   if (subscribe)
   {
-    scan_sub = nh.subscribe<sensor_msgs::LaserScan>("/scan", 5,
-                                                    [&](const sensor_msgs::LaserScan::ConstPtr&) { ++scans; });
+    scan_sub =
+        nh.subscribe<sensor_msgs::LaserScan>("/scan", 5, [&](const sensor_msgs::LaserScan::ConstPtr&) { ++scans; });
     cloud_sub = nh.subscribe<sensor_msgs::PointCloud2>("/cloud", 5,
                                                        [&](const sensor_msgs::PointCloud2::ConstPtr& c)
                                                        {
