@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <thread>
 
 #include "costmap_layers/core/config/config_compat.hpp"
@@ -48,6 +49,14 @@ struct PlacedPose
 {
   double x = 0, y = 0, yaw = 0;
 };
+/// A length [m] in a log line: two decimals, as the services' lines have always printed it.
+std::string metres(double v)
+{
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.2f", v);
+  return buf;
+}
+
 std::optional<PlacedPose> placePose(const tf2_ros::Buffer& tf, const std::string& global_frame, double tolerance,
                                     const geometry_msgs::PoseStamped& pose, const std::string& field,
                                     std::string& error)
@@ -233,7 +242,8 @@ void CostmapNode::setUp()
       {
         std::lock_guard<std::mutex> lock(update_mutex_);
         const int n = costmap_layers::resetClearableLayers(*costmap_);
-        ROS_INFO("costmap: cleared %d clearable layer(s)", n);
+        log_->log(costmap_layers::Severity::Info, "clear",
+                  "costmap: cleared " + std::to_string(n) + " clearable layer(s)");
         return true;
       });
   clear_around_srv_ = private_nh_.advertiseService<std_srvs::Empty::Request, std_srvs::Empty::Response>(
@@ -244,11 +254,15 @@ void CostmapNode::setUp()
         const int n = costmap_layers::clearClearableLayersAround(*costmap_, last_x_, last_y_, config_.reset_distance);
         if (n < 0)
         {
-          ROS_ERROR("costmap: clear_around_robot refused: robot position (%f, %f) or reset_distance %f not valid",
-                    last_x_, last_y_, config_.reset_distance);
+          log_->log(costmap_layers::Severity::Error, "clear_around_robot",
+                    "costmap: clear_around_robot refused: robot position (" + std::to_string(last_x_) + ", " +
+                        std::to_string(last_y_) + ") or reset_distance " + std::to_string(config_.reset_distance) +
+                        " not valid");
           return false;
         }
-        ROS_INFO("costmap: cleared %d clearable layer(s) outside %.2f m around the robot", n, config_.reset_distance);
+        log_->log(costmap_layers::Severity::Info, "clear_around_robot",
+                  "costmap: cleared " + std::to_string(n) + " clearable layer(s) outside " +
+                      metres(config_.reset_distance) + " m around the robot");
         return true;
       });
   advertiseNav2Services();
@@ -264,8 +278,9 @@ void CostmapNode::advertiseNav2Services()
         res.success = true;
         if (req.poses.size() > costmap_layers::kMaxCostQueryPoses)
         {
-          ROS_ERROR("costmap: get_cost refused: poses holds %zu poses, at most %zu", req.poses.size(),
-                    costmap_layers::kMaxCostQueryPoses);
+          log_->log(costmap_layers::Severity::Error, "get_cost/poses",
+                    "costmap: get_cost refused: poses holds " + std::to_string(req.poses.size()) + " poses, at most " +
+                        std::to_string(costmap_layers::kMaxCostQueryPoses));
           res.success = false;
           return true;
         }
@@ -281,8 +296,9 @@ void CostmapNode::advertiseNav2Services()
           if (!placed[k] && refused++ == 0) first_error = error;
         }
         if (refused > 0)
-          ROS_ERROR("costmap: get_cost: %zu pose(s) answered 255 (no information): %s%s", refused, first_error.c_str(),
-                    refused > 1 ? " (and others)" : "");
+          log_->log(costmap_layers::Severity::Error, "get_cost",
+                    "costmap: get_cost: " + std::to_string(refused) + " pose(s) answered 255 (no information): " +
+                        first_error + (refused > 1 ? " (and others)" : ""));
         std::lock_guard<std::mutex> lock(update_mutex_);
         const costmap_layers::Costmap2D& grid = costmap_->getCostmap();
         const costmap_layers::Footprint& footprint = costmap_->getFootprint();
@@ -308,9 +324,11 @@ void CostmapNode::advertiseNav2Services()
         const int n = costmap_layers::clearEntirely(*costmap_, req.plugins, error);
         res.success = n >= 0;
         if (n < 0)
-          ROS_ERROR("costmap: clear_entirely refused, nothing cleared: %s", error.c_str());
+          log_->log(costmap_layers::Severity::Error, "clear_entirely",
+                    "costmap: clear_entirely refused, nothing cleared: " + error);
         else
-          ROS_INFO("costmap: clear_entirely reset %d layer(s)", n);
+          log_->log(costmap_layers::Severity::Info, "clear_entirely",
+                    "costmap: clear_entirely reset " + std::to_string(n) + " layer(s)");
         return true;
       });
   clear_except_srv_ = private_nh_.advertiseService<costmap_layers::ClearCostmapExceptRegion::Request,
@@ -323,8 +341,9 @@ void CostmapNode::advertiseNav2Services()
         const auto robot = robotPose();  // the pose now, as Nav2 asks tf for it; logged when missing
         if (!robot)
         {
-          ROS_ERROR("costmap: clear_except_region refused: no robot pose (%s in %s)", config_.robot_base_frame.c_str(),
-                    config_.global_frame.c_str());
+          log_->log(costmap_layers::Severity::Error, "clear_except_region",
+                    "costmap: clear_except_region refused: no robot pose (" + config_.robot_base_frame + " in " +
+                        config_.global_frame + ")");
           return true;
         }
         std::lock_guard<std::mutex> lock(update_mutex_);
@@ -333,9 +352,12 @@ void CostmapNode::advertiseNav2Services()
                                                   costmap_layers::SquareClear::KeepSquare, req.plugins, error);
         res.success = n >= 0;
         if (n < 0)
-          ROS_ERROR("costmap: clear_except_region refused, nothing cleared: %s", error.c_str());
+          log_->log(costmap_layers::Severity::Error, "clear_except_region",
+                    "costmap: clear_except_region refused, nothing cleared: " + error);
         else
-          ROS_INFO("costmap: cleared %d layer(s) outside %.2f m around the robot", n, req.reset_distance);
+          log_->log(costmap_layers::Severity::Info, "clear_except_region",
+                    "costmap: cleared " + std::to_string(n) + " layer(s) outside " + metres(req.reset_distance) +
+                        " m around the robot");
         return true;
       });
   clear_around_pose_srv_ = private_nh_.advertiseService<costmap_layers::ClearCostmapAroundPose::Request,
@@ -349,7 +371,8 @@ void CostmapNode::advertiseNav2Services()
         const auto p = placePose(tf_, config_.global_frame, config_.transform_tolerance, req.pose, "pose", error);
         if (!p)
         {
-          ROS_ERROR("costmap: clear_around_pose refused, nothing cleared: %s", error.c_str());
+          log_->log(costmap_layers::Severity::Error, "clear_around_pose",
+                    "costmap: clear_around_pose refused, nothing cleared: " + error);
           return true;
         }
         std::lock_guard<std::mutex> lock(update_mutex_);
@@ -357,9 +380,12 @@ void CostmapNode::advertiseNav2Services()
                                                   costmap_layers::SquareClear::ClearSquare, req.plugins, error);
         res.success = n >= 0;
         if (n < 0)
-          ROS_ERROR("costmap: clear_around_pose refused, nothing cleared: %s", error.c_str());
+          log_->log(costmap_layers::Severity::Error, "clear_around_pose",
+                    "costmap: clear_around_pose refused, nothing cleared: " + error);
         else
-          ROS_INFO("costmap: cleared %d layer(s) within %.2f m around (%.2f, %.2f)", n, req.reset_distance, p->x, p->y);
+          log_->log(costmap_layers::Severity::Info, "clear_around_pose",
+                    "costmap: cleared " + std::to_string(n) + " layer(s) within " + metres(req.reset_distance) +
+                        " m around (" + metres(p->x) + ", " + metres(p->y) + ")");
         return true;
       });
 }

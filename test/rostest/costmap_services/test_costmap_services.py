@@ -8,6 +8,8 @@ import math
 import os
 import struct
 import sys
+import threading
+import time
 import unittest
 
 import rospy
@@ -185,6 +187,46 @@ class CostmapServicesTest(unittest.TestCase):
         # Every layer is reset; the static layer draws its map again, so S comes back.
         self.assertTrue(self.entirely([]).success)
         self.wait_costs(MARKS + [S], [0.0, 0.0, 0.0, 0.0, 254.0])
+
+    def test_zz_refusals_flooding_a_service_are_logged_once_per_period(self):
+        # Any peer may call the services as fast as it likes: each refusal is still answered (255, success
+        # false), but its error line is throttled per service (ThrottledLog, 5 s), not one per call.
+        from rosgraph_msgs.msg import Log
+        lines = []
+        cond = threading.Condition()
+
+        def on_log(m):
+            if m.name == "/costmap_node" and m.level >= Log.ERROR:
+                with cond:
+                    lines.append(m.msg)
+                    cond.notify_all()
+
+        sub = rospy.Subscriber("/rosout", Log, on_log)
+        deadline = rospy.Time.now() + rospy.Duration(30.0)
+        while sub.get_num_connections() < 1 and rospy.Time.now() < deadline:
+            rospy.sleep(0.05)  # polled with a deadline, not a fixed wait
+        self.assertGreaterEqual(sub.get_num_connections(), 1, "no connection to /rosout")
+        calls = 0
+        start = time.monotonic()
+        while time.monotonic() - start < 6.0:  # longer than one throttle period
+            r = self.get_cost(False, [pose(1.0, 1.0, "nowhere")])
+            self.assertEqual(list(r.costs), [255.0])
+            self.assertFalse(r.success)
+            calls += 1
+        # A refusal of another kind (too many poses: its own key, never logged before) is said at once,
+        # and once it has arrived every line of the flood has (one publisher's messages come in order).
+        too_many = self.get_cost(False, [pose(*F)] * 10001)
+        self.assertFalse(too_many.success)
+        with cond:
+            cond.wait_for(lambda: any(m.endswith("[get_cost/poses]") for m in lines), timeout=30.0)
+            seen = list(lines)
+        sub.unregister()
+        self.assertTrue(any("10001" in m and m.endswith("[get_cost/poses]") for m in seen),
+                        "the refusal of 10001 poses was not logged: %s" % seen[-5:])
+        flood = [m for m in seen if "'nowhere'" in m and m.endswith("[get_cost]")]
+        self.assertGreater(calls, 50)
+        # 6 s of refusals: one line, or two when test_get_cost's refusal had just started a period.
+        self.assertTrue(1 <= len(flood) <= 2, "%d lines for %d refused calls: %s" % (len(flood), calls, flood[:3]))
 
 
 if __name__ == "__main__":
