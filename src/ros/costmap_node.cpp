@@ -242,7 +242,7 @@ void CostmapNode::setUp()
       {
         std::lock_guard<std::mutex> lock(update_mutex_);
         const int n = costmap_layers::resetClearableLayers(*costmap_);
-        log_->log(costmap_layers::Severity::Info, "clear",
+        log_->log(costmap_layers::Severity::Info, "clear/cleared",
                   "costmap: cleared " + std::to_string(n) + " clearable layer(s)");
         return true;
       });
@@ -260,7 +260,7 @@ void CostmapNode::setUp()
                         " not valid");
           return false;
         }
-        log_->log(costmap_layers::Severity::Info, "clear_around_robot",
+        log_->log(costmap_layers::Severity::Info, "clear_around_robot/cleared",
                   "costmap: cleared " + std::to_string(n) + " clearable layer(s) outside " +
                       metres(config_.reset_distance) + " m around the robot");
         return true;
@@ -327,7 +327,7 @@ void CostmapNode::advertiseNav2Services()
           log_->log(costmap_layers::Severity::Error, "clear_entirely",
                     "costmap: clear_entirely refused, nothing cleared: " + error);
         else
-          log_->log(costmap_layers::Severity::Info, "clear_entirely",
+          log_->log(costmap_layers::Severity::Info, "clear_entirely/cleared",
                     "costmap: clear_entirely reset " + std::to_string(n) + " layer(s)");
         return true;
       });
@@ -355,7 +355,7 @@ void CostmapNode::advertiseNav2Services()
           log_->log(costmap_layers::Severity::Error, "clear_except_region",
                     "costmap: clear_except_region refused, nothing cleared: " + error);
         else
-          log_->log(costmap_layers::Severity::Info, "clear_except_region",
+          log_->log(costmap_layers::Severity::Info, "clear_except_region/cleared",
                     "costmap: cleared " + std::to_string(n) + " layer(s) outside " + metres(req.reset_distance) +
                         " m around the robot");
         return true;
@@ -383,7 +383,7 @@ void CostmapNode::advertiseNav2Services()
           log_->log(costmap_layers::Severity::Error, "clear_around_pose",
                     "costmap: clear_around_pose refused, nothing cleared: " + error);
         else
-          log_->log(costmap_layers::Severity::Info, "clear_around_pose",
+          log_->log(costmap_layers::Severity::Info, "clear_around_pose/cleared",
                     "costmap: cleared " + std::to_string(n) + " layer(s) within " + metres(req.reset_distance) +
                         " m around (" + metres(p->x) + ", " + metres(p->y) + ")");
         return true;

@@ -213,6 +213,10 @@ class CostmapServicesTest(unittest.TestCase):
             self.assertEqual(list(r.costs), [255.0])
             self.assertFalse(r.success)
             calls += 1
+        # A refusal right after a success of the same service is said: the lines of what was done have
+        # keys of their own (clear_around_pose last refused in test_clear_around_pose, over 6 s ago).
+        self.assertTrue(self.around_pose(pose(*B), 0.5, []).success)
+        self.assertFalse(self.around_pose(pose(*B), float("nan"), []).success)
         # A refusal of another kind (too many poses: its own key, never logged before) is said at once,
         # and once it has arrived every line of the flood has (one publisher's messages come in order).
         too_many = self.get_cost(False, [pose(*F)] * 10001)
@@ -223,6 +227,8 @@ class CostmapServicesTest(unittest.TestCase):
         sub.unregister()
         self.assertTrue(any("10001" in m and m.endswith("[get_cost/poses]") for m in seen),
                         "the refusal of 10001 poses was not logged: %s" % seen[-5:])
+        self.assertTrue(any("reset_distance nan" in m and m.endswith("[clear_around_pose]") for m in seen),
+                        "the refusal after a success was not logged: %s" % seen[-5:])
         flood = [m for m in seen if "'nowhere'" in m and m.endswith("[get_cost]")]
         self.assertGreater(calls, 50)
         # 6 s of refusals: one line, or two when test_get_cost's refusal had just started a period.
