@@ -117,7 +117,7 @@ class ErrorLog:
         self.node, self.error = node, Log.ERROR if level is None else level
         self.lines = []
         self.cond = threading.Condition()
-        rospy.Subscriber("/rosout", Log, self._on_log)
+        self.sub = rospy.Subscriber("/rosout", Log, self._on_log)
 
     def _on_log(self, m):
         if m.name == self.node and m.level >= self.error:

@@ -8,7 +8,6 @@ import math
 import os
 import struct
 import sys
-import threading
 import time
 import unittest
 
@@ -23,7 +22,7 @@ from costmap_layers.srv import (ClearCostmapAroundPose, ClearCostmapExceptRegion
                                 GetCosts)
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from grid_watch import CycleWatcher  # noqa: E402
+from grid_watch import CycleWatcher, ErrorLog, logged_with_key  # noqa: E402
 
 NS = "/costmap_node/"
 # Cell centres [m] of the marks, the static cell and a free cell.
@@ -191,21 +190,11 @@ class CostmapServicesTest(unittest.TestCase):
     def test_zz_refusals_flooding_a_service_are_logged_once_per_period(self):
         # Any peer may call the services as fast as it likes: each refusal is still answered (255, success
         # false), but its error line is throttled per service (ThrottledLog, 5 s), not one per call.
-        from rosgraph_msgs.msg import Log
-        lines = []
-        cond = threading.Condition()
-
-        def on_log(m):
-            if m.name == "/costmap_node" and m.level >= Log.ERROR:
-                with cond:
-                    lines.append(m.msg)
-                    cond.notify_all()
-
-        sub = rospy.Subscriber("/rosout", Log, on_log)
+        log = ErrorLog("/costmap_node")
         deadline = rospy.Time.now() + rospy.Duration(30.0)
-        while sub.get_num_connections() < 1 and rospy.Time.now() < deadline:
+        while log.sub.get_num_connections() < 1 and rospy.Time.now() < deadline:
             rospy.sleep(0.05)  # polled with a deadline, not a fixed wait
-        self.assertGreaterEqual(sub.get_num_connections(), 1, "no connection to /rosout")
+        self.assertGreaterEqual(log.sub.get_num_connections(), 1, "no connection to /rosout")
         calls = 0
         start = time.monotonic()
         while time.monotonic() - start < 6.0:  # longer than one throttle period
@@ -221,15 +210,14 @@ class CostmapServicesTest(unittest.TestCase):
         # and once it has arrived every line of the flood has (one publisher's messages come in order).
         too_many = self.get_cost(False, [pose(*F)] * 10001)
         self.assertFalse(too_many.success)
-        with cond:
-            cond.wait_for(lambda: any(m.endswith("[get_cost/poses]") for m in lines), timeout=30.0)
-            seen = list(lines)
-        sub.unregister()
-        self.assertTrue(any("10001" in m and m.endswith("[get_cost/poses]") for m in seen),
-                        "the refusal of 10001 poses was not logged: %s" % seen[-5:])
-        self.assertTrue(any("reset_distance nan" in m and m.endswith("[clear_around_pose]") for m in seen),
+        marker = log.wait("get_cost/poses", ("10001",), timeout=30.0)
+        log.sub.unregister()
+        with log.cond:
+            seen = list(log.lines)
+        self.assertTrue(marker, "the refusal of 10001 poses was not logged: %s" % seen[-5:])
+        self.assertTrue(logged_with_key(seen, "clear_around_pose", "nan"),
                         "the refusal after a success was not logged: %s" % seen[-5:])
-        flood = [m for m in seen if "'nowhere'" in m and m.endswith("[get_cost]")]
+        flood = [m for m in logged_with_key(seen, "get_cost") if "'nowhere'" in m]
         self.assertGreater(calls, 50)
         # 6 s of refusals: one line, or two when test_get_cost's refusal had just started a period.
         self.assertTrue(1 <= len(flood) <= 2, "%d lines for %d refused calls: %s" % (len(flood), calls, flood[:3]))
