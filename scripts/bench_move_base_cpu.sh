@@ -22,7 +22,7 @@
 #   BENCH_SIDES="A B C"      what each round runs, in this order; N: move_base with costmap_2d's static
 #                            and inflation layers and no sensor layer (move_base's own share); R: no
 #                            move_base, a process that only receives the scan and the cloud
-#                            (bench_receive_only: what any sensor layer pays before it reads a point);
+#                            (move_base_receive_only: what any sensor layer pays before it reads a point);
 #                            I: that process subscribed to nothing (its own idle cost)
 #   BENCH_SECONDS=60         the measured window of each run [s]
 #   BENCH_WARMUP=20          from move_base's start to the window [s]
@@ -54,10 +54,10 @@ find_exe() {  # find_exe PACKAGE NAME
   catkin_find --first-only --libexec "$1" "$2" 2> /dev/null | grep . || die "$1's $2 not found (is the build complete?)"
 }
 MOVE_BASE="$(find_exe move_base move_base)"
-WORLD="$(find_exe costmap_layers bench_cpu_world)"
+WORLD="$(find_exe costmap_layers move_base_cpu_world)"
 MASK_SERVER="$(find_exe costmap_layers mask_server)"
 COSTMAP_NODE="$(find_exe costmap_layers costmap_node)"
-RECEIVE_ONLY="$(find_exe costmap_layers bench_receive_only)"
+RECEIVE_ONLY="$(find_exe costmap_layers move_base_receive_only)"
 MONITOR="$ROOT/bench/move_base/cpu_monitor.py"
 PARAMS="$ROOT/bench/move_base/move_base_cpu.yaml"
 TICKS="$(getconf CLK_TCK)"
