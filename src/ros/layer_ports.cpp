@@ -20,6 +20,7 @@
 #include "costmap_layers/Nav2SpeedLimit.h"
 #include "costmap_layers/SpeedLimits.h"
 #include "costmap_layers/core/filters/costmap_filter.hpp"
+#include "costmap_layers/ros/inline_callback_queue.hpp"
 #include "costmap_layers/ros/port_dispatch.hpp"
 #include "costmap_layers/ros/tf_gate.hpp"
 #include "costmap_layers/ros/voxel_output.hpp"
@@ -390,36 +391,16 @@ ros::Subscriber LayerPorts::subscribePort(const std::string& topic, uint32_t que
 
 namespace
 {
-/// The wall timer that retries a gate's waiting readings, running only while some wait. A timer that
-/// fired every kGateRetryPeriod whether or not anything waited woke the node 50 times a second per
-/// sensor source (the timer thread, then the spinner: two context switches each); inside move_base,
-/// with one laser and one camera, that was a sizeable part of what the sensor path cost.
-template <class Msg>
-struct GateRetry
-{
-  std::mutex mutex;
-  ros::WallTimer timer;
-
-  /// Starts or stops the timer as readings wait in `gate` or not. The count is read under this mutex,
-  /// so whichever of two callbacks comes last sets the timer for the queue as it is then.
-  void follow(const TfGate<Msg>& gate)
-  {
-    std::lock_guard<std::mutex> lock(mutex);
-    if (gate.waiting() > 0)
-      timer.start();  // no-op when running; the first retry comes one period after the start
-    else
-      timer.stop();
-  }
-};
-
-/// A tf gate fed by a subscription and retried by a wall timer. Declared in this order so that the
-/// timer and the subscription end before the gate; callbacks still in flight hold the gate through
-/// their own reference, and those that come after it is gone do nothing.
+/// A tf gate fed by a subscription whose messages go straight from roscpp's network thread into the
+/// gate (InlineCallbackQueue), and retried whenever tf changes. Declared in this order so that the
+/// subscription ends before its queue, and both and the wake before the gate; callbacks still in flight
+/// hold the gate through their own reference, and those that come after it is gone do nothing.
 template <class Msg>
 struct SubscribedGate
 {
   std::shared_ptr<TfGate<Msg>> gate;
-  std::shared_ptr<GateRetry<Msg>> retry;
+  std::unique_ptr<TfChangeWake> wake;
+  std::unique_ptr<InlineCallbackQueue> queue;
   ros::Subscriber subscriber;
 };
 }  // namespace
@@ -440,26 +421,30 @@ void LayerPorts::subscribeSensor(const std::string& topic, const std::string& se
   };
   auto in = std::make_shared<SubscribedGate<Msg>>();
   in->gate = std::make_shared<TfGate<Msg>>(tf_, global_frame_, sensor_frame, ready, failed);
-  in->retry = std::make_shared<GateRetry<Msg>>();
   std::weak_ptr<TfGate<Msg>> weak = in->gate;
-  std::weak_ptr<GateRetry<Msg>> weak_retry = in->retry;
-  // Both callbacks: the gate first, then the timer follows its queue.
-  auto arrive = [weak, weak_retry](const typename Msg::ConstPtr& msg)
-  {
-    const auto g = weak.lock();
-    if (!g) return;
-    g->arrive(msg);
-    if (const auto r = weak_retry.lock()) r->follow(*g);
-  };
-  in->retry->timer = public_nh_.createWallTimer(
-      ros::WallDuration(kGateRetryPeriod), [arrive](const ros::WallTimerEvent&) { arrive(nullptr); }, false, false);
+  // Readings that wait for tf are retried in the thread that brings the transform (the tf listener's),
+  // at once and with no timer; the count is a cheap look for the many changes nothing waits on.
+  in->wake = std::make_unique<TfChangeWake>(tf_,
+                                            [weak]
+                                            {
+                                              const auto g = weak.lock();
+                                              if (g && g->waiting() > 0) g->arrive(nullptr);
+                                            });
   auto receipts = receiptsFor(topic);
-  in->subscriber = public_nh_.subscribe<Msg>(resolveTopic(topic), 5,
-                                             [arrive, receipts](const typename Msg::ConstPtr& msg)
-                                             {
-                                               receipts->note();
-                                               arrive(msg);
-                                             });
+  const std::shared_ptr<ThrottledLog> log = log_;
+  const std::string key = source.owner + topic + "/callback", what = source.owner + ": on " + topic + ": ";
+  in->queue = std::make_unique<InlineCallbackQueue>([log, key, what](const std::string& problem)
+                                                    { log->log(costmap_layers::Severity::Error, key, what + problem); });
+  ros::SubscribeOptions options;
+  options.template init<Msg>(resolveTopic(topic), 5,
+                             [weak, receipts](const typename Msg::ConstPtr& msg)
+                             {
+                               receipts->note();
+                               if (const auto g = weak.lock()) g->arrive(msg);
+                             });
+  options.callback_queue = in->queue.get();
+  options.allow_concurrent_callbacks = true;  // the gate has a lock of its own; see InlineCallbackQueue
+  in->subscriber = public_nh_.subscribe(options);
   sensor_inputs_.push_back(in);
 }
 }  // namespace costmap_layers_ros

@@ -7,6 +7,28 @@
 
 namespace costmap_layers_ros
 {
+TfChangeWake::TfChangeWake(tf2::BufferCore& tf, std::function<void()> retry) : shared_(std::make_shared<Shared>())
+{
+  shared_->retry = std::move(retry);
+  // The slot holds the shared state, not this object: a signal already under way when the destructor
+  // disconnects finds alive false.
+  connection_ = tf._addTransformsChangedListener(
+      [shared = shared_]
+      {
+        std::lock_guard<std::mutex> lock(shared->mutex);
+        if (shared->alive) shared->retry();
+      });
+}
+
+TfChangeWake::~TfChangeWake()
+{
+  {
+    std::lock_guard<std::mutex> lock(shared_->mutex);  // waits for a retry under way
+    shared_->alive = false;
+  }
+  connection_.disconnect();  // safe when the buffer has gone first
+}
+
 GateFailure gateFailure(const std::string& owner, const std::string& topic, const std::string& global,
                         const std::string& sensor_frame, const std::string& frame_id, const ros::Time& stamp,
                         const ros::Time& now, TfVerdict verdict)

@@ -31,31 +31,42 @@ std::string tfStampProblem(const ros::Time& stamp, const ros::Duration& cache_le
 }
 
 GuardedTfListener::GuardedTfListener(tf2_ros::Buffer& buffer, std::shared_ptr<ThrottledLog> log, std::string owner)
-    : buffer_(buffer), log_(std::move(log)), owner_(std::move(owner))
+    : buffer_(buffer),
+      log_(std::move(log)),
+      owner_(std::move(owner)),
+      queue_([this](const std::string& problem)
+             { log_->log(costmap_layers::Severity::Error, owner_ + "/tf/callback", owner_ + ": tf: " + problem); })
 {
   nh_.setCallbackQueue(&queue_);
-  // As tf2_ros: /tf in order and without delay, /tf_static latched by its publishers.
-  tf_sub_ = nh_.subscribe<tf2_msgs::TFMessage>(
-      "/tf", 100, [this](const ros::MessageEvent<const tf2_msgs::TFMessage>& e) { receive(e, false); },
-      ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());
-  static_sub_ = nh_.subscribe<tf2_msgs::TFMessage>(
-      "/tf_static", 100, [this](const ros::MessageEvent<const tf2_msgs::TFMessage>& e) { receive(e, true); },
-      ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());
-  spinner_ = std::make_unique<ros::AsyncSpinner>(1, &queue_);
-  spinner_->start();
-  // Look-ups with a timeout may wait: this thread fills the buffer meanwhile (tf2_ros says the same).
+  // As tf2_ros: /tf in order and without delay, /tf_static latched by its publishers. Each message goes
+  // into the buffer in roscpp's network thread, as it is read (InlineCallbackQueue).
+  const auto subscribe = [this](const std::string& topic, bool is_static)
+  {
+    ros::SubscribeOptions options;
+    options.init<tf2_msgs::TFMessage>(topic, 100,
+                                      [this, is_static](const ros::MessageEvent<const tf2_msgs::TFMessage>& e)
+                                      { receive(e, is_static); });
+    options.transport_hints = ros::TransportHints().tcpNoDelay();
+    options.allow_concurrent_callbacks = true;  // receive() takes a lock of its own
+    return nh_.subscribe(options);
+  };
+  tf_sub_ = subscribe("/tf", false);
+  static_sub_ = subscribe("/tf_static", true);
+  // Look-ups with a timeout may wait: the network thread fills the buffer meanwhile (as tf2_ros's thread).
   buffer_.setUsingDedicatedThread(true);
 }
 
 GuardedTfListener::~GuardedTfListener()
 {
-  spinner_->stop();
-  tf_sub_.shutdown();
+  tf_sub_.shutdown();  // returns once a message being received is in the buffer; none comes after
   static_sub_.shutdown();
 }
 
 void GuardedTfListener::receive(const ros::MessageEvent<const tf2_msgs::TFMessage>& event, bool is_static)
 {
+  // One message at a time, in arrival order: both topics come through roscpp's network thread, but a
+  // publisher in this process delivers in its own thread.
+  std::lock_guard<std::mutex> lock(receive_mutex_);
   const ros::Time now = ros::Time::now();
   if (now < last_update_)
   {

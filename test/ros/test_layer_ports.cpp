@@ -8,9 +8,12 @@
 
 #include <boost/make_shared.hpp>
 #include <cmath>
+#include <condition_variable>
+#include <mutex>
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -20,6 +23,7 @@
 
 using costmap_layers::Severity;
 using costmap_layers_ros::PortSource;
+using costmap_layers_ros::TfChangeWake;
 using costmap_layers_ros::TfGate;
 using costmap_layers_ros::TfVerdict;
 
@@ -472,6 +476,112 @@ TEST(TfGate, ACloudGoesThroughTheSameGate)
             "header.stamp 99.000 s (11.500 s before now) is older than every transform tf keeps "
             "[/costmap_node/layer/cloud/tf/stamp]");
 }
+
+// ---------------------------------------------------------------- retried when tf changes
+
+// LayerPorts retries a gate from tf's transforms-changed signal, as below: a reading that waits goes as
+// soon as tf gets the transform it waited for, with no retry of its own and no timer.
+TEST(TfChangeWake, AWaitingReadingGoesWhenTfGetsItsTransform)
+{
+  SensorRig r;
+  auto gate = r.gate();
+  int retries = 0;
+  TfChangeWake wake(r.buffer,
+                    [&]
+                    {
+                      ++retries;
+                      if (gate->waiting() > 0) gate->arrive(nullptr);
+                    });
+  gate->arrive(scan("camera", 105.0));  // base_link -> camera not known yet
+  EXPECT_EQ(gate->waiting(), 1u);
+  r.buffer.setTransform(transform("base_link", "sonar", 0.0, 0.1), "test", true);  // not the one it waits for
+  EXPECT_EQ(retries, 1);
+  EXPECT_TRUE(r.scans.empty());
+  EXPECT_EQ(gate->waiting(), 1u);
+  r.buffer.setTransform(transform("base_link", "camera", 0.0, -0.1), "test", true);
+  EXPECT_EQ(retries, 2);
+  ASSERT_EQ(r.scans.size(), 1u);
+  EXPECT_EQ(r.scans[0].first->stamp_ns, 105000000000u);
+  EXPECT_NEAR(r.scans[0].second.origin_x, 1.4, 1e-9);  // base_link at 105 s: x 1.5; the camera 0.1 m behind
+  EXPECT_EQ(gate->waiting(), 0u);
+  EXPECT_TRUE(r.lines.all.empty());
+}
+
+// A waiting reading that tf's newer transforms leave behind its cache is dropped and named when tf
+// changes, without another reading or a timer.
+TEST(TfChangeWake, AReadingTfLeavesBehindIsDroppedWhenTfChanges)
+{
+  SensorRig r;
+  auto gate = r.gate();
+  TfChangeWake wake(r.buffer, [&] { gate->arrive(nullptr); });
+  gate->arrive(scan("camera", 100.5));  // no camera frame yet
+  EXPECT_EQ(gate->waiting(), 1u);
+  r.buffer.setTransform(transform("map", "base_link", 112.0, 3.0), "test");  // still no camera: it waits
+  EXPECT_EQ(gate->waiting(), 1u);
+  // The camera's transforms arrive, but from 111 s on: 100.5 s is more than the 10 s tf keeps before the
+  // newest time both frames share.
+  r.buffer.setTransform(transform("base_link", "camera", 111.0, -0.1), "test");
+  EXPECT_TRUE(r.scans.empty());
+  EXPECT_EQ(gate->waiting(), 0u);
+  ASSERT_EQ(r.lines.all.size(), 1u);
+  EXPECT_NE(r.lines.all[0].second.find("is older than every transform tf keeps"), std::string::npos)
+      << r.lines.all[0].second;
+}
+
+TEST(TfChangeWake, NoRetryAfterItEnds)
+{
+  tf2::BufferCore buffer{ros::Duration(10.0)};
+  int retries = 0;
+  {
+    TfChangeWake wake(buffer, [&] { ++retries; });
+    buffer.setTransform(transform("map", "base_link", 100.0, 1.0), "test");
+    EXPECT_EQ(retries, 1);
+  }
+  buffer.setTransform(transform("map", "base_link", 101.0, 1.0), "test");
+  EXPECT_EQ(retries, 1);
+}
+
+// The wake may end while tf's thread is inside a retry (a layer unloaded while tf arrives): the
+// destructor waits for that retry to finish, so the gate and the layer behind it are not freed under it.
+TEST(TfChangeWake, EndingWaitsForARetryUnderWay)
+{
+  tf2::BufferCore buffer{ros::Duration(10.0)};
+  std::mutex m;
+  std::condition_variable cv;
+  bool entered = false, release = false;
+  std::vector<std::string> order;  // guarded by m
+  auto wake = std::make_unique<TfChangeWake>(buffer,
+                                             [&]
+                                             {
+                                               std::unique_lock<std::mutex> lock(m);
+                                               entered = true;
+                                               cv.notify_all();
+                                               cv.wait(lock, [&] { return release; });
+                                               order.push_back("retry ended");
+                                             });
+  std::thread tf_thread([&] { buffer.setTransform(transform("map", "base_link", 100.0, 1.0), "test"); });
+  {
+    std::unique_lock<std::mutex> lock(m);
+    cv.wait(lock, [&] { return entered; });
+  }
+  std::thread unloader(
+      [&]
+      {
+        wake.reset();
+        std::lock_guard<std::mutex> lock(m);
+        order.push_back("wake ended");
+      });
+  {
+    std::lock_guard<std::mutex> lock(m);
+    EXPECT_TRUE(order.empty());  // the destructor cannot have returned: the retry has not
+    release = true;
+  }
+  cv.notify_all();
+  tf_thread.join();
+  unloader.join();
+  EXPECT_EQ(order, (std::vector<std::string>{"retry ended", "wake ended"}));
+}
+
 
 // Called without the gate (or after tf lost the frame), the look-up fails: a warning, nothing delivered.
 TEST(PortDispatch, AReadingTfCannotPlaceIsDroppedWithAWarning)

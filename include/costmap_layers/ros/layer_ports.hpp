@@ -65,8 +65,9 @@ private:
   /// (port_dispatch.hpp) with cb.
   template <class Msg, class Callback>
   ros::Subscriber subscribePort(const std::string& topic, uint32_t queue, Callback cb);
-  /// Subscribes through a tf gate (tf_gate.hpp), retried by a wall timer: a reading is delivered once its
-  /// frame can be transformed into the global frame at its stamp, or dropped with a throttled warning.
+  /// Subscribes through a tf gate (tf_gate.hpp), retried whenever tf changes (TfChangeWake): a reading is
+  /// delivered once its frame can be transformed into the global frame at its stamp, or dropped with a
+  /// throttled warning.
   template <class Msg, class Reading>
   void subscribeSensor(const std::string& topic, const std::string& sensor_frame,
                        costmap_layers::SensorCallback<Reading> cb);

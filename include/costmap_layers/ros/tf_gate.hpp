@@ -1,7 +1,8 @@
 // The sensor inputs' tf gate: holds each reading until tf can place it, then hands it on in arrival
-// order; the readings tf will never place go to a failure callback. Apart from any subscription or
-// timer (LayerPorts feeds it from a ros::Subscriber and retries it from a wall timer), so that a test
-// can feed it in-memory messages against a hand-filled tf2::BufferCore and a clock of its own.
+// order; the readings tf will never place go to a failure callback. Apart from any subscription
+// (LayerPorts feeds it from a ros::Subscriber and retries it whenever tf changes, through TfChangeWake),
+// so that a test can feed it in-memory messages against a hand-filled tf2::BufferCore and a clock of its
+// own.
 //
 // This replaces tf2_ros::MessageFilter, whose addTransformableRequest() in Debian's tf2 (0.7.6) reads
 // tf's frame table without tf's lock, a race with the tf listener adding frames that TSan reports
@@ -9,6 +10,7 @@
 // canTransform(), lookupTransform(), getCacheLength() (see tf_verdict.hpp).
 #pragma once
 
+#include <boost/signals2/connection.hpp>
 #include <ros/time.h>
 #include <tf2/buffer_core.h>
 
@@ -16,6 +18,7 @@
 #include <deque>
 #include <exception>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <utility>
@@ -24,8 +27,7 @@
 
 namespace costmap_layers_ros
 {
-constexpr std::size_t kGateQueue = 10;     ///< readings that may wait for tf at once
-constexpr double kGateRetryPeriod = 0.02;  ///< [s] how often LayerPorts retries the waiting readings
+constexpr std::size_t kGateQueue = 10;  ///< readings that may wait for tf at once
 
 /// Why the gate dropped a reading, as LayerPorts logs it: a throttling key per reason (so that a stale
 /// stamp does not hide a wrong frame) and the line.
@@ -79,7 +81,8 @@ public:
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (msg) waiting_.push_back(msg);
-    std::deque<Ptr> still;
+    std::deque<Ptr>& still = spare_;  // kept from call to call: nothing allocated per reading
+    still.clear();
     for (const Ptr& m : waiting_)
     {
       // Nothing a reading carries may escape into roscpp's spinner thread (that would end the node):
@@ -112,6 +115,7 @@ public:
       still.pop_front();
     }
     waiting_.swap(still);
+    spare_.clear();  // the readings handed on are not kept alive until the next call
   }
 
   /// How many readings wait for tf.
@@ -136,5 +140,33 @@ private:
   const Clock clock_;
   mutable std::mutex mutex_;
   std::deque<Ptr> waiting_;  ///< guarded by mutex_
+  std::deque<Ptr> spare_;    ///< arrive()'s scratch queue, guarded by mutex_
+};
+
+/// Calls `retry` whenever tf gets a transform: tf2's transforms-changed signal (the hook tf's own
+/// listener uses), raised by BufferCore::setTransform() in the inserting thread (the tf listener's)
+/// after tf's locks are released. With it a gate needs no timer: a waiting reading leaves the queue
+/// only when tf changes (placed, or older than all tf keeps) or when newer readings push it out; time
+/// alone moves none (the stamp-ahead rule only relaxes as the clock goes on). A timer retrying every
+/// 20 ms while readings waited was started and stopped for most readings inside move_base (a scan comes
+/// just before tf's transform of its stamp) and cost the node four wake-ups per reading.
+/// The destructor waits for a retry in flight, and none starts after it.
+class TfChangeWake
+{
+public:
+  TfChangeWake(tf2::BufferCore& tf, std::function<void()> retry);
+  ~TfChangeWake();
+  TfChangeWake(const TfChangeWake&) = delete;
+  TfChangeWake& operator=(const TfChangeWake&) = delete;
+
+private:
+  struct Shared
+  {
+    std::mutex mutex;
+    bool alive = true;  ///< guarded by mutex
+    std::function<void()> retry;
+  };
+  std::shared_ptr<Shared> shared_;
+  boost::signals2::connection connection_;
 };
 }  // namespace costmap_layers_ros

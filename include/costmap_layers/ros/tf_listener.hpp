@@ -1,18 +1,20 @@
-// The node's tf listener: what tf2_ros::TransformListener does (a thread of its own reading /tf and
-// /tf_static into the buffer, the buffer cleared when the clock jumps back), with every transform's
+// The node's tf listener: what tf2_ros::TransformListener does (reading /tf and /tf_static into the
+// buffer, here in roscpp's network thread rather than a thread of its own, the buffer cleared when the
+// clock jumps back), with every transform's
 // stamp checked first. tf2 adds the cache length to a stamp with ROS time arithmetic, which throws
 // past the last second ROS time holds; tf2_ros's listener catches only tf2's own exceptions, so one
 // /tf message stamped secs = 0xFFFFFFFF ended the whole node.
 #pragma once
 
-#include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <tf2_msgs/TFMessage.h>
 #include <tf2_ros/buffer.h>
 
 #include <memory>
+#include <mutex>
 #include <string>
 
+#include "costmap_layers/ros/inline_callback_queue.hpp"
 #include "costmap_layers/ros/ros_layer_context.hpp"
 
 namespace costmap_layers_ros
@@ -39,11 +41,11 @@ private:
   tf2_ros::Buffer& buffer_;
   std::shared_ptr<ThrottledLog> log_;
   std::string owner_;
-  ros::CallbackQueue queue_;
+  InlineCallbackQueue queue_;  ///< outlives the subscriptions (declared before them)
   ros::NodeHandle nh_;
   ros::Subscriber tf_sub_;
   ros::Subscriber static_sub_;
-  std::unique_ptr<ros::AsyncSpinner> spinner_;
-  ros::Time last_update_;  ///< the clock at the last message (its own thread only)
+  std::mutex receive_mutex_;
+  ros::Time last_update_;  ///< the clock at the last message (guarded by receive_mutex_)
 };
 }  // namespace costmap_layers_ros
