@@ -258,7 +258,7 @@ run() { # run PAIR A|B|C|N: one run (move_base, or C's costmap_node), one result
     missed_global=$(awk -v a="$t_start" -v b="$t_end" -F'[][]' \
       '/missed its desired rate of 5.0000Hz/ { t = $4 + 0; if (t >= a && t < b) n++ } END { print n + 0 }' "$log")
   fi
-  echo "$pair $side $cpu" >> "$RESULTS"
+  echo "$pair $side $cpu $world" >> "$RESULTS"
   printf 'round %d %s: %-16s %6.2f s CPU in %d s (%4.1f %% of a core), RSS %s MB; local costmap published %s times%s;' \
     "$pair" "$side" "$what" "$cpu" "$WINDOW" "$(python3 -c "print(100 * $cpu / $WINDOW)")" "$rss" "${msgs:-?}" \
     "${cycles:+, $cycles update cycles}"
@@ -274,8 +274,10 @@ python3 - "$RESULTS" "$WINDOW" << 'PY'
 import sys
 rows = [l.split() for l in open(sys.argv[1]) if l.strip()]
 cpu = {}
-for p, s, c in rows:
+world = {}  # the world process's CPU in the same window: the same work every time, so a gauge of the host
+for p, s, c, w in rows:
     cpu.setdefault(s, {})[int(p)] = float(c)
+    world.setdefault(s, {})[int(p)] = float(w)
 def span(v):
     return "mean %.2f, min %.2f, max %.2f" % (sum(v) / len(v), min(v), max(v)) if v else "none"
 names = {"A": "A (move_base, costmap_2d's layers):    ", "B": "B (move_base, costmap_layers bridged):",
@@ -291,6 +293,14 @@ for s in ("B", "C", "N", "R", "I"):
     ratios = [cpu[s][p] / cpu["A"][p] for p in rounds]
     if ratios:
         print("%s / A per round: %s; %s" % (s, " ".join("%.3f" % r for r in ratios), span(ratios)))
+    # The same with each side's CPU divided by the world's in its own window: the world does the same
+    # work in every run, so when the host slows down (steal, other guests) its CPU grows with the side's.
+    # A gauge, not a correction: printed beside the plain ratios, never instead of them.
+    scaled = [cpu[s][p] / world[s][p] / (cpu["A"][p] / world["A"][p]) for p in rounds
+              if world[s][p] > 0 and world["A"][p] > 0 and cpu["A"][p] > 0]
+    if scaled:
+        print("%s / A per round, each over the world's CPU in its window: %s; %s" % (
+            s, " ".join("%.3f" % r for r in scaled), span(scaled)))
 # The least any move_base with sensor layers can take: its own share (N) and the receiving of the
 # sensor data (R less the receiving process's idle cost I), whatever its layers do with the data.
 if all(k in cpu for k in ("A", "N", "R")):

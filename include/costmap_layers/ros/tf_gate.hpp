@@ -85,7 +85,7 @@ public:
     still.clear();
     for (const Ptr& m : waiting_)
     {
-      // Nothing a reading carries may escape into roscpp's spinner thread (that would end the node):
+      // Nothing a reading carries may escape into roscpp's thread calling this (that would end the node):
       // a reading the rule or its callbacks throw on is dropped as one tf cannot place.
       try
       {
