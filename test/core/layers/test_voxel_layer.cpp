@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <memory>
@@ -212,6 +213,72 @@ TEST(VoxelGrid, TraceLineIsVoxelGridsBresenham)
   EXPECT_TRUE(seen.empty());
   EXPECT_EQ(VoxelGrid::lineSteps(2, 2, 7, 3, 2, 0), 7u);
   EXPECT_EQ(VoxelGrid::lineSteps(9, 0, 0, 0, 4, 3), 9u);
+}
+
+// voxel_grid's walk as it is written there: the axis with the largest change moves every step, the two
+// others each follow an error term that starts at half the driving change and moves them on when it
+// reaches it (x drives on a tie with y or z, y on a tie with z). traceLine reaches the same voxels
+// another way (every axis through an error term, moves as masks), so the two are compared on random
+// lines in every direction, with and without a cut.
+TEST(VoxelGrid, TraceLineMatchesTheDrivingAxisWalkOnRandomLines)
+{
+  const int nx = 23, ny = 17, nz = 16;
+  VoxelGrid g;
+  g.resize(nx, ny, nz);
+  using Visit = std::array<int, 4>;  // x, y, z, step
+  auto reference = [&](std::array<int, 3> a, std::array<int, 3> b, int last_step)
+  {
+    std::array<int, 3> change{}, dir{};
+    for (int i = 0; i < 3; ++i)
+    {
+      change[i] = std::abs(b[i] - a[i]);
+      dir[i] = b[i] > a[i] ? 1 : -1;
+    }
+    const int drive = change[0] >= change[1] && change[0] >= change[2] ? 0 : change[1] >= change[2] ? 1 : 2;
+    const int steps = change[drive];
+    std::array<int, 3> error{steps / 2, steps / 2, steps / 2};
+    std::vector<Visit> walk;
+    std::array<int, 3> v = a;
+    for (int k = 0; k <= std::min(steps, last_step); ++k)
+    {
+      walk.push_back({v[0], v[1], v[2], k});
+      v[drive] += dir[drive];
+      for (int i = 0; i < 3; ++i)
+      {
+        if (i == drive) continue;
+        error[i] += change[i];
+        if (error[i] >= steps)
+        {
+          error[i] -= steps;
+          v[i] += dir[i];
+        }
+      }
+    }
+    return walk;
+  };
+  std::mt19937 rng(2026);
+  std::uniform_int_distribution<int> ux(0, nx - 1), uy(0, ny - 1), uz(0, nz - 1), cut(0, 30);
+  int differing = 0;
+  for (int n = 0; n < 20000; ++n)
+  {
+    const std::array<int, 3> a{ux(rng), uy(rng), uz(rng)};
+    // Every fifth line runs along an axis or a diagonal, where changes tie.
+    std::array<int, 3> b{ux(rng), uy(rng), uz(rng)};
+    if (n % 5 == 0)
+    {
+      const int d = std::min({nx - 1 - a[0], ny - 1 - a[1], nz - 1 - a[2]});
+      b = {a[0] + d * (n / 5 % 2), a[1] + d * (n / 10 % 2), a[2] + d};
+    }
+    const int last = n % 3 == 0 ? cut(rng) : 1000;
+    std::vector<Visit> seen;
+    g.traceLine([&](unsigned index, unsigned z, unsigned k)
+                { seen.push_back({int(index % nx), int(index / nx), int(z), int(k)}); },
+                a[0], a[1], a[2], b[0], b[1], b[2], last);
+    if (seen != reference(a, b, last) && ++differing <= 5)
+      ADD_FAILURE() << "(" << a[0] << ", " << a[1] << ", " << a[2] << ") -> (" << b[0] << ", " << b[1] << ", " << b[2]
+                    << ") cut at " << last;
+  }
+  EXPECT_EQ(differing, 0);
 }
 
 TEST(VoxelLayer, MarksIn3D)

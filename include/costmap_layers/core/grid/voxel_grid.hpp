@@ -115,24 +115,21 @@ void VoxelGrid::traceLine(ActionType&& at, unsigned int x0, unsigned int y0, uns
   {
     at(static_cast<unsigned int>(index), static_cast<unsigned int>(z), static_cast<unsigned int>(k));
     if (k == end) return;
+    // An axis moves when its error term reaches `steps`; the moves are masks, not branches: whether a
+    // following axis moves on a step is as good as random to the branch predictor, and one mispredicted
+    // jump cost more than the whole step.
     error_x += change[0];
-    if (error_x >= steps)
-    {
-      error_x -= steps;
-      index += step_x;
-    }
+    const int64_t move_x = -static_cast<int64_t>(error_x >= steps);  // all ones when x moves
+    error_x -= steps & move_x;
+    index += step_x & move_x;
     error_y += change[1];
-    if (error_y >= steps)
-    {
-      error_y -= steps;
-      index += step_y;
-    }
+    const int64_t move_y = -static_cast<int64_t>(error_y >= steps);
+    error_y -= steps & move_y;
+    index += step_y & move_y;
     error_z += change[2];
-    if (error_z >= steps)
-    {
-      error_z -= steps;
-      z += step_z;
-    }
+    const int64_t move_z = -static_cast<int64_t>(error_z >= steps);
+    error_z -= steps & move_z;
+    z += step_z & move_z;
   }
 }
 }  // namespace costmap_layers
