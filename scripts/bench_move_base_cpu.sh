@@ -99,6 +99,10 @@ cpu_ticks() { # utime + stime of the PIDs, summed (fields 14 and 15 of /proc/PID
   local p
   for p in "$@"; do cat "/proc/$p/stat"; done | awk '{ sub(/^.*\) /, ""); n += $12 + $13 } END { print n }'
 }
+user_ticks() { # utime alone: this VM's kernel time swings from run to run (hypervisor exits), user time less
+  local p
+  for p in "$@"; do cat "/proc/$p/stat"; done | awk '{ sub(/^.*\) /, ""); n += $12 } END { print n }'
+}
 switches() { # context switches (voluntary and not) of every thread of the PIDs, summed
   local p
   for p in "$@"; do cat /proc/"$p"/task/*/status 2> /dev/null; done | awk '/ctxt_switches:/ { n += $2 } END { print n + 0 }'
@@ -185,7 +189,7 @@ echo "bench_move_base_cpu: $PAIRS pairs, warm-up ${WARMUP} s, window ${WINDOW} s
 RESULTS="$OUT/results.txt"
 : > "$RESULTS"
 run() { # run PAIR A|B|C|N: one run (move_base, or C's costmap_node), one result line
-  local pair=$1 side=$2 log pids t0 t_start t_end c0 c1 w0 w1 cpu world rss msgs cycles missed_local missed_global
+  local pair=$1 side=$2 log pids t0 t_start t_end c0 c1 u0 u1 w0 w1 cpu user world rss msgs cycles missed_local missed_global
   local perf_pid="" what ns s0 s1
   log="$OUT/move_base_${pair}_${side}.log"
   t0=$(date +%s.%N)
@@ -222,6 +226,7 @@ run() { # run PAIR A|B|C|N: one run (move_base, or C's costmap_node), one result
     kill -0 "$p" 2> /dev/null || die "$what ($side) died: $(tail -n 20 "$log")"
   done
   c0=$(cpu_ticks "${pids[@]}")
+  u0=$(user_ticks "${pids[@]}")
   s0=$(switches "${pids[@]}")
   w0=$(cpu_ticks "$WORLD_PID")
   local l0
@@ -233,6 +238,7 @@ run() { # run PAIR A|B|C|N: one run (move_base, or C's costmap_node), one result
   fi
   sleep_until "$t_end"
   c1=$(cpu_ticks "${pids[@]}")
+  u1=$(user_ticks "${pids[@]}")
   s1=$(switches "${pids[@]}")
   w1=$(cpu_ticks "$WORLD_PID")
   rss=$(rss_mb "${pids[@]}")
@@ -241,6 +247,7 @@ run() { # run PAIR A|B|C|N: one run (move_base, or C's costmap_node), one result
   for p in "${pids[@]}"; do stop "$p"; done
   cpu=$(python3 -c "print('%.2f' % (($c1 - $c0) / $TICKS))")
   world=$(python3 -c "print('%.2f' % (($w1 - $w0) / $TICKS))")
+  user=$(python3 -c "print('%.2f' % (($u1 - $u0) / $TICKS))")
   msgs=$(sed -n 's/^monitor: .*messages in the window: \([0-9]*\) .*/\1/p' "$OUT/monitor_${pair}_${side}.log")
   # The local costmap's update cycles in the window (from its diagnostics, costmap_node only) and the
   # cycles of each costmap that took longer than their period (costmap_2d warns of every one, naming the
@@ -258,9 +265,9 @@ run() { # run PAIR A|B|C|N: one run (move_base, or C's costmap_node), one result
     missed_global=$(awk -v a="$t_start" -v b="$t_end" -F'[][]' \
       '/missed its desired rate of 5.0000Hz/ { t = $4 + 0; if (t >= a && t < b) n++ } END { print n + 0 }' "$log")
   fi
-  echo "$pair $side $cpu $world" >> "$RESULTS"
-  printf 'round %d %s: %-16s %6.2f s CPU in %d s (%4.1f %% of a core), RSS %s MB; local costmap published %s times%s;' \
-    "$pair" "$side" "$what" "$cpu" "$WINDOW" "$(python3 -c "print(100 * $cpu / $WINDOW)")" "$rss" "${msgs:-?}" \
+  echo "$pair $side $cpu $world $user" >> "$RESULTS"
+  printf 'round %d %s: %-16s %6.2f s CPU (user %.2f s) in %d s (%4.1f %% of a core), RSS %s MB; local costmap published %s times%s;' \
+    "$pair" "$side" "$what" "$cpu" "$user" "$WINDOW" "$(python3 -c "print(100 * $cpu / $WINDOW)")" "$rss" "${msgs:-?}" \
     "${cycles:+, $cycles update cycles}"
   printf ' cycles over their period: local %s, global %s; %d context switches/s; world %.2f s CPU; load %s -> %s\n' \
     "${missed_local:-?}" "$missed_global" "$(((s1 - s0) / WINDOW))" "$world" "$l0" "$(load1)"
@@ -275,9 +282,11 @@ import sys
 rows = [l.split() for l in open(sys.argv[1]) if l.strip()]
 cpu = {}
 world = {}  # the world process's CPU in the same window: the same work every time, so a gauge of the host
-for p, s, c, w in rows:
+user = {}  # user time alone
+for p, s, c, w, u in rows:
     cpu.setdefault(s, {})[int(p)] = float(c)
     world.setdefault(s, {})[int(p)] = float(w)
+    user.setdefault(s, {})[int(p)] = float(u)
 def span(v):
     return "mean %.2f, min %.2f, max %.2f" % (sum(v) / len(v), min(v), max(v)) if v else "none"
 names = {"A": "A (move_base, costmap_2d's layers):    ", "B": "B (move_base, costmap_layers bridged):",
@@ -301,6 +310,11 @@ for s in ("B", "C", "N", "R", "I"):
     if scaled:
         print("%s / A per round, each over the world's CPU in its window: %s; %s" % (
             s, " ".join("%.3f" % r for r in scaled), span(scaled)))
+    # User time alone: on this kind of VM the kernel's share (IRQ enabling through the hypervisor, in
+    # every wake-up and socket call) swings by 2x from run to run whatever the process does.
+    users = [user[s][p] / user["A"][p] for p in rounds if user["A"][p] > 0]
+    if users:
+        print("%s / A per round, user time only: %s; %s" % (s, " ".join("%.3f" % r for r in users), span(users)))
 # The least any move_base with sensor layers can take: its own share (N) and the receiving of the
 # sensor data (R less the receiving process's idle cost I), whatever its layers do with the data.
 if all(k in cpu for k in ("A", "N", "R")):
