@@ -5,16 +5,15 @@
 
 namespace costmap_layers_ros
 {
-InlineCallbackQueue::InlineCallbackQueue(std::function<void(const std::string&)> report) : report_(std::move(report))
-{
-}
+InlineCallbackQueue::InlineCallbackQueue(std::function<void(const std::string&)> report) : report_(std::move(report)) {}
 
 void InlineCallbackQueue::addCallback(const ros::CallbackInterfacePtr& cb, uint64_t /*owner_id*/)
 {
   std::string problem;
   try
   {
-    if (!cb->ready()) problem = "a callback was not ready to run; dropped";
+    if (!cb->ready())
+      problem = "a callback was not ready to run; dropped";
     else if (cb->call() == ros::CallbackInterface::TryAgain)
       problem = "a callback asked to be called again (its subscription does not allow concurrent callbacks); dropped";
   }

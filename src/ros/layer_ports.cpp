@@ -347,9 +347,8 @@ void LayerPorts::publishVoxels(const costmap_layers::OutputEvent& e, ros::Publis
   }
   if (left_out > 0)
     log_->log(costmap_layers::Severity::Warn, private_nh_.getNamespace() + "/" + e.topic,
-              private_nh_.resolveName(e.topic) + ": " + std::to_string(left_out) +
-                  " marked voxels left out: at most " + std::to_string(costmap_layers::kMaxVoxelPoints) +
-                  " are drawn (voxel_grid carries them all)");
+              private_nh_.resolveName(e.topic) + ": " + std::to_string(left_out) + " marked voxels left out: at most " +
+                  std::to_string(costmap_layers::kMaxVoxelPoints) + " are drawn (voxel_grid carries them all)");
 }
 
 ros::Subscriber LayerPorts::subscribe(const costmap_layers::InputPort& in)
@@ -422,19 +421,19 @@ void LayerPorts::subscribeSensor(const std::string& topic, const std::string& se
   auto in = std::make_shared<SubscribedGate<Msg>>();
   in->gate = std::make_shared<TfGate<Msg>>(tf_, global_frame_, sensor_frame, ready, failed);
   std::weak_ptr<TfGate<Msg>> weak = in->gate;
-  // Readings that wait for tf are retried in the thread that brings the transform (the tf listener's),
-  // at once and with no timer; the count is a cheap look for the many changes nothing waits on.
+  // Readings that wait for tf are retried in the thread that brings the transform (the tf listener's callback),
+  // at once and with no timer.
   in->wake = std::make_unique<TfChangeWake>(tf_,
                                             [weak]
                                             {
                                               const auto g = weak.lock();
-                                              if (g && g->waiting() > 0) g->arrive(nullptr);
+                                              if (g) g->arrive(nullptr);
                                             });
   auto receipts = receiptsFor(topic);
   const std::shared_ptr<ThrottledLog> log = log_;
   const std::string key = source.owner + topic + "/callback", what = source.owner + ": on " + topic + ": ";
-  in->queue = std::make_unique<InlineCallbackQueue>([log, key, what](const std::string& problem)
-                                                    { log->log(costmap_layers::Severity::Error, key, what + problem); });
+  in->queue = std::make_unique<InlineCallbackQueue>(
+      [log, key, what](const std::string& problem) { log->log(costmap_layers::Severity::Error, key, what + problem); });
   ros::SubscribeOptions options;
   options.template init<Msg>(resolveTopic(topic), 5,
                              [weak, receipts](const typename Msg::ConstPtr& msg)

@@ -67,8 +67,7 @@ TEST(InlineCallbackQueue, ACallbackThatThrowsIsReportedAndDoesNotEscape)
   InlineCallbackQueue queue([&](const std::string& r) { reports.push_back(r); });
   EXPECT_NO_THROW(queue.addCallback(
       callback([]() -> ros::CallbackInterface::CallResult { throw std::runtime_error("bad cloud"); }), 1));
-  EXPECT_NO_THROW(
-      queue.addCallback(callback([]() -> ros::CallbackInterface::CallResult { throw 42; }), 1));
+  EXPECT_NO_THROW(queue.addCallback(callback([]() -> ros::CallbackInterface::CallResult { throw 42; }), 1));
   ASSERT_EQ(reports.size(), 2u);
   EXPECT_EQ(reports[0], "a callback threw: bad cloud");
   EXPECT_EQ(reports[1], "a callback threw something that is not a std::exception");
@@ -107,7 +106,7 @@ TEST(InlineCallbackQueue, ACallbackThatCannotRunNowIsReportedNotRetried)
 TEST(InlineCallbackQueue, AReportThatThrowsIsCountedAndDoesNotEscape)
 {
   InlineCallbackQueue queue([](const std::string&) { throw std::bad_alloc(); });
-  EXPECT_NO_THROW(queue.addCallback(
-      callback([]() -> ros::CallbackInterface::CallResult { throw std::runtime_error("x"); }), 1));
+  EXPECT_NO_THROW(
+      queue.addCallback(callback([]() -> ros::CallbackInterface::CallResult { throw std::runtime_error("x"); }), 1));
   EXPECT_EQ(queue.failures(), 1u);
 }

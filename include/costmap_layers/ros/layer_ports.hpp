@@ -7,9 +7,9 @@
 // plain functions and classes a test can feed without a master.
 #pragma once
 
-#include <boost/make_shared.hpp>
 #include <ros/ros.h>
 #include <tf2_ros/buffer.h>
+#include <boost/make_shared.hpp>
 
 #include <deque>
 #include <map>
@@ -91,9 +91,9 @@ private:
   std::vector<std::string> port_topics_;              ///< their topics as receipts_ keys them (the same)
   std::deque<double> move_log_times_;                 ///< [s] when replaced ports were logged (ports_mutex_)
   std::size_t moves_unlogged_ = 0;                    ///< replacements since, not logged (ports_mutex_)
-  std::vector<std::shared_ptr<void>> sensor_inputs_;  ///< tf gates with their subscribers and timers
+  std::vector<std::shared_ptr<void>> sensor_inputs_;  ///< tf gates with their subscribers, queues and tf wakes
   std::map<std::pair<costmap_layers::OutputKind, std::string>, ros::Publisher> publishers_;  ///< by kind, topic
-  std::vector<ros::ServiceServer> toggles_;     ///< a filter's switch: `toggle` and Nav2's `toggle_filter`
+  std::vector<ros::ServiceServer> toggles_;  ///< a filter's switch: `toggle` and Nav2's `toggle_filter`
   /// Tracked by the on-demand publishers' connection callbacks: none runs once this object is gone.
   ros::VoidConstPtr alive_ = boost::make_shared<int>(0);
   std::unique_ptr<SetpointApplier> setpoints_;  ///< the Setpoints output's worker (ZoneParameterFilter)

@@ -10,9 +10,9 @@
 // canTransform(), lookupTransform(), getCacheLength() (see tf_verdict.hpp).
 #pragma once
 
-#include <boost/signals2/connection.hpp>
 #include <ros/time.h>
 #include <tf2/buffer_core.h>
+#include <boost/signals2/connection.hpp>
 
 #include <cstddef>
 #include <deque>
@@ -80,7 +80,10 @@ public:
   void arrive(const Ptr& msg)
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (msg) waiting_.push_back(msg);
+    if (msg)
+      waiting_.push_back(msg);
+    else if (waiting_.empty())
+      return;  // a retry with nothing waiting: the common case, tf changes far more often than readings wait
     std::deque<Ptr>& still = spare_;  // kept from call to call: nothing allocated per reading
     still.clear();
     for (const Ptr& m : waiting_)
@@ -144,7 +147,7 @@ private:
 };
 
 /// Calls `retry` whenever tf gets a transform: tf2's transforms-changed signal (the hook tf's own
-/// listener uses), raised by BufferCore::setTransform() in the inserting thread (the tf listener's)
+/// listener uses), raised by BufferCore::setTransform() in the inserting thread (the tf listener's callback)
 /// after tf's locks are released. With it a gate needs no timer: a waiting reading leaves the queue
 /// only when tf changes (placed, or older than all tf keeps) or when newer readings push it out; time
 /// alone moves none (the stamp-ahead rule only relaxes as the clock goes on). A timer retrying every

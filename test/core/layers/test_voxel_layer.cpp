@@ -271,9 +271,11 @@ TEST(VoxelGrid, TraceLineMatchesTheDrivingAxisWalkOnRandomLines)
     }
     const int last = n % 3 == 0 ? cut(rng) : 1000;
     std::vector<Visit> seen;
-    g.traceLine([&](unsigned index, unsigned z, unsigned k)
-                { seen.push_back({int(index % nx), int(index / nx), int(z), int(k)}); },
-                a[0], a[1], a[2], b[0], b[1], b[2], last);
+    g.traceLine(
+        [&](unsigned index, unsigned z, unsigned k) {
+          seen.push_back({int(index % nx), int(index / nx), int(z), int(k)});
+        },
+        a[0], a[1], a[2], b[0], b[1], b[2], last);
     if (seen != reference(a, b, last) && ++differing <= 5)
       ADD_FAILURE() << "(" << a[0] << ", " << a[1] << ", " << a[2] << ") -> (" << b[0] << ", " << b[1] << ", " << b[2]
                     << ") cut at " << last;
@@ -631,9 +633,9 @@ TEST(VoxelOutputs, SnapshotOnlyWhileWanted)
   Rig rig(voxelParams({{"publish_voxel_map", B(true)}}), true);
   const auto& outs = rig.layer->outputs();
   ASSERT_EQ(outs.size(), 3u);
-  const std::array<std::pair<OutputKind, const char*>, 3> expected{
-      {{OutputKind::VoxelGrid, "voxel_grid"}, {OutputKind::VoxelMarkers, "voxel_markers"},
-       {OutputKind::VoxelCloud, "voxel_cloud"}}};
+  const std::array<std::pair<OutputKind, const char*>, 3> expected{{{OutputKind::VoxelGrid, "voxel_grid"},
+                                                                    {OutputKind::VoxelMarkers, "voxel_markers"},
+                                                                    {OutputKind::VoxelCloud, "voxel_cloud"}}};
   for (std::size_t i = 0; i < 3; ++i)
   {
     EXPECT_EQ(outs[i].kind, expected[i].first);
